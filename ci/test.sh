@@ -1,0 +1,12 @@
+#!/usr/bin/env bash
+# CI tier: install what is missing, build, run the `ci` label of ctest (unit tests,
+# fast verification cases, regression checks), then build the report of that tier.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${ERYTHRO_BUILD_DIR:-$root/build}
+start=$(date +%s)
+"$root/ci/install-deps.sh"
+"$root/ci/build.sh"
+ctest --test-dir "$build" -L ci --output-on-failure -j "$(nproc)"
+/usr/bin/python3 "$root/reports/generate.py" "$build/results" --out "$build/report-ci" --labels ci
+echo "ci tier finished in $(( $(date +%s) - start )) s"

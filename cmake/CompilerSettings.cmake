@@ -1,0 +1,18 @@
+# Warning and optimisation flags shared by every target (issue 2 §1).
+add_library(erythro_flags INTERFACE)
+target_compile_options(erythro_flags INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wconversion -Wno-sign-conversion)
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_CXX_COMPILER_VERSION VERSION_LESS 13)
+  # GCC 12 false positive on std::string concatenation at -O2/-O3 (GCC bug 105329).
+  target_compile_options(erythro_flags INTERFACE -Wno-restrict)
+endif()
+if(ERYTHRO_WERROR)
+  target_compile_options(erythro_flags INTERFACE -Werror)
+endif()
+if(ERYTHRO_NATIVE AND NOT ERYTHRO_SANITIZE)
+  target_compile_options(erythro_flags INTERFACE -march=native)
+endif()
+if(ERYTHRO_SANITIZE)
+  target_compile_options(erythro_flags INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(erythro_flags INTERFACE -fsanitize=address,undefined)
+endif()
+# Strict IEEE semantics: no -ffast-math, so round-off tests mean what they say.

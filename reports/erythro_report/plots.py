@@ -1,0 +1,181 @@
+"""Figures of the report, drawn with matplotlib's Agg backend and saved as PNG.
+
+Each *_figure function writes one PNG file and returns True, or returns False
+(and writes nothing) when there is nothing to plot.
+"""
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")
+from matplotlib.figure import Figure  # noqa: E402  (after choosing the backend)
+import numpy as np  # noqa: E402
+
+from .formatting import ERROR_TARGET, ERROR_TARGET_TEXT, cheapest_setup, number  # noqa: E402
+
+DPI = 110
+PANEL_COLUMNS = 3
+PANELS_PER_PAGE = 9        # overview figures: up to a 3 × 3 grid each
+FORMAL_LINE_SHIFT = 0.5    # formal-order line drawn at half the finest error
+
+
+def _new_figure(width=6.4, height=4.6):
+    return Figure(figsize=(width, height), dpi=DPI, layout="constrained")
+
+
+def _save(fig, path):
+    fig.savefig(path)
+    return True
+
+
+def _log_points(x, y):
+    """x, y truncated to a common length, keeping finite positive pairs only."""
+    n = min(len(x), len(y))
+    x, y = np.asarray(x[:n], dtype=float), np.asarray(y[:n], dtype=float)
+    keep = np.isfinite(x) & np.isfinite(y) & (x > 0) & (y > 0)
+    return x[keep], y[keep]
+
+
+def _fit_line(h, e, slope):
+    """Least-squares line log e = slope·log h + c; slope fitted too if not finite."""
+    lh, le = np.log(h), np.log(e)
+    if not math.isfinite(slope):
+        slope = float(np.polyfit(lh, le, 1)[0]) if len(h) >= 2 else float("nan")
+    if not math.isfinite(slope):
+        return None
+    intercept = float(np.mean(le - slope * lh))
+    hh = np.array([h.min(), h.max()])
+    return hh, np.exp(intercept) * hh ** slope, slope
+
+
+# -- convergence -----------------------------------------------------------------
+
+def convergence_figure(record, path):
+    """All /convergence series of a case: error vs h, fit and formal-order lines."""
+    fig = _new_figure()
+    ax = fig.add_subplot()
+    several = len(record.convergence) > 1
+    drawn = 0
+    for i, series in enumerate(record.convergence):
+        drawn += _draw_convergence(ax, series, f"C{i}", f"{series.name}: " if several else "")
+    if not drawn:
+        return False
+    norms = sorted({s.norm for s in record.convergence if s.norm})
+    ax.set_xlabel("h (grid spacing)")
+    ax.set_ylabel(f"error ({'; '.join(norms)})" if norms else "error")
+    ax.set_title(f"{record.case}: convergence")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, path)
+
+
+def _draw_convergence(ax, series, color, prefix):
+    h, e = _log_points(series.h, series.error)
+    if len(h) == 0:
+        return 0
+    ax.loglog(h, e, "o", color=color, label=f"{prefix}error" if prefix else series.name or "error")
+    fit = _fit_line(h, e, series.observed_order) if len(h) >= 2 else None
+    if fit:
+        hh, ee, slope = fit
+        ax.loglog(hh, ee, "-", color=color, lw=1.2,
+                  label=f"{prefix}least-squares fit, slope {number(slope, 3)}")
+    if math.isfinite(series.formal_order) and len(h) >= 2:
+        # Through the finest point, shifted down so that it does not hide the fit.
+        finest = int(np.argmin(h))
+        hh = np.array([h.min(), h.max()])
+        anchor = FORMAL_LINE_SHIFT * e[finest]
+        ax.loglog(hh, anchor * (hh / h[finest]) ** series.formal_order, "--", color=color,
+                  lw=1.0, alpha=0.7, label=f"{prefix}formal order {number(series.formal_order, 3)}")
+    return 1
+
+
+# -- speed against error ------------------------------------------------------------
+
+def speed_error_figure(record, path):
+    fig = _new_figure()
+    ax = fig.add_subplot()
+    if not draw_speed_error(ax, record, title=f"{record.case}: error against wall time"):
+        return False
+    return _save(fig, path)
+
+
+def draw_speed_error(ax, record, title, label_points=True):
+    """One line per /speed_error series; returns the number of series drawn."""
+    drawn = 0
+    for i, s in enumerate(record.speed_error):
+        drawn += _draw_speed_series(ax, s, f"C{i}", label_points)
+    if not drawn:
+        ax.set_axis_off()
+        ax.set_title(title, fontsize=10)
+        ax.text(0.5, 0.5, "no positive finite points", ha="center", va="center",
+                transform=ax.transAxes, color="0.4")
+        return 0
+    ax.axhline(ERROR_TARGET, color="0.4", ls=":", lw=1, label=f"error {ERROR_TARGET_TEXT}")
+    best = cheapest_setup(record)
+    if best:
+        ax.loglog([best[2]], [best[3]], "o", ms=13, mfc="none", mec="black",
+                  label=f"cheapest ≤ {ERROR_TARGET_TEXT}")
+    ax.set_xlabel("wall time (s)")
+    ax.set_ylabel("error")
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7)
+    return drawn
+
+
+def _draw_speed_series(ax, s, color, label_points):
+    n = min(len(s.wall_time_s), len(s.error))
+    t, e = _log_points(s.wall_time_s[:n], s.error[:n])
+    if len(t) == 0:
+        return 0
+    order = np.argsort(t)
+    ax.loglog(t[order], e[order], "o-", color=color, ms=4, label=s.name)
+    if label_points:
+        for ti, ei, text in zip(s.wall_time_s[:n], s.error[:n], s.label[:n]):
+            if ti > 0 and ei > 0 and math.isfinite(ti) and math.isfinite(ei):
+                ax.annotate(text, (ti, ei), textcoords="offset points", xytext=(4, 4),
+                            fontsize=7, color=color)
+    return 1
+
+
+def overview_figures(records, path_for_page):
+    """'Speed against error' for every case with /speed_error, up to 3 × 3 panels a page.
+
+    path_for_page(i) gives the file of page i; returns the list of files written.
+    """
+    cases = [r for r in records if r.speed_error]
+    pages = [cases[i:i + PANELS_PER_PAGE] for i in range(0, len(cases), PANELS_PER_PAGE)]
+    return [_overview_page(page, path_for_page(i)) for i, page in enumerate(pages)]
+
+
+def _overview_page(records, path):
+    cols = min(PANEL_COLUMNS, len(records))
+    rows = math.ceil(len(records) / cols)
+    fig = _new_figure(4.3 * cols, 3.5 * rows)
+    fig.suptitle("Speed against error")
+    for i, record in enumerate(records):
+        draw_speed_error(fig.add_subplot(rows, cols, i + 1), record, record.case)
+    _save(fig, path)
+    return path
+
+
+# -- plain series --------------------------------------------------------------------
+
+def series_figure(series, path):
+    """y against x, with y_reference dashed when recorded."""
+    n = min(len(series.x), len(series.y))
+    if n == 0:
+        return False
+    fig = _new_figure(6.0, 4.0)
+    ax = fig.add_subplot()
+    ax.plot(series.x[:n], series.y[:n], "-", color="C0", lw=2, label=series.ylabel or "y")
+    ref = series.y_reference
+    if ref is not None:
+        m = min(len(series.x), len(ref))
+        ax.plot(series.x[:m], ref[:m], "--", color="black", lw=1, label="reference")
+    ax.set_xlabel(series.xlabel or "x")
+    ax.set_ylabel(series.ylabel or "y")
+    ax.set_title(series.title or series.name)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return _save(fig, path)

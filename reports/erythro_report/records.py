@@ -1,0 +1,228 @@
+"""Reading one V&V result record (schema: solver/io/result_record.hpp).
+
+A record is an HDF5 file with a root attribute `case`. read_record() returns
+None for an HDF5 file without that attribute (not a result record) and raises
+RecordError, naming the file, for a file that cannot be read.
+"""
+from dataclasses import dataclass, field
+from typing import Optional
+
+import h5py
+import numpy as np
+
+from .h5text import (attr_float, attr_text, read_column, read_floats,
+                     to_scalar, to_text_list)
+
+SCHEMA_VERSION = 1
+VERDICTS = ("pass", "fail")
+
+
+class RecordError(Exception):
+    """A result record that exists but cannot be read."""
+
+
+@dataclass
+class Metric:
+    name: str
+    description: str
+    unit: str
+    value: float
+    expected: float
+    tolerance: float
+    comparison: str          # absolute | relative | at_most | at_least
+    tolerance_reason: str
+    verdict: str             # as written by the C++ test ("" if absent)
+
+    @property
+    def verdict_valid(self):
+        return self.verdict in VERDICTS
+
+
+@dataclass
+class Convergence:
+    name: str
+    norm: str
+    h: np.ndarray
+    error: np.ndarray
+    local_orders: np.ndarray
+    formal_order: float
+    observed_order: float
+    order_tolerance: float
+    asymptotic: Optional[bool]   # None when the attribute is absent
+    asymptotic_rule: str
+
+
+@dataclass
+class SpeedError:
+    name: str
+    wall_time_s: np.ndarray
+    error: np.ndarray
+    label: list
+
+
+@dataclass
+class Series:
+    name: str
+    title: str
+    xlabel: str
+    ylabel: str
+    x: np.ndarray
+    y: np.ndarray
+    y_reference: Optional[np.ndarray]
+
+
+@dataclass
+class Runs:
+    columns: list                                  # in the order of attr `columns`
+    data: dict = field(default_factory=dict)       # column -> list or float array
+
+    @property
+    def n_rows(self):
+        return max((len(v) for v in self.data.values()), default=0)
+
+
+@dataclass
+class Record:
+    path: str
+    case: str
+    family: str
+    requirement: str
+    reference: str
+    verdict: str
+    git_revision: str
+    compiler: str
+    compile_flags: str
+    created_utc: str
+    wall_time_s: float
+    schema_version: str
+    parameters: dict
+    metrics: list
+    runs: Runs
+    convergence: list
+    speed_error: list
+    series: list
+
+    @property
+    def verdict_valid(self):
+        return self.verdict in VERDICTS
+
+    @property
+    def failed(self):
+        return self.verdict == "fail"
+
+
+def read_record(path):
+    """The record in `path`, or None if the file has no root attribute `case`."""
+    try:
+        with h5py.File(path, "r") as f:
+            if "case" not in f.attrs:
+                return None
+            return _read_root(f, str(path))
+    except RecordError:
+        raise
+    except Exception as exc:  # corrupt file, wrong types, truncated data...
+        raise RecordError(f"{path}: cannot read result record: {exc}") from exc
+
+
+def _read_root(f, path):
+    return Record(
+        path=path,
+        case=attr_text(f, "case"),
+        family=attr_text(f, "family"),
+        requirement=attr_text(f, "requirement"),
+        reference=attr_text(f, "reference"),
+        verdict=attr_text(f, "verdict"),
+        git_revision=attr_text(f, "git_revision"),
+        compiler=attr_text(f, "compiler"),
+        compile_flags=attr_text(f, "compile_flags"),
+        created_utc=attr_text(f, "created_utc"),
+        wall_time_s=attr_float(f, "wall_time_s"),
+        schema_version=attr_text(f, "schema_version"),
+        parameters=_read_parameters(f),
+        metrics=[_read_metric(n, g) for n, g in _subgroups(f, "metrics")],
+        runs=_read_runs(f, path),
+        convergence=[_read_convergence(n, g) for n, g in _subgroups(f, "convergence")],
+        speed_error=[_read_speed_error(n, g) for n, g in _subgroups(f, "speed_error")],
+        series=[_read_series(n, g) for n, g in _subgroups(f, "series")],
+    )
+
+
+def _subgroups(f, name):
+    """(display name, group) for each group under /name; attr `name` wins if present."""
+    if name not in f:
+        return []
+    parent = f[name]
+    items = []
+    for key in parent:
+        group = parent[key]
+        if isinstance(group, h5py.Group):
+            items.append((attr_text(group, "name", default=key), group))
+    return items
+
+
+def _read_parameters(f):
+    if "parameters" not in f:
+        return {}
+    return {key: to_scalar(value) for key, value in f["parameters"].attrs.items()}
+
+
+def _read_metric(name, g):
+    return Metric(
+        name=name,
+        description=attr_text(g, "description"),
+        unit=attr_text(g, "unit"),
+        value=attr_float(g, "value"),
+        expected=attr_float(g, "expected"),
+        tolerance=attr_float(g, "tolerance"),
+        comparison=attr_text(g, "comparison"),
+        tolerance_reason=attr_text(g, "tolerance_reason"),
+        verdict=attr_text(g, "verdict"),
+    )
+
+
+def _read_runs(f, path):
+    if "runs" not in f:
+        return Runs(columns=[])
+    group = f["runs"]
+    datasets = [k for k in group if isinstance(group[k], h5py.Dataset)]
+    if "columns" in group.attrs:
+        columns = to_text_list(group.attrs["columns"])
+    else:
+        columns = sorted(datasets)
+    missing = [c for c in columns if c not in datasets]
+    if missing:
+        raise RecordError(f"{path}: /runs lists columns without a dataset: {', '.join(missing)}")
+    return Runs(columns=columns, data={c: read_column(group[c]) for c in columns})
+
+
+def _read_convergence(name, g):
+    asymptotic = None
+    if "asymptotic" in g.attrs:
+        asymptotic = bool(attr_float(g, "asymptotic", default=0.0))
+    return Convergence(
+        name=name,
+        norm=attr_text(g, "norm"),
+        h=read_floats(g, "h"),
+        error=read_floats(g, "error"),
+        local_orders=read_floats(g, "local_orders"),
+        formal_order=attr_float(g, "formal_order"),
+        observed_order=attr_float(g, "observed_order"),
+        order_tolerance=attr_float(g, "order_tolerance"),
+        asymptotic=asymptotic,
+        asymptotic_rule=attr_text(g, "asymptotic_rule"),
+    )
+
+
+def _read_speed_error(name, g):
+    labels = to_text_list(g["label"][()]) if "label" in g else []
+    return SpeedError(name=name, wall_time_s=read_floats(g, "wall_time_s"),
+                      error=read_floats(g, "error"), label=labels)
+
+
+def _read_series(name, g):
+    y_reference = read_floats(g, "y_reference") if "y_reference" in g else None
+    if y_reference is not None and y_reference.size == 0:
+        y_reference = None
+    return Series(name=name, title=attr_text(g, "title"), xlabel=attr_text(g, "xlabel"),
+                  ylabel=attr_text(g, "ylabel"), x=read_floats(g, "x"),
+                  y=read_floats(g, "y"), y_reference=y_reference)

@@ -1,0 +1,101 @@
+#include "app/commands.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "app/progress.hpp"
+#include "common/error.hpp"
+#include "io/atomic_file.hpp"
+#include "io/baseline_compare.hpp"
+#include "io/run_writer.hpp"
+#include "scene/scene_parser.hpp"
+#include "scene/units.hpp"
+#include "simulation/simulation.hpp"
+
+namespace erythro::app {
+namespace fs = std::filesystem;
+
+namespace {
+
+int report(int code, const std::string& message) {
+  std::cerr << "erythro: error: " << message << "\n";
+  return code;
+}
+
+// Runs `body`, mapping the project's error types to exit codes.
+template <class Body>
+int guarded(Body&& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    return report(exit_code::bad_input, e.what());
+  } catch (const OutputError& e) {
+    return report(exit_code::output_failure, e.what());
+  } catch (const std::exception& e) {
+    return report(exit_code::runtime_failure, std::string("internal error: ") + e.what());
+  }
+}
+
+// Refuses to overwrite an earlier run unless forced; never deletes anything else.
+void prepare_output_folder(const std::string& dir, bool force) {
+  io::ensure_writable_directory(dir);
+  for (const char* name : {"run.h5", "run.xdmf"}) {
+    const fs::path p = fs::path(dir) / name;
+    if (fs::exists(p) && !force) {
+      throw OutputError("output '" + p.string() + "' already exists; use --force to overwrite it or --out to choose another folder");
+    }
+  }
+}
+
+}  // namespace
+
+int run_command(const RunOptions& options) {
+  return guarded([&] {
+    scene::Scene scene = scene::load_scene(options.scene_path, options.overrides);
+    const scene::LatticeSetup setup = scene::derive_lattice(scene);
+    const std::string out_dir =
+        options.out_dir.empty() ? (fs::path("out") / fs::path(options.scene_path).stem()).string() : options.out_dir;
+    prepare_output_folder(out_dir, options.force);
+
+    sim::Simulation simulation(std::move(scene), setup);
+    io::RunWriter writer(out_dir);
+    ProgressDisplay progress(options.quiet);
+    sim::ObserverList observers;
+    observers.add(writer);
+    observers.add(progress);
+    sim::RunSummary summary;
+    try {
+      summary = simulation.run(observers);
+    } catch (const std::exception& e) {
+      writer.abort(e.what());
+      throw;
+    }
+    std::cout << "results: " << writer.h5_path() << "\n" << "fields:  " << writer.xdmf_path() << "\n";
+    if (summary.status == sim::RunStatus::diverged) {
+      std::cerr << "erythro: " << summary.diagnosis << "\n"
+                << "erythro: everything up to the last healthy output is in " << writer.h5_path() << "\n";
+      return exit_code::diverged;
+    }
+    return exit_code::ok;
+  });
+}
+
+int check_command(const std::string& scene_path, const std::vector<std::string>& overrides) {
+  return guarded([&] {
+    const scene::Scene scene = scene::load_scene(scene_path, overrides);
+    const scene::LatticeSetup setup = scene::derive_lattice(scene);
+    std::cout << scene::format_lattice_report(scene, setup);
+    return exit_code::ok;
+  });
+}
+
+int compare_command(const std::string& current, const std::string& baseline, const std::string& tolerances) {
+  return guarded([&] {
+    const io::BaselineReport result = io::compare_to_baseline(current, baseline, tolerances);
+    std::cout << "comparing " << current << " with baseline " << baseline << "\n" << result.to_text();
+    return result.passed() ? exit_code::ok : exit_code::regression;
+  });
+}
+
+}  // namespace erythro::app

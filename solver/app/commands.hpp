@@ -1,0 +1,21 @@
+#pragma once
+// The `erythro` subcommands. Each returns the process exit code (docs/cli.md);
+// errors are reported on stderr as "erythro: error: ...".
+#include <string>
+#include <vector>
+
+namespace erythro::app {
+
+struct RunOptions {
+  std::string scene_path;
+  std::string out_dir;  // default: out/<scene file stem>
+  std::vector<std::string> overrides;
+  bool force = false;   // overwrite an existing run in out_dir
+  bool quiet = false;
+};
+
+int run_command(const RunOptions& options);
+int check_command(const std::string& scene_path, const std::vector<std::string>& overrides);
+int compare_command(const std::string& current, const std::string& baseline, const std::string& tolerances);
+
+}  // namespace erythro::app

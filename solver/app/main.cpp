@@ -1,0 +1,52 @@
+// The `erythro` command: run, check, compare (and bench). Exit codes: docs/cli.md.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "app/commands.hpp"
+#include "common/build_info.hpp"
+#include "common/error.hpp"
+
+int main(int argc, char** argv) {
+  using namespace erythro;
+  CLI::App cli{"erythro: red blood cells and NO/O2 transport in small arterioles (2D IB-LBM)"};
+  cli.require_subcommand(0, 1);
+  bool show_version = false;
+  cli.add_flag("--version", show_version, "Print the version and git revision");
+
+  app::RunOptions run;
+  auto* run_cmd = cli.add_subcommand("run", "Run a scene and write OUT/run.h5 and OUT/run.xdmf");
+  run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)")->required();
+  run_cmd->add_option("--out", run.out_dir, "Output folder (default: out/<scene name>)");
+  run_cmd->add_option("--set", run.overrides, "Override a scene key: --set fluid.tau=0.8 (repeatable)");
+  run_cmd->add_flag("--force", run.force, "Overwrite an earlier run in the output folder");
+  run_cmd->add_flag("--quiet", run.quiet, "No progress display");
+
+  std::string check_scene;
+  std::vector<std::string> check_overrides;
+  auto* check_cmd = cli.add_subcommand("check", "Print the derived lattice parameters of a scene without running it");
+  check_cmd->add_option("scene", check_scene, "Scene file (TOML)")->required();
+  check_cmd->add_option("--set", check_overrides, "Override a scene key (repeatable)");
+
+  std::string current, baseline, tolerances;
+  auto* compare_cmd = cli.add_subcommand("compare", "Compare a run file with a regression baseline");
+  compare_cmd->add_option("current", current, "Current run.h5")->required()->check(CLI::ExistingFile);
+  compare_cmd->add_option("baseline", baseline, "Baseline .h5")->required()->check(CLI::ExistingFile);
+  compare_cmd->add_option("--tolerances", tolerances, "Tolerance file (TOML)")->required()->check(CLI::ExistingFile);
+
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = cli.exit(e);
+    return code == 0 ? exit_code::ok : exit_code::bad_input;
+  }
+  if (show_version) {
+    std::cout << "erythro " << build_info::version() << " (git " << build_info::git_revision() << ", "
+              << build_info::compiler() << ")\n";
+    return exit_code::ok;
+  }
+  if (*run_cmd) return app::run_command(run);
+  if (*check_cmd) return app::check_command(check_scene, check_overrides);
+  if (*compare_cmd) return app::compare_command(current, baseline, tolerances);
+  std::cout << cli.help();
+  return exit_code::bad_input;
+}

@@ -1,0 +1,47 @@
+#include "app/progress.hpp"
+
+#include <unistd.h>
+
+#include <cstdio>
+
+namespace erythro::app {
+namespace {
+void format_duration(double seconds, char* out, std::size_t size) {
+  const long s = static_cast<long>(seconds + 0.5);
+  std::snprintf(out, size, "%02ld:%02ld:%02ld", s / 3600, (s / 60) % 60, s % 60);
+}
+}  // namespace
+
+ProgressDisplay::ProgressDisplay(bool quiet)
+    : quiet_(quiet), terminal_(::isatty(STDERR_FILENO) != 0), start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
+
+void ProgressDisplay::on_progress(long step, long total, double mlups) {
+  if (quiet_ || total <= 0) return;
+  const auto now = std::chrono::steady_clock::now();
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const double fraction = static_cast<double>(step) / static_cast<double>(total);
+  const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  char eta_text[32];
+  format_duration(eta, eta_text, sizeof eta_text);
+  if (terminal_) {
+    if (step != total && now - last_draw_ < std::chrono::milliseconds(100)) return;
+    last_draw_ = now;
+    std::fprintf(stderr, "\r  step %ld/%ld  %5.1f%%  %8.2f MLUPS  ETA %s ", step, total, 100.0 * fraction, mlups,
+                 eta_text);
+    std::fflush(stderr);
+  } else if (100 * step >= next_percent_ * total) {
+    std::fprintf(stderr, "step %ld/%ld (%.0f%%), %.2f MLUPS, ETA %s\n", step, total, 100.0 * fraction, mlups,
+                 eta_text);
+    while (100 * step >= next_percent_ * total) next_percent_ += 10;
+  }
+}
+
+void ProgressDisplay::on_finish(const sim::RunSummary& summary) {
+  if (quiet_) return;
+  if (terminal_) std::fprintf(stderr, "\n");
+  std::fprintf(stderr, "%s after %ld steps in %.2f s (%.2f MLUPS, %d threads)\n",
+               sim::to_string(summary.status).c_str(), summary.steps, summary.wall_time_s, summary.mlups,
+               summary.threads);
+}
+
+}  // namespace erythro::app

@@ -1,0 +1,42 @@
+#pragma once
+// Error types shared by every layer. Each maps to one documented exit code of the
+// `erythro` command (docs/cli.md): the app layer catches them, nothing below does.
+#include <stdexcept>
+#include <string>
+
+namespace erythro {
+
+// Bad input: malformed scene, unknown key, wrong type, value out of range,
+// impossible physics. Message names file, key, value and the allowed range.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// An output could not be written (unwritable folder, existing output without --force).
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// The health monitor found a non-finite or out-of-range quantity.
+class DivergenceError : public std::runtime_error {
+ public:
+  DivergenceError(std::string diagnosis, long step)
+      : std::runtime_error(std::move(diagnosis)), step_(step) {}
+  long step() const { return step_; }
+
+ private:
+  long step_;
+};
+
+namespace exit_code {
+inline constexpr int ok = 0;
+inline constexpr int runtime_failure = 1;  // unexpected internal error
+inline constexpr int bad_input = 2;        // scene or command-line error
+inline constexpr int diverged = 3;         // health monitor stopped the run
+inline constexpr int output_failure = 4;   // output folder unwritable or would be overwritten
+inline constexpr int regression = 5;       // `erythro compare`: a quantity moved beyond its tolerance
+}  // namespace exit_code
+
+}  // namespace erythro

@@ -1,0 +1,89 @@
+#pragma once
+// Collision of the nine populations of one node, with Guo forcing.
+// Internal to the fluid layer; inlined into the stream–collide kernel.
+#include "fluid/collision.hpp"
+#include "lattice/d2q9.hpp"
+
+namespace erythro::fluid::detail {
+
+// Relaxation rates of one node: ω+ = 1/τ (viscous), ω− (TRT only; = ω+ for BGK).
+struct Rates {
+  double omega_plus, omega_minus;
+};
+
+inline Rates rates_for(CollisionModel model, double tau, double magic) {
+  if (model == CollisionModel::bgk) return {1.0 / tau, 1.0 / tau};
+  return {1.0 / tau, 1.0 / trt_tau_minus(tau, magic)};
+}
+
+// f: the nine streamed populations of the node, stored as deviations from the rest
+// weights, f̃_i = f_i − w_i (see fluid_lattice.hpp), overwritten with post-collision ones.
+// Moments (model.md §1): ρ = 1 + Σf̃, ρu = Σ f̃ c + F/2.
+//  BGK (eq 14, 17): f' = f − ω(f − f^eq) + (1 − ω/2) S,
+//  TRT: f' = f − ω+(f⁺ − f^eq⁺) − ω−(f⁻ − f^eq⁻) + (1 − ω+/2) S⁺ + (1 − ω−/2) S⁻,
+//  S_i = w_i [ (c_i − u)·F/c_s² + (c_i·u)(c_i·F)/c_s⁴ ]  (Guo et al. 2002),
+//  split S⁺_i = w_i[(c_i·u)(c_i·F)/c_s⁴ − u·F/c_s²], S⁻_i = w_i (c_i·F)/c_s².
+template <CollisionModel Model, bool HasForce>
+inline void collide_node(double* f, Rates r, double Fx, double Fy) {
+  using namespace d2q9;
+  const double drho = f[0] + f[1] + f[2] + f[3] + f[4] + f[5] + f[6] + f[7] + f[8];
+  const double rho = 1.0 + drho;
+  double jx = f[1] - f[3] + f[5] - f[6] - f[7] + f[8];
+  double jy = f[2] - f[4] + f[5] + f[6] - f[7] - f[8];
+  if constexpr (HasForce) {
+    jx += 0.5 * Fx;
+    jy += 0.5 * Fy;
+  }
+  const double inv_rho = 1.0 / rho;
+  const double ux = jx * inv_rho, uy = jy * inv_rho;
+  const double uu_term = -1.5 * (ux * ux + uy * uy);
+  // f^eq_i − w_i = w_i [ (ρ − 1) + ρ (3 c·u + 4.5 (c·u)² − 1.5 u·u) ]  (eq 16, shifted)
+  const double uF = HasForce ? ux * Fx + uy * Fy : 0.0;
+
+  if constexpr (Model == CollisionModel::bgk) {
+    const double om = r.omega_plus;
+    const double force_pref = 1.0 - 0.5 * om;
+#pragma GCC unroll 9
+    for (int i = 0; i < Q; ++i) {
+      const double cu = cx[i] * ux + cy[i] * uy;
+      const double feq = w[i] * (drho + rho * (uu_term + 3.0 * cu + 4.5 * cu * cu));
+      double fi = f[i] - om * (f[i] - feq);
+      if constexpr (HasForce) {
+        const double cF = cx[i] * Fx + cy[i] * Fy;
+        fi += force_pref * w[i] * (3.0 * (cF - uF) + 9.0 * cu * cF);
+      }
+      f[i] = fi;
+    }
+  } else {
+    const double op = r.omega_plus, om = r.omega_minus;
+    const double fp_pref = 1.0 - 0.5 * op, fm_pref = 1.0 - 0.5 * om;
+    // Rest population: symmetric only.
+    {
+      const double feq0 = w[0] * (drho + rho * uu_term);
+      double f0 = f[0] - op * (f[0] - feq0);
+      if constexpr (HasForce) f0 += fp_pref * w[0] * (-3.0 * uF);
+      f[0] = f0;
+    }
+    // Pairs (i, ī) = (1,3), (2,4), (5,7), (6,8).
+    constexpr int pos[4] = {1, 2, 5, 6};
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      const int i = pos[k], j = opposite[i];
+      const double cu = cx[i] * ux + cy[i] * uy;
+      const double feq_p = w[i] * (drho + rho * (uu_term + 4.5 * cu * cu));
+      const double feq_m = w[i] * rho * 3.0 * cu;
+      const double f_p = 0.5 * (f[i] + f[j]), f_m = 0.5 * (f[i] - f[j]);
+      double dp = -op * (f_p - feq_p);
+      double dm = -om * (f_m - feq_m);
+      if constexpr (HasForce) {
+        const double cF = cx[i] * Fx + cy[i] * Fy;
+        dp += fp_pref * w[i] * (9.0 * cu * cF - 3.0 * uF);
+        dm += fm_pref * w[i] * 3.0 * cF;
+      }
+      f[i] += dp + dm;
+      f[j] += dp - dm;
+    }
+  }
+}
+
+}  // namespace erythro::fluid::detail

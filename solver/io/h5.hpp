@@ -1,0 +1,71 @@
+#pragma once
+// Thin RAII wrappers over the HDF5 C API: just what erythro writes and reads.
+// Every failure throws OutputError naming the file and the object.
+#include <hdf5.h>
+
+#include <string>
+#include <vector>
+
+namespace erythro::io::h5 {
+
+// Owns one hid_t and closes it with the matching H5*close.
+class Handle {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Handle() = default;
+  Handle(hid_t id, Closer closer) : id_(id), closer_(closer) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& other) noexcept { *this = std::move(other); }
+  Handle& operator=(Handle&& other) noexcept;
+  ~Handle() { reset(); }
+  hid_t id() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+  void reset();
+
+ private:
+  hid_t id_ = -1;
+  Closer closer_ = nullptr;
+};
+
+Handle create_file(const std::string& path);  // truncates
+Handle open_file_read(const std::string& path);
+Handle create_group(hid_t parent, const std::string& name);
+Handle open_group(hid_t parent, const std::string& name);
+bool exists(hid_t parent, const std::string& name);
+
+void write_attr(hid_t obj, const std::string& name, double value);
+void write_attr(hid_t obj, const std::string& name, long value);
+void write_attr(hid_t obj, const std::string& name, const std::string& value);
+void write_attr(hid_t obj, const std::string& name, const std::vector<double>& values);
+double read_attr_double(hid_t obj, const std::string& name);
+std::string read_attr_string(hid_t obj, const std::string& name);
+
+// Contiguous datasets of float64 with the given shape (row-major, dims[0] slowest).
+void write_dataset(hid_t parent, const std::string& name, const std::vector<double>& data,
+                   const std::vector<hsize_t>& dims);
+inline void write_dataset(hid_t parent, const std::string& name, const std::vector<double>& data) {
+  write_dataset(parent, name, data, {static_cast<hsize_t>(data.size())});
+}
+void write_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& data);
+std::vector<double> read_dataset(hid_t parent, const std::string& name, std::vector<hsize_t>* dims = nullptr);
+
+// A growable 1-D float64 dataset (chunked), for time series written as a run goes.
+class AppendableSeries {
+ public:
+  AppendableSeries(hid_t parent, const std::string& name);
+  void append(double value);
+  std::size_t size() const { return size_; }
+
+ private:
+  Handle dataset_;
+  std::size_t size_ = 0;
+};
+
+// Names of the objects directly inside a group, sorted.
+std::vector<std::string> list(hid_t group);
+
+// Turns off HDF5's automatic error printing (errors become exceptions instead).
+void silence_errors();
+
+}  // namespace erythro::io::h5

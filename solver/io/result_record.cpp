@@ -1,0 +1,206 @@
+#include "io/result_record.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <set>
+
+#include "common/build_info.hpp"
+#include "io/atomic_file.hpp"
+#include "io/h5.hpp"
+
+namespace erythro::io {
+
+std::string to_string(Comparison comparison) {
+  switch (comparison) {
+    case Comparison::absolute: return "absolute";
+    case Comparison::relative: return "relative";
+    case Comparison::at_most: return "at_most";
+    case Comparison::at_least: return "at_least";
+  }
+  return "?";
+}
+
+bool Metric::passed() const {
+  if (!std::isfinite(value)) return false;
+  switch (comparison) {
+    case Comparison::absolute: return std::abs(value - expected) <= tolerance;
+    case Comparison::relative: return std::abs(value - expected) <= tolerance * std::abs(expected);
+    case Comparison::at_most: return value <= expected;
+    case Comparison::at_least: return value >= expected;
+  }
+  return false;
+}
+
+ResultRecord::ResultRecord(std::string case_name, std::string family)
+    : case_name_(std::move(case_name)), family_(std::move(family)) {}
+
+bool ResultRecord::add_metric(const Metric& metric) {
+  metrics_.push_back(metric);
+  return metric.passed();
+}
+
+bool ResultRecord::passed() const {
+  if (metrics_.empty()) return false;
+  for (const auto& m : metrics_) {
+    if (!m.passed()) return false;
+  }
+  return true;
+}
+
+std::string ResultRecord::results_dir() {
+  const char* env = std::getenv("ERYTHRO_RESULTS_DIR");
+  std::string dir = (env && *env) ? env : "results";
+  ensure_writable_directory(dir);
+  return dir;
+}
+
+namespace {
+
+std::string utc_now() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return text;
+}
+
+void write_value_attr(hid_t obj, const std::string& key, const Value& value) {
+  if (std::holds_alternative<double>(value)) {
+    h5::write_attr(obj, key, std::get<double>(value));
+  } else {
+    h5::write_attr(obj, key, std::get<std::string>(value));
+  }
+}
+
+// HDF5 object names may not contain '/' or be '.'.
+std::string safe_name(std::string name) {
+  for (char& c : name) {
+    if (c == '/') c = '_';
+  }
+  return name;
+}
+
+void write_runs(hid_t root, const std::vector<std::map<std::string, Value>>& runs) {
+  h5::Handle group = h5::create_group(root, "runs");
+  std::vector<std::string> columns;
+  std::set<std::string> seen;
+  for (const auto& row : runs) {
+    for (const auto& [key, value] : row) {
+      if (seen.insert(key).second) columns.push_back(key);
+    }
+  }
+  std::string column_list;
+  for (const auto& column : columns) {
+    column_list += (column_list.empty() ? "" : ",") + column;
+    bool numeric = true;
+    for (const auto& row : runs) {
+      auto it = row.find(column);
+      if (it != row.end() && !std::holds_alternative<double>(it->second)) numeric = false;
+    }
+    if (numeric) {
+      std::vector<double> data;
+      for (const auto& row : runs) {
+        auto it = row.find(column);
+        data.push_back(it == row.end() ? std::nan("") : std::get<double>(it->second));
+      }
+      h5::write_dataset(group.id(), safe_name(column), data);
+    } else {
+      std::vector<std::string> data;
+      for (const auto& row : runs) {
+        auto it = row.find(column);
+        if (it == row.end()) {
+          data.emplace_back("");
+        } else if (std::holds_alternative<double>(it->second)) {
+          data.push_back(std::to_string(std::get<double>(it->second)));
+        } else {
+          data.push_back(std::get<std::string>(it->second));
+        }
+      }
+      h5::write_dataset(group.id(), safe_name(column), data);
+    }
+  }
+  h5::write_attr(group.id(), "columns", column_list);
+}
+
+}  // namespace
+
+void ResultRecord::write(const std::string& path) const {
+  const std::string tmp = temporary_path_for(path);
+  {
+    h5::Handle file = h5::create_file(tmp);
+    const hid_t root = file.id();
+    h5::write_attr(root, "schema_version", 1L);
+    h5::write_attr(root, "case", case_name_);
+    h5::write_attr(root, "family", family_);
+    h5::write_attr(root, "requirement", requirement_);
+    h5::write_attr(root, "reference", reference_);
+    h5::write_attr(root, "verdict", std::string(passed() ? "pass" : "fail"));
+    h5::write_attr(root, "git_revision", build_info::git_revision());
+    h5::write_attr(root, "compiler", build_info::compiler());
+    h5::write_attr(root, "compile_flags", build_info::compile_flags());
+    h5::write_attr(root, "created_utc", utc_now());
+    h5::write_attr(root, "wall_time_s", wall_time_s_);
+
+    h5::Handle params = h5::create_group(root, "parameters");
+    for (const auto& [key, value] : parameters_) write_value_attr(params.id(), key, value);
+
+    h5::Handle metrics = h5::create_group(root, "metrics");
+    for (const auto& m : metrics_) {
+      h5::Handle g = h5::create_group(metrics.id(), safe_name(m.name));
+      h5::write_attr(g.id(), "value", m.value);
+      h5::write_attr(g.id(), "expected", m.expected);
+      h5::write_attr(g.id(), "tolerance", m.tolerance);
+      h5::write_attr(g.id(), "comparison", to_string(m.comparison));
+      h5::write_attr(g.id(), "tolerance_reason", m.tolerance_reason);
+      h5::write_attr(g.id(), "description", m.description);
+      h5::write_attr(g.id(), "unit", m.unit);
+      h5::write_attr(g.id(), "verdict", std::string(m.passed() ? "pass" : "fail"));
+    }
+
+    write_runs(root, runs_);
+
+    h5::Handle conv = h5::create_group(root, "convergence");
+    for (const auto& s : convergence_) {
+      h5::Handle g = h5::create_group(conv.id(), safe_name(s.name));
+      h5::write_dataset(g.id(), "h", s.h);
+      h5::write_dataset(g.id(), "error", s.error);
+      h5::write_dataset(g.id(), "local_orders", s.local_orders);
+      h5::write_attr(g.id(), "norm", s.norm);
+      h5::write_attr(g.id(), "formal_order", s.formal_order);
+      h5::write_attr(g.id(), "observed_order", s.observed_order);
+      h5::write_attr(g.id(), "order_tolerance", s.order_tolerance);
+      h5::write_attr(g.id(), "asymptotic", s.asymptotic ? 1L : 0L);
+      h5::write_attr(g.id(), "asymptotic_rule", s.asymptotic_rule);
+    }
+
+    h5::Handle speed = h5::create_group(root, "speed_error");
+    for (const auto& s : speed_error_) {
+      h5::Handle g = h5::create_group(speed.id(), safe_name(s.name));
+      h5::write_dataset(g.id(), "wall_time_s", s.wall_time_s);
+      h5::write_dataset(g.id(), "error", s.error);
+      h5::write_dataset(g.id(), "label", s.label);
+    }
+
+    h5::Handle series = h5::create_group(root, "series");
+    for (const auto& s : series_) {
+      h5::Handle g = h5::create_group(series.id(), safe_name(s.name));
+      h5::write_dataset(g.id(), "x", s.x);
+      h5::write_dataset(g.id(), "y", s.y);
+      if (!s.y_reference.empty()) h5::write_dataset(g.id(), "y_reference", s.y_reference);
+      h5::write_attr(g.id(), "title", s.title);
+      h5::write_attr(g.id(), "xlabel", s.xlabel);
+      h5::write_attr(g.id(), "ylabel", s.ylabel);
+    }
+  }
+  commit_temporary(path);
+}
+
+std::string ResultRecord::write_to_results_dir() const {
+  const std::string path = (std::filesystem::path(results_dir()) / (case_name_ + ".h5")).string();
+  write(path);
+  return path;
+}
+
+}  // namespace erythro::io

@@ -1,0 +1,165 @@
+#include "io/run_writer.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+
+#include "common/build_info.hpp"
+#include "io/atomic_file.hpp"
+
+namespace erythro::io {
+namespace {
+constexpr const char* kH5Name = "run.h5";
+constexpr const char* kXdmfName = "run.xdmf";
+const char* const kSeriesNames[] = {"step", "time_s", "total_mass_kg_per_m", "kinetic_energy_J_per_m",
+                                    "max_speed_um_s", "max_mach"};
+
+std::string frame_group_name(long step) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%010ld", step);
+  return name;
+}
+}  // namespace
+
+RunWriter::RunWriter(std::string out_dir) : out_dir_(std::move(out_dir)) {
+  file_ = h5::create_file(temporary_path_for(h5_path()));
+}
+
+RunWriter::~RunWriter() {
+  if (!committed_) {
+    try {
+      abort("interrupted before the run finished");
+    } catch (...) {
+      // A destructor must not throw; the temporary file stays for inspection.
+    }
+  }
+}
+
+std::string RunWriter::h5_path() const { return (std::filesystem::path(out_dir_) / kH5Name).string(); }
+std::string RunWriter::xdmf_path() const { return (std::filesystem::path(out_dir_) / kXdmfName).string(); }
+
+void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) {
+  setup_ = setup;
+  const hid_t root = file_.id();
+  h5::Handle meta = h5::create_group(root, "metadata");
+  h5::write_attr(meta.id(), "erythro_version", build_info::version());
+  h5::write_attr(meta.id(), "git_revision", build_info::git_revision());
+  h5::write_attr(meta.id(), "compiler", build_info::compiler());
+  h5::write_attr(meta.id(), "compile_flags", build_info::compile_flags());
+  h5::write_attr(meta.id(), "threads", static_cast<long>(omp_get_max_threads()));
+  h5::write_attr(meta.id(), "scene_path", scene.source_path);
+  h5::write_attr(meta.id(), "scene_text", scene.source_text);
+  h5::write_attr(meta.id(), "scene_name", scene.name);
+  h5::write_attr(meta.id(), "status", std::string("running"));
+  h5::write_attr(meta.id(), "spacing_um", setup.scales.length_m * 1e6);
+  h5::write_attr(meta.id(), "time_step_s", setup.scales.time_s);
+  h5::write_attr(meta.id(), "reference_density_kg_m3", setup.scales.density_kg_m3);
+  h5::write_attr(meta.id(), "tau", setup.collision.tau);
+  h5::write_attr(meta.id(), "collision", std::string(fluid::to_string(setup.collision.model)));
+  h5::write_attr(meta.id(), "trt_magic", setup.collision.trt_magic);
+  h5::write_attr(meta.id(), "lattice_viscosity", setup.viscosity);
+  h5::write_attr(meta.id(), "expected_mach", setup.mach);
+  h5::write_attr(meta.id(), "reynolds", setup.reynolds);
+  h5::write_attr(meta.id(), "total_steps", setup.total_steps);
+  h5::write_attr(meta.id(), "coupling", std::string("fluid only"));
+
+  h5::Handle grid = h5::create_group(root, "grid");
+  const double h_um = setup.scales.length_m * 1e6;
+  h5::write_attr(grid.id(), "nx", static_cast<long>(setup.grid.nx));
+  h5::write_attr(grid.id(), "ny", static_cast<long>(setup.grid.ny));
+  h5::write_attr(grid.id(), "spacing_um", h_um);
+  h5::write_attr(grid.id(), "origin_um", std::vector<double>{0.5 * h_um, 0.5 * h_um});
+
+  diagnostics_group_ = h5::create_group(root, "diagnostics");
+  for (const char* name : kSeriesNames) {
+    series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), name));
+  }
+  fields_group_ = h5::create_group(root, "fields");
+
+  const auto& f = scene.output.fields;
+  write_density_ = std::find(f.begin(), f.end(), "density") != f.end();
+  write_velocity_ = std::find(f.begin(), f.end(), "velocity") != f.end();
+  xdmf_grid_ = {setup.grid.nx, setup.grid.ny, h_um, 0.5 * h_um, 0.5 * h_um, {}, {}};
+  if (write_density_) xdmf_grid_.scalar_fields.push_back("density");
+  if (write_velocity_) xdmf_grid_.vector_fields.push_back("velocity");
+  H5Fflush(root, H5F_SCOPE_GLOBAL);
+}
+
+void RunWriter::on_diagnostics(const sim::DiagnosticsSample& d) {
+  const auto& s = setup_.scales;
+  const double mass_scale = s.density_kg_m3 * s.length_m * s.length_m;  // per metre of depth
+  const double energy_scale = mass_scale * s.velocity_m_s() * s.velocity_m_s();
+  const double values[] = {static_cast<double>(d.step),
+                           static_cast<double>(d.step) * s.time_s,
+                           d.total_mass * mass_scale,
+                           d.kinetic_energy * energy_scale,
+                           d.max_speed * s.velocity_m_s() * 1e6,
+                           d.max_mach};
+  for (std::size_t k = 0; k < series_.size(); ++k) series_[k]->append(values[k]);
+}
+
+void RunWriter::on_fields(long step, const fluid::Moments& m) {
+  const auto& s = setup_.scales;
+  const Grid& g = setup_.grid;
+  const std::string name = frame_group_name(step);
+  h5::Handle frame = h5::create_group(fields_group_.id(), name);
+  const double time_s = static_cast<double>(step) * s.time_s;
+  h5::write_attr(frame.id(), "step", step);
+  h5::write_attr(frame.id(), "time_s", time_s);
+  const std::vector<hsize_t> shape{static_cast<hsize_t>(g.ny), static_cast<hsize_t>(g.nx)};
+  if (write_density_) {
+    std::vector<double> rho(m.rho.size());
+    std::transform(m.rho.begin(), m.rho.end(), rho.begin(), [&](double r) { return r * s.density_kg_m3; });
+    h5::write_dataset(frame.id(), "density", rho, shape);
+  }
+  if (write_velocity_) {
+    const double to_um_s = s.velocity_m_s() * 1e6;
+    std::vector<double> u(2 * m.ux.size());
+    for (std::size_t n = 0; n < m.ux.size(); ++n) {
+      u[2 * n] = m.ux[n] * to_um_s;
+      u[2 * n + 1] = m.uy[n] * to_um_s;
+    }
+    h5::write_dataset(frame.id(), "velocity", u, {shape[0], shape[1], 2});
+  }
+  frames_.push_back({step, time_s, "/fields/" + name});
+  H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
+  write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
+}
+
+void RunWriter::on_finish(const sim::RunSummary& summary) {
+  h5::Handle meta = h5::open_group(file_.id(), "metadata");
+  h5::write_attr(meta.id(), "status", sim::to_string(summary.status));
+  h5::write_attr(meta.id(), "diagnosis", summary.diagnosis);
+  h5::write_attr(meta.id(), "steps", summary.steps);
+  h5::write_attr(meta.id(), "wall_time_s", summary.wall_time_s);
+  h5::write_attr(meta.id(), "mlups", summary.mlups);
+  meta.reset();
+  close_and_commit();
+}
+
+void RunWriter::abort(const std::string& reason) {
+  if (committed_) return;
+  if (file_.valid()) {
+    if (h5::exists(file_.id(), "metadata")) {
+      h5::Handle meta = h5::open_group(file_.id(), "metadata");
+      h5::write_attr(meta.id(), "status", "aborted: " + reason);
+    }
+  }
+  close_and_commit();
+}
+
+void RunWriter::close_and_commit() {
+  series_.clear();
+  diagnostics_group_.reset();
+  fields_group_.reset();
+  file_.reset();
+  commit_temporary(h5_path());
+  committed_ = true;
+  if (frames_.empty()) {
+    write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
+  }
+}
+
+}  // namespace erythro::io

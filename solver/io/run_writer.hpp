@@ -1,0 +1,57 @@
+#pragma once
+// Writes one run to OUT/run.h5 (+ OUT/run.xdmf): fields at the output interval,
+// diagnostics time series, metadata. The file is written under a temporary name,
+// flushed after every output, and renamed into place when the run ends, whatever
+// way it ends (completed, steady state, diverged, error): what was written
+// before the end is never lost.
+//
+// run.h5 layout:
+//   /metadata         attrs scene_text, scene_path, git_revision, compiler, compile_flags,
+//                     threads, status, diagnosis, steps, wall_time_s, mlups, and the
+//                     lattice parameters (spacing_um, time_step_s, tau, ...)
+//   /grid             attrs nx, ny, spacing_um, origin_um (cell-centred nodes)
+//   /diagnostics/*    step, time_s, total_mass_kg_per_m, kinetic_energy_J_per_m,
+//                     max_speed_um_s, max_mach (1-D, one entry per sample)
+//   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 2); attrs step, time_s
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "io/h5.hpp"
+#include "io/xdmf.hpp"
+#include "simulation/run_observer.hpp"
+
+namespace erythro::io {
+
+class RunWriter : public sim::RunObserver {
+ public:
+  // Creates the temporary file in `out_dir` (which must exist and be writable).
+  explicit RunWriter(std::string out_dir);
+  ~RunWriter() override;
+
+  void on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) override;
+  void on_diagnostics(const sim::DiagnosticsSample& sample) override;
+  void on_fields(long step, const fluid::Moments& moments) override;
+  void on_finish(const sim::RunSummary& summary) override;
+
+  // Closes the file with status "aborted: <reason>" and moves it into place.
+  void abort(const std::string& reason);
+
+  std::string h5_path() const;
+  std::string xdmf_path() const;
+
+ private:
+  void close_and_commit();
+
+  std::string out_dir_;
+  scene::LatticeSetup setup_;
+  h5::Handle file_;
+  h5::Handle diagnostics_group_, fields_group_;
+  std::vector<std::unique_ptr<h5::AppendableSeries>> series_;  // step, time, mass, ke, speed, mach
+  std::vector<XdmfFrame> frames_;
+  XdmfGrid xdmf_grid_;
+  bool write_density_ = true, write_velocity_ = true;
+  bool committed_ = false;
+};
+
+}  // namespace erythro::io

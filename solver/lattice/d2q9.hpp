@@ -1,0 +1,34 @@
+#pragma once
+// D2Q9 velocity set (model.md §1, thesis §II.3). Lattice units: h = Δt = 1.
+#include <array>
+
+namespace erythro::d2q9 {
+
+inline constexpr int Q = 9;
+inline constexpr double cs2 = 1.0 / 3.0;  // speed of sound squared
+inline constexpr double inv_cs2 = 3.0;
+inline constexpr double inv_cs4 = 9.0;
+
+// c0=(0,0), c1=(1,0), c2=(0,1), c3=(-1,0), c4=(0,-1), c5=(1,1), c6=(-1,1), c7=(-1,-1), c8=(1,-1)
+inline constexpr std::array<int, Q> cx = {0, 1, 0, -1, 0, 1, -1, -1, 1};
+inline constexpr std::array<int, Q> cy = {0, 0, 1, 0, -1, 1, 1, -1, -1};
+inline constexpr std::array<double, Q> w = {4.0 / 9,  1.0 / 9,  1.0 / 9,  1.0 / 9, 1.0 / 9,
+                                            1.0 / 36, 1.0 / 36, 1.0 / 36, 1.0 / 36};
+// opposite[i]: the direction with c = -c_i (bounce-back partner).
+inline constexpr std::array<int, Q> opposite = {0, 3, 4, 1, 2, 7, 8, 5, 6};
+
+// Second-order equilibrium, eq 16: w_i ρ [1 + c·u/cs² + (c·u)²/(2cs⁴) − u·u/(2cs²)].
+inline constexpr double equilibrium(int i, double rho, double ux, double uy) {
+  const double cu = cx[i] * ux + cy[i] * uy;
+  const double uu = ux * ux + uy * uy;
+  return w[i] * rho * (1.0 + inv_cs2 * cu + 0.5 * inv_cs4 * cu * cu - 0.5 * inv_cs2 * uu);
+}
+
+// The same, minus the rest weight: f^eq_i − w_i, computed without cancellation.
+inline constexpr double equilibrium_deviation(int i, double rho, double ux, double uy) {
+  const double cu = cx[i] * ux + cy[i] * uy;
+  const double uu = ux * ux + uy * uy;
+  return w[i] * ((rho - 1.0) + rho * (inv_cs2 * cu + 0.5 * inv_cs4 * cu * cu - 0.5 * inv_cs2 * uu));
+}
+
+}  // namespace erythro::d2q9

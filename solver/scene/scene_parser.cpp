@@ -1,0 +1,574 @@
+// TOML scene file → Scene (physical units). Keys, units and ranges: docs/scenes.md.
+//
+// Three passes over the parsed document:
+//   1. apply --set overrides (each must name a known key or table);
+//   2. walk every table and reject unknown keys/tables (with a did-you-mean);
+//   3. read each known key, checking its type and single-value range.
+// Checks that need several values (node counts, τ margin, Mach) live in units.cpp.
+#include "scene/scene_parser.hpp"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+
+#include "common/error.hpp"
+
+namespace erythro::scene {
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// ---------------------------------------------------------------- the schema
+
+enum class Kind { string, number, integer, vec2, string_list };
+
+// Allowed interval of a number (or of each element of a vec2).
+struct Bound {
+  double lo = -inf;
+  bool lo_open = false;  // true: lo itself is excluded
+  double hi = inf;
+  bool hi_open = false;
+
+  bool contains(double v) const {
+    if (!std::isfinite(v)) return false;
+    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
+  }
+};
+
+struct KeySpec {
+  std::string path;  // full dotted key
+  Kind kind;
+  std::string unit;  // "" when dimensionless
+  Bound bound;
+  std::vector<std::string> choices;  // allowed strings (string, string_list); empty: any
+};
+
+std::string format_number(double v) {
+  char buf[64];
+  const auto res = std::to_chars(buf, buf + sizeof(buf), v);  // shortest round-trip form
+  return std::string(buf, res.ptr);
+}
+
+// "must be > 0 (cP)", "must be in (0, 1]", "must be one of "bgk", "trt"".
+std::string range_text(const KeySpec& k) {
+  std::string s;
+  if (!k.choices.empty()) {
+    s = "must be one of";
+    for (std::size_t i = 0; i < k.choices.size(); ++i) s += (i ? ", \"" : " \"") + k.choices[i] + "\"";
+    return s;
+  }
+  if (k.kind == Kind::string) return "must be a string";
+  const Bound& b = k.bound;
+  const bool has_lo = std::isfinite(b.lo), has_hi = std::isfinite(b.hi);
+  if (has_lo && has_hi) {
+    s = "must be in " + std::string(b.lo_open ? "(" : "[") + format_number(b.lo) + ", " +
+        format_number(b.hi) + (b.hi_open ? ")" : "]");
+  } else if (has_lo) {
+    s = std::string("must be ") + (b.lo_open ? "> " : ">= ") + format_number(b.lo);
+  } else if (has_hi) {
+    s = std::string("must be ") + (b.hi_open ? "< " : "<= ") + format_number(b.hi);
+  } else {
+    s = "must be finite";
+  }
+  if (k.kind == Kind::vec2) s = "each component " + s;
+  if (!k.unit.empty()) s += " (" + k.unit + ")";
+  return s;
+}
+
+std::string type_text(Kind kind) {
+  switch (kind) {
+    case Kind::string: return "a string";
+    case Kind::number: return "a number";
+    case Kind::integer: return "an integer";
+    case Kind::vec2: return "an array of 2 numbers";
+    case Kind::string_list: return "an array of strings";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& known_tables() {
+  static const std::vector<std::string> tables = {
+      "scene", "domain", "time", "fluid", "boundaries", "boundaries.left", "boundaries.right",
+      "boundaries.bottom", "boundaries.top", "body_force", "initial", "run", "run.steady_state",
+      "monitor", "output", "limits"};
+  return tables;
+}
+
+const std::vector<KeySpec>& known_keys() {
+  static const std::vector<KeySpec> keys = [] {
+    const Bound any{};
+    const Bound positive{0.0, true};
+    const Bound non_negative{0.0, false};
+    const Bound at_least_one{1.0, false};
+    std::vector<KeySpec> k = {
+        {"scene.name", Kind::string, "", any, {}},
+        {"scene.description", Kind::string, "", any, {}},
+        {"domain.size_um", Kind::vec2, "µm", positive, {}},
+        {"domain.spacing_um", Kind::number, "µm", positive, {}},
+        {"time.step_s", Kind::number, "s", positive, {}},
+        {"time.tau", Kind::number, "", Bound{0.5, true}, {}},
+        {"fluid.density_kg_m3", Kind::number, "kg/m³", positive, {}},
+        {"fluid.viscosity_cP", Kind::number, "cP", positive, {}},
+        {"fluid.collision", Kind::string, "", any, {"bgk", "trt"}},
+        {"fluid.trt_magic", Kind::number, "", positive, {}},
+        {"body_force.density_N_m3", Kind::vec2, "N/m³", any, {}},
+        {"body_force.frequency_Hz", Kind::number, "Hz", non_negative, {}},
+        {"body_force.phase_rad", Kind::number, "rad", any, {}},
+        {"initial.type", Kind::string, "", any, {"rest", "uniform", "shear", "taylor_green"}},
+        {"initial.velocity_um_s", Kind::vec2, "µm/s", any, {}},
+        {"run.steps", Kind::integer, "steps", at_least_one, {}},
+        {"run.duration_s", Kind::number, "s", positive, {}},
+        {"run.steady_state.tolerance", Kind::number, "", positive, {}},
+        {"run.steady_state.check_interval_steps", Kind::integer, "steps", at_least_one, {}},
+        {"monitor.interval_steps", Kind::integer, "steps", at_least_one, {}},
+        {"monitor.max_mach", Kind::number, "", positive, {}},
+        {"output.fields_interval_steps", Kind::integer, "steps", non_negative, {}},
+        {"output.diagnostics_interval_steps", Kind::integer, "steps", non_negative, {}},
+        {"output.fields", Kind::string_list, "", any, {"density", "velocity"}},
+        {"limits.min_tau_margin", Kind::number, "", non_negative, {}},
+        {"limits.max_mach", Kind::number, "", Bound{0.0, true, 1.0, false}, {}},
+        {"limits.min_nodes_across_channel", Kind::integer, "nodes", Bound{1.0, false, 1e6, false}, {}},
+    };
+    for (const char* side : {"left", "right", "bottom", "top"}) {
+      const std::string p = std::string("boundaries.") + side + ".";
+      k.push_back({p + "type", Kind::string, "", any, {"periodic", "wall", "moving_wall"}});
+      k.push_back({p + "velocity_um_s", Kind::vec2, "µm/s", any, {}});
+    }
+    return k;
+  }();
+  return keys;
+}
+
+const KeySpec* find_key(std::string_view path) {
+  for (const KeySpec& k : known_keys())
+    if (k.path == path) return &k;
+  return nullptr;
+}
+
+bool is_known_table(std::string_view path) {
+  const auto& t = known_tables();
+  return std::find(t.begin(), t.end(), path) != t.end();
+}
+
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0u : 1u)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string_view leaf(std::string_view path) {
+  const auto dot = path.rfind('.');
+  return dot == std::string_view::npos ? path : path.substr(dot + 1);
+}
+
+// " (did you mean 'x'?)" for the closest known key or table, or "" if none is close:
+// a small edit distance on the full dotted key, else the same leaf in another table.
+std::string suggestion(std::string_view bad) {
+  std::vector<std::string> candidates = known_tables();
+  for (const KeySpec& k : known_keys()) candidates.push_back(k.path);
+  std::string best;
+  std::size_t best_d = std::numeric_limits<std::size_t>::max();
+  for (const std::string& c : candidates) {
+    const std::size_t d = edit_distance(bad, c);
+    if (d < best_d) {
+      best_d = d;
+      best = c;
+    }
+  }
+  if (best_d <= std::max<std::size_t>(2, bad.size() / 4)) return " (did you mean '" + best + "'?)";
+  for (const std::string& c : candidates)
+    if (leaf(c) == leaf(bad)) return " (did you mean '" + c + "'?)";
+  return "";
+}
+
+// ---------------------------------------------------------------- messages
+
+std::string in_quotes(std::string_view s) {
+  std::string out(1, '"');  // built by appending: GCC 12 -Wrestrict misfires on "lit" + string&&
+  out.append(s);
+  return out += '"';
+}
+
+// The value as the user wrote it (numbers in shortest form, strings quoted).
+std::string repr(const toml::node& n) {
+  if (n.is_table()) return "(a table)";
+  if (const auto* a = n.as_array()) {
+    std::string s = "[";
+    for (std::size_t i = 0; i < a->size(); ++i) s += (i ? ", " : "") + repr(*a->get(i));
+    return s + "]";
+  }
+  if (const auto* s = n.as_string()) return in_quotes(s->get());
+  if (const auto* d = n.as_floating_point()) return format_number(d->get());
+  if (const auto* i = n.as_integer()) return std::to_string(i->get());
+  if (const auto* b = n.as_boolean()) return b->get() ? "true" : "false";
+  std::ostringstream os;  // dates and times
+  os << toml::node_view<const toml::node>(n);
+  return os.str();
+}
+
+std::string kind_of(const toml::node& n) {
+  switch (n.type()) {
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a float";
+    case toml::node_type::boolean: return "a boolean";
+    default: return "a date/time";
+  }
+}
+
+class Reader {
+ public:
+  Reader(const toml::table& root, std::string origin) : root_(root), origin_(std::move(origin)) {}
+
+  // "FILE:LINE" for values from the file, "FILE: --set k=v" for overrides, "FILE" if unknown.
+  std::string where(const toml::node* n) const {
+    if (n) {
+      const toml::source_region& src = n->source();
+      if (src.path && src.path->rfind("--set ", 0) == 0) return origin_ + ": " + *src.path;
+      if (src.begin.line > 0) return origin_ + ":" + std::to_string(src.begin.line);
+    }
+    return origin_;
+  }
+
+  [[noreturn]] void fail(const toml::node& n, std::string_view path, const std::string& what) const {
+    throw InputError(where(&n) + ": key '" + std::string(path) + "' = " + repr(n) + " " + what);
+  }
+  [[noreturn]] void out_of_range(const toml::node& n, const KeySpec& k) const {
+    fail(n, k.path, "is out of range: " + range_text(k));
+  }
+  [[noreturn]] void wrong_type(const toml::node& n, const KeySpec& k) const {
+    const bool plain_string = k.kind == Kind::string && k.choices.empty();
+    fail(n, k.path, "has the wrong type (" + kind_of(n) + "): expected " + type_text(k.kind) +
+                        (plain_string ? "" : "; " + range_text(k)));
+  }
+
+  const toml::node* find(std::string_view path) const { return root_.at_path(path).node(); }
+  bool has(std::string_view path) const { return find(path) != nullptr; }
+
+  // Walks the whole document: every key must be known, every known table a table.
+  void reject_unknown(const toml::table& t, const std::string& prefix) const {
+    for (const auto& [key, node] : t) {
+      const std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+      // A quoted key holding a dot ("fluid.viscosity_cP" = 1) is not the nested key.
+      const bool plain = key.str().find_first_of(".[") == std::string_view::npos;
+      if (!plain) {
+        throw InputError(where(&node) + ": unknown key '" + path + "' (a quoted key with '.' or '[' is never valid" +
+                         " here; write the table and key unquoted)");
+      } else if (is_known_table(path)) {
+        const auto* sub = node.as_table();
+        if (!sub) fail(node, path, "has the wrong type (" + kind_of(node) + "): expected a table");
+        reject_unknown(*sub, path);
+      } else if (!find_key(path)) {
+        throw InputError(where(&node) + ": unknown " + (node.is_table() ? "table" : "key") + " '" + path +
+                         "'" + suggestion(path));
+      }
+    }
+  }
+
+  double number(std::string_view path, double fallback) const {
+    const toml::node* n = find(path);
+    return n ? number_of(*n, spec(path)) : fallback;
+  }
+
+  long integer(std::string_view path, long fallback) const {
+    const toml::node* n = find(path);
+    if (!n) return fallback;
+    const KeySpec& k = spec(path);
+    if (!n->is_integer()) wrong_type(*n, k);  // 10.5 or 10.0 where a count is expected
+    const auto v = n->as_integer()->get();
+    if (!k.bound.contains(static_cast<double>(v))) out_of_range(*n, k);
+    return static_cast<long>(v);
+  }
+
+  std::string text(std::string_view path, const std::string& fallback) const {
+    const toml::node* n = find(path);
+    if (!n) return fallback;
+    const KeySpec& k = spec(path);
+    if (!n->is_string()) wrong_type(*n, k);
+    const std::string v = n->as_string()->get();
+    if (!allowed(k, v)) out_of_range(*n, k);
+    return v;
+  }
+
+  std::array<double, 2> vec2(std::string_view path, std::array<double, 2> fallback) const {
+    const toml::node* n = find(path);
+    if (!n) return fallback;
+    const KeySpec& k = spec(path);
+    const auto* a = n->as_array();
+    if (!a || a->size() != 2) wrong_type(*n, k);
+    return {number_of(*a->get(0), k, n), number_of(*a->get(1), k, n)};
+  }
+
+  std::vector<std::string> string_list(std::string_view path, std::vector<std::string> fallback) const {
+    const toml::node* n = find(path);
+    if (!n) return fallback;
+    const KeySpec& k = spec(path);
+    const auto* a = n->as_array();
+    if (!a) wrong_type(*n, k);
+    std::vector<std::string> out;
+    for (const toml::node& e : *a) {
+      if (!e.is_string()) wrong_type(*n, k);
+      const std::string v = e.as_string()->get();
+      if (!allowed(k, v)) fail(*n, path, "contains " + in_quotes(v) + ": each entry " + range_text(k));
+      if (std::find(out.begin(), out.end(), v) != out.end()) fail(*n, path, "lists " + in_quotes(v) + " twice");
+      out.push_back(v);
+    }
+    return out;
+  }
+
+  // The table's line (for messages about keys missing from it), or the bare origin.
+  std::string where_table(std::string_view table) const { return where(find(table)); }
+
+ private:
+  static const KeySpec& spec(std::string_view path) {
+    const KeySpec* k = find_key(path);
+    if (!k) throw std::logic_error("scene_parser: key not in schema: " + std::string(path));
+    return *k;
+  }
+  static bool allowed(const KeySpec& k, const std::string& v) {
+    return k.choices.empty() || std::find(k.choices.begin(), k.choices.end(), v) != k.choices.end();
+  }
+  // Integers are accepted where floats are expected (2 → 2.0). `whole`: the array holding n.
+  double number_of(const toml::node& n, const KeySpec& k, const toml::node* whole = nullptr) const {
+    const toml::node& shown = whole ? *whole : n;
+    double v = 0.0;
+    if (const auto* i = n.as_integer()) v = static_cast<double>(i->get());
+    else if (const auto* d = n.as_floating_point()) v = d->get();
+    else wrong_type(shown, k);
+    if (!k.bound.contains(v)) out_of_range(shown, k);
+    return v;
+  }
+
+  const toml::table& root_;
+  std::string origin_;
+};
+
+// ---------------------------------------------------------------- --set overrides
+
+std::string trim(std::string_view s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string_view::npos) return "";
+  const auto e = s.find_last_not_of(" \t");
+  return std::string(s.substr(b, e - b + 1));
+}
+
+std::vector<std::string> split_dots(const std::string& path) {
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t dot; (dot = path.find('.', start)) != std::string::npos; start = dot + 1)
+    parts.push_back(path.substr(start, dot - start));
+  parts.push_back(path.substr(start));
+  return parts;
+}
+
+// "--set a.b.c=value": the value is TOML ("v = <value>"), or else a bare string.
+void apply_override(toml::table& root, const std::string& text, const std::string& origin) {
+  const auto eq = text.find('=');
+  const std::string key = eq == std::string::npos ? "" : trim(text.substr(0, eq));
+  const std::string value = eq == std::string::npos ? "" : trim(text.substr(eq + 1));
+  if (key.empty() || value.empty())
+    throw InputError(origin + ": malformed --set '" + text + "': expected KEY=VALUE, e.g. --set fluid.viscosity_cP=1.2");
+  if (!find_key(key) && !is_known_table(key))
+    throw InputError(origin + ": --set " + text + ": unknown key '" + key + "'" + suggestion(key));
+
+  const std::string source = "--set " + text;  // recorded as the node's source, for messages
+  toml::table parsed;
+  try {
+    parsed = toml::parse(std::string_view("v = " + value), std::string_view(source));
+  } catch (const toml::parse_error&) {
+    std::ostringstream bare;  // not TOML: take the text literally, as a string
+    bare << toml::value<std::string>(value);
+    parsed = toml::parse(std::string_view("v = " + bare.str()), std::string_view(source));
+  }
+  if (parsed.size() != 1 || !parsed.contains("v"))
+    throw InputError(origin + ": malformed --set '" + text + "': the value must be a single TOML value");
+
+  // One of an exclusive pair replaces its partner from the file (a partner that
+  // came from another --set stays, and the pair is then reported as a conflict).
+  for (const auto& [x, y] : {std::pair{"time.tau", "time.step_s"}, std::pair{"run.steps", "run.duration_s"}}) {
+    const std::string partner = key == x ? y : key == y ? x : "";
+    if (partner.empty()) continue;
+    const toml::node* p = root.at_path(partner).node();
+    const bool from_set = p && p->source().path && p->source().path->rfind("--set ", 0) == 0;
+    if (p && !from_set) root.at_path(partner.substr(0, partner.find('.'))).as_table()->erase(leaf(partner));
+  }
+
+  const std::vector<std::string> parts = split_dots(key);
+  toml::table* t = &root;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    toml::node* n = t->get(parts[i]);
+    if (!n) n = &t->insert(parts[i], toml::table{}).first->second;
+    t = n->as_table();
+    if (!t) throw InputError(origin + ": --set " + text + ": '" + parts[i] + "' is not a table in the scene");
+  }
+  t->insert_or_assign(parts.back(), std::move(*parsed.get("v")));  // move keeps the source
+}
+
+// ---------------------------------------------------------------- reading
+
+SideSpec read_side(const Reader& r, const std::string& name) {
+  const std::string p = "boundaries." + name + ".";
+  SideSpec s;
+  s.type = r.text(p + "type", s.type);
+  s.velocity_um_s = r.vec2(p + "velocity_um_s", s.velocity_um_s);
+  if (s.type != "moving_wall" && (s.velocity_um_s[0] != 0.0 || s.velocity_um_s[1] != 0.0))
+    r.fail(*r.find(p + "velocity_um_s"), p + "velocity_um_s",
+           "is not allowed here: only a side with type = \"moving_wall\" has a velocity (this side is \"" + s.type +
+               "\")");
+  return s;
+}
+
+// Exactly one of two keys: returns which one is given (0 or 1).
+int exactly_one(const Reader& r, const std::string& table, const std::string& a, const std::string& b,
+                const std::string& hint) {
+  const toml::node* na = r.find(table + "." + a);
+  const toml::node* nb = r.find(table + "." + b);
+  if (na && nb) {  // blame the one given last (a --set override, or the later line)
+    const auto rank = [](const toml::node* n) {
+      const auto& src = n->source();
+      const bool from_set = src.path && src.path->rfind("--set ", 0) == 0;
+      return from_set ? std::numeric_limits<std::uint64_t>::max() : std::uint64_t{src.begin.line};
+    };
+    const bool b_last = rank(nb) >= rank(na);
+    const std::string first = table + "." + (b_last ? a : b), last = table + "." + (b_last ? b : a);
+    r.fail(*(b_last ? nb : na), last,
+           "conflicts with '" + first + "' = " + repr(*(b_last ? na : nb)) + " (" + r.where(b_last ? na : nb) +
+               "): give exactly one of them (" + hint + ")");
+  }
+  if (!na && !nb)
+    throw InputError(r.where_table(table) + ": missing key: give exactly one of '" + table + "." + a + "' or '" +
+                     table + "." + b + "' (" + hint + ")");
+  return na ? 0 : 1;
+}
+
+Scene read_scene(const Reader& r, const std::string& origin) {
+  Scene s;
+  s.name = r.text("scene.name", std::filesystem::path(origin).stem().string());
+  s.description = r.text("scene.description", "");
+
+  for (const char* key : {"domain.size_um", "domain.spacing_um"})
+    if (!r.has(key))
+      throw InputError(r.where_table("domain") + ": missing key '" + key + "' (required; " +
+                       range_text(*find_key(key)) + ")");
+  s.domain.size_um = r.vec2("domain.size_um", {});
+  s.domain.spacing_um = r.number("domain.spacing_um", 0.0);
+
+  if (exactly_one(r, "time", "step_s", "tau", "step_s in s, > 0; or tau, > 0.5") == 0)
+    s.time.step_s = r.number("time.step_s", 0.0);
+  else
+    s.time.tau = r.number("time.tau", 0.0);
+
+  s.fluid.density_kg_m3 = r.number("fluid.density_kg_m3", s.fluid.density_kg_m3);
+  s.fluid.viscosity_cP = r.number("fluid.viscosity_cP", s.fluid.viscosity_cP);
+  s.fluid.collision = r.text("fluid.collision", s.fluid.collision);
+  s.fluid.trt_magic = r.number("fluid.trt_magic", s.fluid.trt_magic);
+
+  s.boundaries.left = read_side(r, "left");
+  s.boundaries.right = read_side(r, "right");
+  s.boundaries.bottom = read_side(r, "bottom");
+  s.boundaries.top = read_side(r, "top");
+
+  if (r.has("body_force")) {  // the table's presence engages the force
+    BodyForceSpec f;
+    f.density_N_m3 = r.vec2("body_force.density_N_m3", f.density_N_m3);
+    f.frequency_Hz = r.number("body_force.frequency_Hz", f.frequency_Hz);
+    f.phase_rad = r.number("body_force.phase_rad", f.phase_rad);
+    s.body_force = f;
+  }
+
+  s.initial.type = r.text("initial.type", s.initial.type);
+  s.initial.velocity_um_s = r.vec2("initial.velocity_um_s", s.initial.velocity_um_s);
+  const auto& u0 = s.initial.velocity_um_s;
+  if ((s.initial.type == "rest" || s.initial.type == "shear") && (u0[0] != 0.0 || u0[1] != 0.0))
+    r.fail(*r.find("initial.velocity_um_s"), "initial.velocity_um_s",
+           "is not allowed with initial.type = \"" + s.initial.type +
+               "\" (only \"uniform\" and \"taylor_green\" take a velocity)");
+  if (s.initial.type == "taylor_green" && u0[1] != 0.0)
+    r.fail(*r.find("initial.velocity_um_s"), "initial.velocity_um_s",
+           "is out of range: with initial.type = \"taylor_green\" it must be [U, 0] (µm/s)");
+
+  if (exactly_one(r, "run", "steps", "duration_s", "steps, an integer >= 1; or duration_s in s, > 0") == 0)
+    s.run.steps = r.integer("run.steps", 0);
+  else
+    s.run.duration_s = r.number("run.duration_s", 0.0);
+  if (r.has("run.steady_state")) {
+    SteadyStateSpec ss;
+    ss.tolerance = r.number("run.steady_state.tolerance", ss.tolerance);
+    ss.check_interval_steps = r.integer("run.steady_state.check_interval_steps", ss.check_interval_steps);
+    s.run.steady_state = ss;
+  }
+
+  s.monitor.interval_steps = r.integer("monitor.interval_steps", s.monitor.interval_steps);
+  s.monitor.max_mach = r.number("monitor.max_mach", s.monitor.max_mach);
+
+  s.output.fields_interval_steps = r.integer("output.fields_interval_steps", s.output.fields_interval_steps);
+  s.output.diagnostics_interval_steps =
+      r.integer("output.diagnostics_interval_steps", s.output.diagnostics_interval_steps);
+  s.output.fields = r.string_list("output.fields", s.output.fields);
+
+  s.limits.min_tau_margin = r.number("limits.min_tau_margin", s.limits.min_tau_margin);
+  s.limits.max_mach = r.number("limits.max_mach", s.limits.max_mach);
+  s.limits.min_nodes_across_channel =
+      static_cast<int>(r.integer("limits.min_nodes_across_channel", s.limits.min_nodes_across_channel));
+  return s;
+}
+
+}  // namespace
+
+Scene parse_scene(const std::string& text, const std::string& origin, const std::vector<std::string>& overrides) {
+  toml::table root;
+  try {
+    root = toml::parse(std::string_view(text), std::string_view(origin));
+  } catch (const toml::parse_error& e) {
+    throw InputError(origin + ":" + std::to_string(e.source().begin.line) + ":" +
+                     std::to_string(e.source().begin.column) + ": malformed TOML: " + std::string(e.description()));
+  }
+  for (const std::string& o : overrides) apply_override(root, o, origin);
+
+  const Reader reader(root, origin);
+  reader.reject_unknown(root, "");
+  Scene scene = read_scene(reader, origin);
+
+  std::ostringstream os;  // the scene exactly as it will run (after overrides)
+  os << toml::toml_formatter(root) << '\n';
+  scene.source_text = os.str();
+  scene.source_path = origin;
+  return scene;
+}
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError("cannot read scene file '" + path + "': it is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    const std::string reason = std::filesystem::exists(path, ec) ? "permission denied" : "no such file";
+    throw InputError("cannot read scene file '" + path + "': " + reason);
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw InputError("cannot read scene file '" + path + "': read error");
+  return parse_scene(text.str(), path, overrides);
+}
+
+}  // namespace erythro::scene

@@ -1,0 +1,51 @@
+#pragma once
+// The one module that converts physical units to lattice units (h = Δt = 1, ρ0 = 1)
+// and rejects impossible or unstable set-ups before anything runs.
+#include <string>
+#include <vector>
+
+#include "fluid/boundary.hpp"
+#include "fluid/collision.hpp"
+#include "lattice/grid.hpp"
+#include "scene/scene.hpp"
+
+namespace erythro::scene {
+
+// Conversion factors: physical = lattice × factor (SI units).
+struct UnitScales {
+  double length_m = 0.0;     // h
+  double time_s = 0.0;       // Δt
+  double density_kg_m3 = 0.0;  // ρ0
+  double velocity_m_s() const { return length_m / time_s; }
+  double force_density_N_m3() const { return density_kg_m3 * length_m / (time_s * time_s); }
+  double kinematic_viscosity_m2_s() const { return length_m * length_m / time_s; }
+  double pressure_Pa() const { return density_kg_m3 * velocity_m_s() * velocity_m_s(); }
+};
+
+// Everything the simulation needs, in lattice units, plus derived numbers to show.
+struct LatticeSetup {
+  Grid grid;
+  UnitScales scales;
+  fluid::CollisionConfig collision;
+  fluid::BoundaryConfig boundaries;
+  std::array<double, 2> body_force{0.0, 0.0};  // lattice force density
+  double force_frequency = 0.0;                // per step (lattice)
+  double force_phase = 0.0;
+  std::array<double, 2> initial_velocity{0.0, 0.0};  // lattice
+  long total_steps = 0;
+  double viscosity = 0.0;           // lattice kinematic viscosity ν = (τ − ½)/3
+  double expected_max_speed = 0.0;  // lattice, estimated from walls, force, initial state
+  double mach = 0.0;                // expected_max_speed / c_s
+  double reynolds = 0.0;            // expected_max_speed × L / ν (L: channel width or domain)
+  double reynolds_length_m = 0.0;
+};
+
+// Converts and checks. Throws InputError naming the scene file, the key, its value
+// and the allowed range when the set-up is impossible or unstable.
+LatticeSetup derive_lattice(const Scene& scene);
+
+// Human-readable table of the derived parameters (h, Δt, τ, ν, Ma, Re, steps...)
+// printed by `erythro check`.
+std::string format_lattice_report(const Scene& scene, const LatticeSetup& setup);
+
+}  // namespace erythro::scene

@@ -1,0 +1,74 @@
+#pragma once
+// What a running simulation tells the outside world. The I/O layer (HDF5 writer)
+// and the command's progress display implement this interface; the simulation
+// never includes anything from the layers above it.
+#include <string>
+#include <vector>
+
+#include "fluid/fluid_lattice.hpp"
+#include "scene/scene.hpp"
+#include "scene/units.hpp"
+
+namespace erythro::sim {
+
+// Diagnostics of one step, lattice units (the writer converts with UnitScales).
+struct DiagnosticsSample {
+  long step = 0;
+  double total_mass = 0.0;      // Σ ρ
+  double kinetic_energy = 0.0;  // ½ Σ ρ|u|²
+  double max_speed = 0.0;       // max |u|
+  double max_mach = 0.0;        // max |u| / c_s
+};
+
+enum class RunStatus { completed, steady_state, diverged };
+std::string to_string(RunStatus status);
+
+struct RunSummary {
+  RunStatus status = RunStatus::completed;
+  long steps = 0;
+  double wall_time_s = 0.0;
+  double mlups = 0.0;     // million lattice-node updates per second
+  std::string diagnosis;  // health monitor's message when diverged
+  int threads = 1;
+};
+
+class RunObserver {
+ public:
+  virtual ~RunObserver() = default;
+  virtual void on_start(const scene::Scene&, const scene::LatticeSetup&) {}
+  virtual void on_diagnostics(const DiagnosticsSample&) {}
+  // Fields of a healthy state (lattice units).
+  virtual void on_fields(long /*step*/, const fluid::Moments&) {}
+  virtual void on_progress(long /*step*/, long /*total_steps*/, double /*mlups*/) {}
+  virtual void on_finish(const RunSummary&) {}
+};
+
+}  // namespace erythro::sim
+
+namespace erythro::sim {
+
+// Forwards every event to several observers, in order.
+class ObserverList : public RunObserver {
+ public:
+  void add(RunObserver& observer) { observers_.push_back(&observer); }
+  void on_start(const scene::Scene& s, const scene::LatticeSetup& l) override {
+    for (auto* o : observers_) o->on_start(s, l);
+  }
+  void on_diagnostics(const DiagnosticsSample& d) override {
+    for (auto* o : observers_) o->on_diagnostics(d);
+  }
+  void on_fields(long step, const fluid::Moments& m) override {
+    for (auto* o : observers_) o->on_fields(step, m);
+  }
+  void on_progress(long step, long total, double mlups) override {
+    for (auto* o : observers_) o->on_progress(step, total, mlups);
+  }
+  void on_finish(const RunSummary& s) override {
+    for (auto* o : observers_) o->on_finish(s);
+  }
+
+ private:
+  std::vector<RunObserver*> observers_;
+};
+
+}  // namespace erythro::sim

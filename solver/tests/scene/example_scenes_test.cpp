@@ -1,0 +1,49 @@
+// The example scenes in scenes/ load, pass every check, and stay small enough for CI.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "scene/scene_parser.hpp"
+#include "scene/units.hpp"
+
+namespace erythro::scene {
+namespace {
+
+LatticeSetup load(const std::string& name, Scene& scene) {
+  scene = load_scene(std::string(ERYTHRO_SCENES_DIR) + "/" + name);
+  return derive_lattice(scene);
+}
+
+// Node updates at most: the CI budget is < 3 s per scene.
+constexpr double max_node_updates = 2e7;
+
+TEST(ExampleScenes, Poiseuille) {
+  Scene s;
+  const LatticeSetup L = load("poiseuille.toml", s);
+  EXPECT_EQ(s.name, "poiseuille");
+  EXPECT_EQ(L.grid.ny, 32);
+  EXPECT_LE(static_cast<double>(L.grid.size()) * static_cast<double>(L.total_steps), max_node_updates);
+  // The comment header promises u_max = F H²/(8μ) = 1000 µm/s.
+  EXPECT_NEAR(L.expected_max_speed * L.scales.velocity_m_s() * 1e6, 1000.0, 1e-9);
+}
+
+TEST(ExampleScenes, Couette) {
+  Scene s;
+  const LatticeSetup L = load("couette.toml", s);
+  EXPECT_EQ(L.boundaries.top.type, fluid::SideType::moving_wall);
+  EXPECT_LE(static_cast<double>(L.grid.size()) * static_cast<double>(L.total_steps), max_node_updates);
+  EXPECT_NEAR(L.boundaries.top.ux * L.scales.velocity_m_s() * 1e6, 1000.0, 1e-9);
+}
+
+TEST(ExampleScenes, TaylorGreen) {
+  Scene s;
+  const LatticeSetup L = load("taylor_green.toml", s);
+  EXPECT_EQ(L.grid.nx, 32);
+  EXPECT_EQ(L.total_steps, 113);
+  EXPECT_LE(static_cast<double>(L.grid.size()) * static_cast<double>(L.total_steps), max_node_updates);
+  EXPECT_FALSE(format_lattice_report(s, L).empty());
+}
+
+}  // namespace
+}  // namespace erythro::scene

@@ -1,0 +1,30 @@
+#pragma once
+// Small helpers shared by the V&V cases: timing, error norms, metric shorthands.
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "io/result_record.hpp"
+
+namespace erythro::vv {
+
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+// ‖a − b‖₂ / ‖b‖₂ over all entries (b must not vanish).
+double relative_l2(const std::vector<double>& a, const std::vector<double>& b);
+// max |a − b| / max |b|.
+double relative_linf(const std::vector<double>& a, const std::vector<double>& b);
+
+// Metric asserting an observed order: |p − formal| ≤ tolerance.
+io::Metric order_metric(const io::ConvergenceSeries& series, const std::string& reason);
+// Metric asserting the asymptotic-range check of a series (1 = in range).
+io::Metric asymptotic_metric(const io::ConvergenceSeries& series);
+
+}  // namespace erythro::vv
