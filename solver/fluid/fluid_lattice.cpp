@@ -71,7 +71,7 @@ void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, 
   const std::size_t N = grid_.size();
   const double* f = f_.data();
   const bool field = has_force_field();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (grid_.worth_threading())
   for (int y = 0; y < grid_.ny; ++y) {
     for (int x = 0; x < grid_.nx; ++x) {
       const std::size_t n = grid_.index(x, y);
@@ -110,7 +110,7 @@ double FluidLattice::total_mass() const {
   // Row sums, then a serial sum over rows: identical for any thread count.
   std::vector<double> row_sum(static_cast<std::size_t>(grid_.ny), 0.0);
   const std::size_t N = grid_.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (grid_.worth_threading())
   for (int y = 0; y < grid_.ny; ++y) {
     double s = 0.0;
     for (int i = 0; i < d2q9::Q; ++i) {

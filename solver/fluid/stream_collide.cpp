@@ -16,8 +16,6 @@ namespace {
 
 using namespace d2q9;
 
-constexpr std::size_t kMinNodesForThreads = 4096;
-
 // Value streamed into node (x, y) along direction i, following the boundary rules
 // of fluid/boundary.hpp. A wall on the bottom/top takes precedence at corners.
 inline double pull_general(const KernelArgs& a, int x, int y, int i) {
@@ -76,8 +74,7 @@ void run_kernel(const KernelArgs& a) {
   const std::size_t N = g.size();
   const Rates uniform_rates = rates_for(Model, a.collision.tau, a.collision.trt_magic);
 
-  // Small lattices run on one thread: a fork/join costs more than their update.
-#pragma omp parallel for schedule(static) if (N >= kMinNodesForThreads)
+#pragma omp parallel for schedule(static) if (g.worth_threading())
   for (int y = 0; y < g.ny; ++y) {
     const bool edge_row = (y == 0 || y == g.ny - 1);
     if (edge_row || g.nx < 3) {

@@ -10,6 +10,11 @@ struct Grid {
   int ny = 0;
 
   std::size_t size() const { return static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny); }
+  // Whether a loop over this grid should fork OpenMP threads: for small grids a
+  // fork/join (and waiting for a descheduled worker on a loaded machine) costs
+  // more than the work. Used as `#pragma omp parallel for if (grid.worth_threading())`.
+  bool worth_threading() const { return size() >= 4096; }
+
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(x);
   }

@@ -135,7 +135,7 @@ const std::vector<KeySpec>& known_keys() {
         {"output.diagnostics_interval_steps", Kind::integer, "steps", non_negative, {}},
         {"output.fields", Kind::string_list, "", any, {"density", "velocity"}},
         {"limits.min_tau_margin", Kind::number, "", non_negative, {}},
-        {"limits.max_mach", Kind::number, "", Bound{0.0, true, 1.0, false}, {}},
+        {"limits.max_mach", Kind::number, "", positive, {}},
         {"limits.min_nodes_across_channel", Kind::integer, "nodes", Bound{1.0, false, 1e6, false}, {}},
     };
     for (const char* side : {"left", "right", "bottom", "top"}) {

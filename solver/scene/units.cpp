@@ -177,6 +177,7 @@ LatticeSetup derive_lattice(const Scene& s) {
   // --- collision
   if (!fluid::parse_collision_model(s.fluid.collision, L.collision.model))
     reject(s, "fluid.collision = \"" + s.fluid.collision + "\" is not one of \"bgk\", \"trt\"");
+  if (!(s.fluid.trt_magic > 0.0)) reject(s, "fluid.trt_magic = " + num(s.fluid.trt_magic) + " must be > 0");
   L.collision.tau = tau;
   L.collision.trt_magic = s.fluid.trt_magic;
 
@@ -201,13 +202,13 @@ LatticeSetup derive_lattice(const Scene& s) {
   }
 
   // --- initial state
+  if (s.initial.type != "rest" && s.initial.type != "uniform" && s.initial.type != "shear" &&
+      s.initial.type != "taylor_green")
+    reject(s, "initial.type = \"" + s.initial.type + "\" is not one of \"rest\", \"uniform\", \"shear\", \"taylor_green\"");
   if (s.initial.type == "shear" && !wall_bounded(s, 1))
     reject(s, "initial.type = \"shear\" needs walls at bottom and top (the profile joins their velocities)");
   if (s.initial.type == "taylor_green" && (wall_bounded(s, 0) || wall_bounded(s, 1)))
     reject(s, "initial.type = \"taylor_green\" needs all four sides periodic");
-  if (s.initial.type != "rest" && s.initial.type != "uniform" && s.initial.type != "shear" &&
-      s.initial.type != "taylor_green")
-    reject(s, "initial.type = \"" + s.initial.type + "\" is not one of \"rest\", \"uniform\", \"shear\", \"taylor_green\"");
   L.initial_velocity = {s.initial.velocity_um_s[0] * u_scale, s.initial.velocity_um_s[1] * u_scale};
 
   // --- body force: F_lat = F Δt² / (ρ h);  f_lat = f Δt (cycles per step)
@@ -238,14 +239,18 @@ LatticeSetup derive_lattice(const Scene& s) {
   L.expected_max_speed = top.speed;
   L.mach = top.speed / cs;
   if (L.mach > s.limits.max_mach) {
-    const double r = s.limits.max_mach / L.mach;  // every speed source scales linearly with itself and ~Δt
-    const std::string smaller_dt = s.time.tau ? "time.tau <= " + num(0.5 + (tau - 0.5) * r)
-                                              : "time.step_s <= " + num(dt * r) + " s";
+    // Every speed source scales linearly with its own key, and (about) linearly with Δt.
+    const double r = s.limits.max_mach / L.mach;
+    const double tau_ok = 0.5 + (tau - 0.5) * r;  // τ giving Δt·r
+    std::string smaller_dt;
+    if (tau_ok >= tau_min)
+      smaller_dt = ", or shrink the time step (" +
+                   (s.time.tau ? "time.tau <= " + num(tau_ok) : "time.step_s <= " + num(dt * r) + " s") +
+                   "; u_lattice = u Δt / h)";
     reject(s, "expected Mach number " + num(L.mach) + " exceeds limits.max_mach = " + num(s.limits.max_mach) +
                   ": the speed " + num(top.speed * L.scales.velocity_m_s() * 1e6) + " µm/s (" + num(top.speed) +
                   " lattice) is set by " + top.key + " = " + top.shown + (top.estimate ? " (estimate)" : "") +
-                  "; lower it by a factor " + num(1.0 / r) + ", or shrink the time step (" + smaller_dt +
-                  "; u_lattice = u Δt / h), or refine domain.spacing_um");
+                  "; lower it by a factor " + num(1.0 / r) + smaller_dt + ", or refine domain.spacing_um");
   }
   // Re = u L / ν, L = wall-to-wall distance (the narrower one if both axes have walls);
   // in a fully periodic box the shorter period.
@@ -277,7 +282,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
       {"time step Δt", "1", num(u.time_s) + " s"},
       {"nodes", std::to_string(L.grid.nx) + " × " + std::to_string(L.grid.ny),
        vec(s.domain.size_um) + " µm"},
-      {"relaxation time τ", num(L.collision.tau), "limit >= " + num(0.5 + s.limits.min_tau_margin)},
+      {"relaxation time τ (tau)", num(L.collision.tau), "limit >= " + num(0.5 + s.limits.min_tau_margin)},
       {"viscosity ν", num(L.viscosity),
        num(L.viscosity * u.kinematic_viscosity_m2_s()) + " m²/s (" + num(s.fluid.viscosity_cP) + " cP, " +
            num(s.fluid.density_kg_m3) + " kg/m³)"},
@@ -314,7 +319,11 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
 
   std::ostringstream os;
   os << "scene '" << s.name << "' (" << origin(s) << ")\n";
-  for (const auto& r : rows) os << "  " << pad(r[0], 24) << pad(r[1], 26) << r[2] << "\n";
+  for (const auto& r : rows) {
+    std::string line = "  " + pad(r[0], 26) + pad(r[1], 26) + r[2];
+    line.erase(line.find_last_not_of(' ') + 1);
+    os << line << "\n";
+  }
   if (top.estimate)
     os << "  note: the body force acts along a periodic direction, which has no steady state;\n"
           "        the max speed is an estimate (Poiseuille F·H²/(8ν) with H = domain size, or F·steps)\n";

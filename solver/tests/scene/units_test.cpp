@@ -103,6 +103,19 @@ TEST(Units, InitialVelocityAndStepsFromDuration) {
   EXPECT_EQ(derive(timed).total_steps, 101);  // ⌈100.5⌉
 }
 
+TEST(Units, TaylorGreenSpeedInANonSquareBox) {
+  std::string periodic = channel;
+  for (const char* side : {"[boundaries.bottom]\ntype = \"wall\"\n", "[boundaries.top]\ntype = \"wall\"\n"})
+    periodic.erase(periodic.find(side), std::string(side).size());
+  const std::vector<std::string> tg{"initial.type=taylor_green", "initial.velocity_um_s=[1000, 0]"};
+  // v = U (kx/ky) sin cos, kx/ky = ny/nx: the peak speed is U max(1, ny/nx).
+  std::vector<std::string> wide = tg, tall = tg;
+  wide.push_back("domain.size_um=[20, 10]");
+  tall.push_back("domain.size_um=[10, 20]");
+  EXPECT_DOUBLE_EQ(derive(periodic, wide).expected_max_speed, 1e-4);
+  EXPECT_DOUBLE_EQ(derive(periodic, tall).expected_max_speed, 2e-4);
+}
+
 TEST(Units, PoiseuilleSpeedMachAndReynolds) {
   // Centre speed F H²/(8ν) = 1e-7 × 10² / 0.8 = 1.25e-5 (= 125 µm/s physical).
   const LatticeSetup s = derive(channel, {"body_force.density_N_m3=[1e4, 0]"});
@@ -147,6 +160,11 @@ TEST(Units, MachRejectionNamesTheSource) {
   EXPECT_CONTAINS(m, "expected Mach number 0.173205 exceeds limits.max_mach = 0.1");
   EXPECT_CONTAINS(m, "boundaries.top.velocity_um_s = [1e+06, 0] µm/s");
   EXPECT_CONTAINS(m, "time.tau <= ");
+  // No time-step advice when the τ it needs would break the τ margin.
+  const std::string t = derive_error(channel, {"time.tau=0.51", "boundaries.top.type=moving_wall",
+                                               "boundaries.top.velocity_um_s=[6e7, 0]"});
+  EXPECT_CONTAINS(t, "lower it by a factor");
+  EXPECT_EQ(t.find("time.tau <="), std::string::npos) << t;
   const std::string f = derive_error(channel, {"body_force.density_N_m3=[1e9, 0]"});
   EXPECT_CONTAINS(f, "is set by body_force.density_N_m3");
   EXPECT_NO_THROW(derive(channel, {"boundaries.top.type=moving_wall", "boundaries.top.velocity_um_s=[1e6, 0]",

@@ -1,0 +1,28 @@
+#pragma once
+// `erythro bench`: throughput of FluidLattice::step() (MLUPS) measured against the
+// machine's memory-bandwidth bound, bound = copy bandwidth / 144 B per node update
+// (two D2Q9 double lattices: 72 B read + 72 B written). Informative only: nothing
+// here asserts a speed. Method and figures: docs/performance.md.
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+}
+
+namespace erythro::app {
+
+struct BenchOptions {
+  std::string out;                         // record path; default $ERYTHRO_RESULTS_DIR/benchmark.fluid.h5
+  std::vector<int> sizes{256, 1024, 2048};  // square grids n × n
+  std::vector<int> threads{1, 2};
+  int repeats = 7;              // timed samples per configuration (median, min, max reported)
+  double sample_seconds = 0.2;  // minimum duration of one sample
+  bool quick = false;           // 256² and 1024², 3 short samples: a smoke run
+};
+
+// Declares the `bench` subcommand on `cli`, filling `options`.
+CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options);
+int bench_command(const BenchOptions& options);
+
+}  // namespace erythro::app
