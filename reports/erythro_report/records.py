@@ -187,6 +187,9 @@ def _read_runs(f, path):
     datasets = [k for k in group if isinstance(group[k], h5py.Dataset)]
     if "columns" in group.attrs:
         columns = to_text_list(group.attrs["columns"])
+        if len(columns) == 1 and "," in columns[0]:
+            # The C++ writer stores the order as one comma-separated string.
+            columns = [c for c in columns[0].split(",") if c]
     else:
         columns = sorted(datasets)
     missing = [c for c in columns if c not in datasets]

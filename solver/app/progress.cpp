@@ -13,7 +13,10 @@ void format_duration(double seconds, char* out, std::size_t size) {
 }  // namespace
 
 ProgressDisplay::ProgressDisplay(bool quiet)
-    : quiet_(quiet), terminal_(::isatty(STDERR_FILENO) != 0), start_(std::chrono::steady_clock::now()), last_draw_(start_) {}
+    : quiet_(quiet),
+      terminal_(::isatty(STDERR_FILENO) != 0),
+      start_(std::chrono::steady_clock::now()),
+      last_draw_(start_ - std::chrono::seconds(1)) {}  // draw at the first step
 
 void ProgressDisplay::on_progress(long step, long total, double mlups) {
   if (quiet_ || total <= 0) return;

@@ -48,7 +48,8 @@ struct BodyForceSpec {
 
 struct InitialSpec {
   // "rest" | "uniform" | "shear" (linear profile between the bottom and top walls'
-  // velocities) | "taylor_green" (u = U sin(kx) cos(ky) ...; wavelengths = domain size)
+  // velocities) | "taylor_green" (u = −U cos(kx x) sin(ky y), v = U (kx/ky) sin(kx x) cos(ky y),
+  // wavelengths = domain size; see simulation.cpp)
   std::string type = "rest";
   std::array<double, 2> velocity_um_s{0.0, 0.0};  // uniform: the velocity; taylor_green: [U, 0]
 };
@@ -71,7 +72,7 @@ struct MonitorSpec {
 };
 
 struct OutputSpec {
-  long fields_interval_steps = 0;        // 0: only the final state
+  long fields_interval_steps = 0;        // 0: only the initial and final states
   long diagnostics_interval_steps = 100;
   std::vector<std::string> fields{"density", "velocity"};  // allowed: density, velocity
 };

@@ -1,0 +1,362 @@
+// `erythro bench` (issue 3 items 9–10): MLUPS of FluidLattice::step() per grid,
+// collision model, boundary set-up and thread count, and the STREAM-like copy
+// bandwidth of the same run, giving the bandwidth bound
+//   bound_MLUPS = bandwidth / 144 B   (D2Q9, two double lattices: 9·8 B read + 9·8 B written).
+// Every configuration is warmed up, then timed `repeats` times; the table shows the
+// median and the spread (min, max). The result record is informative: MLUPS and the
+// fraction of the bound are recorded with `at_least 0`, never asserted.
+#include "app/bench.hpp"
+
+#include <omp.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "common/error.hpp"
+#include "fluid/fluid_lattice.hpp"
+#include "io/result_record.hpp"
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace erythro::app {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr double kBytesPerUpdate = 144.0;  // 9 doubles read + 9 doubles written
+constexpr double kTau = 0.8;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+struct Stats {
+  double median = 0.0, min = 0.0, max = 0.0;
+  double spread() const { return median > 0.0 ? (max - min) / median : 0.0; }
+};
+
+Stats stats_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  const double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+  return {median, v.front(), v.back()};
+}
+
+// ---------------------------------------------------------------- copy bandwidth
+
+struct FreeDeleter {
+  void operator()(double* p) const { std::free(p); }
+};
+using AlignedArray = std::unique_ptr<double[], FreeDeleter>;
+
+AlignedArray aligned_array(std::size_t n) {
+  auto* p = static_cast<double*>(std::aligned_alloc(64, n * sizeof(double)));
+  if (!p) throw std::runtime_error("bench: cannot allocate the copy arrays");
+  return AlignedArray(p);
+}
+
+constexpr std::size_t kCopyElements = std::size_t{1} << 24;  // 128 MiB per array, 4× the 32 MiB L3
+
+bool streaming_stores_available() {
+#if defined(__SSE2__)
+  return true;
+#else
+  return false;
+#endif
+}
+
+// b ← a over n doubles (n a multiple of 8, both 64-byte aligned), counted as 16 B per
+// element. Written with explicit vector loads/stores so that the compiler cannot turn
+// the loop into a memcpy call (glibc's memcpy switches to streaming stores itself).
+void copy_once(const double* __restrict a, double* __restrict b, std::size_t n, bool streaming) {
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (std::size_t i = 0; i < n; i += 8) {
+#if defined(__AVX__)
+      const __m256d lo = _mm256_load_pd(a + i), hi = _mm256_load_pd(a + i + 4);
+      if (streaming) {
+        _mm256_stream_pd(b + i, lo);
+        _mm256_stream_pd(b + i + 4, hi);
+      } else {
+        _mm256_store_pd(b + i, lo);
+        _mm256_store_pd(b + i + 4, hi);
+      }
+#elif defined(__SSE2__)
+      for (std::size_t k = 0; k < 8; k += 2) {
+        const __m128d v = _mm_load_pd(a + i + k);
+        if (streaming) {
+          _mm_stream_pd(b + i + k, v);
+        } else {
+          _mm_store_pd(b + i + k, v);
+        }
+      }
+#else
+      for (std::size_t k = 0; k < 8; ++k) b[i + k] = a[i + k];
+#endif
+    }
+#if defined(__SSE2__)
+    if (streaming) _mm_sfence();
+#endif
+  }
+}
+
+// Median copy bandwidth in GB/s (10⁹ B/s, read + write bytes) over `repeats` copies.
+Stats copy_bandwidth(int threads, bool streaming, int repeats) {
+  omp_set_num_threads(threads);
+  AlignedArray a = aligned_array(kCopyElements), b = aligned_array(kCopyElements);
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < kCopyElements; ++i) {
+    a[i] = 1.0 + static_cast<double>(i % 7);
+    b[i] = 0.0;
+  }
+  copy_once(a.get(), b.get(), kCopyElements, streaming);  // warm-up (page faults, clocks)
+  std::vector<double> gbs;
+  for (int r = 0; r < std::max(repeats, 5); ++r) {
+    const auto start = Clock::now();
+    copy_once(r % 2 ? b.get() : a.get(), r % 2 ? a.get() : b.get(), kCopyElements, streaming);
+    gbs.push_back(2.0 * sizeof(double) * static_cast<double>(kCopyElements) / seconds_since(start) / 1e9);
+  }
+  return stats_of(gbs);
+}
+
+// ---------------------------------------------------------------- fluid step
+
+struct StepConfig {
+  int n = 0;
+  fluid::CollisionModel model = fluid::CollisionModel::bgk;
+  bool channel = false;  // walls at bottom and top; otherwise periodic box
+  int threads = 1;
+};
+
+struct StepResult {
+  Stats mlups;
+  long steps_per_sample = 0;
+  int samples = 0;
+  double wall_time_s = 0.0;
+};
+
+std::string boundary_name(bool channel) { return channel ? "channel" : "periodic"; }
+
+// A decaying shear wave u_x = 0.01 sin(2π (y+½)/n): a valid flow for both set-ups.
+StepResult measure_step(const StepConfig& c, int repeats, double sample_seconds) {
+  const auto start_all = Clock::now();
+  omp_set_num_threads(c.threads);
+  fluid::BoundaryConfig b;
+  if (c.channel) b.bottom.type = b.top.type = fluid::SideType::wall;
+  fluid::FluidLattice lat(Grid{c.n, c.n}, {c.model, kTau, 3.0 / 16.0}, b);
+  const std::size_t N = lat.grid().size();
+  std::vector<double> rho(N, 1.0), ux(N), uy(N, 0.0);
+  for (int y = 0; y < c.n; ++y) {
+    const double u = 0.01 * std::sin(2.0 * std::numbers::pi * (y + 0.5) / c.n);
+    for (int x = 0; x < c.n; ++x) ux[lat.grid().index(x, y)] = u;
+  }
+  lat.initialize(rho, ux, uy);
+
+  // Warm-up: at least 3 steps and 0.1 s; it also sizes a sample.
+  long warm = 0;
+  const auto start_warm = Clock::now();
+  while (warm < 3 || seconds_since(start_warm) < 0.1) {
+    lat.step();
+    ++warm;
+  }
+  const double per_step = seconds_since(start_warm) / static_cast<double>(warm);
+  const long steps = std::max(1L, static_cast<long>(std::ceil(sample_seconds / per_step)));
+
+  std::vector<double> mlups;
+  for (int r = 0; r < repeats; ++r) {
+    const auto start = Clock::now();
+    for (long s = 0; s < steps; ++s) lat.step();
+    mlups.push_back(static_cast<double>(N) * static_cast<double>(steps) / seconds_since(start) / 1e6);
+  }
+  if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
+  return {stats_of(mlups), steps, repeats, seconds_since(start_all)};
+}
+
+// ---------------------------------------------------------------- machine state
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  double l1 = 0, l5 = 0, l15 = 0;
+  if (!(in >> l1 >> l5 >> l15)) return "unknown";
+  std::ostringstream s;
+  s << l1 << " " << l5 << " " << l15;
+  return s.str();
+}
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(std::min(colon + 2, line.size()));
+    }
+  }
+  return "unknown";
+}
+
+std::string tag(const StepConfig& c) {
+  std::ostringstream s;
+  s << boundary_name(c.channel) << "_" << fluid::to_string(c.model) << "_" << c.n << "_t" << c.threads;
+  return s.str();
+}
+
+io::Metric informative(std::string name, std::string description, std::string unit, double value) {
+  io::Metric m;
+  m.name = std::move(name);
+  m.description = std::move(description);
+  m.unit = std::move(unit);
+  m.value = value;
+  m.expected = 0.0;
+  m.comparison = io::Comparison::at_least;
+  m.tolerance_reason =
+      "informative: speed on a shared machine is never asserted; the metric only has to be a finite measurement";
+  return m;
+}
+
+int run_bench(BenchOptions o) {
+  if (o.quick) {
+    o.sizes = {256, 1024};
+    o.repeats = 3;
+    o.sample_seconds = 0.05;
+  }
+  const auto start_all = Clock::now();
+  const std::string load_start = load_average();
+  io::ResultRecord record("benchmark.fluid", "benchmark");
+  record.set_requirement(
+      "Informative: measure the throughput of the fused D2Q9 stream-collide step (MLUPS) and its fraction of "
+      "the memory-bandwidth bound, copy bandwidth / 144 B per node update, on this machine.");
+  record.set_reference(
+      "Bandwidth bound of a two-lattice D2Q9 double-precision update: 9 x 8 B read + 9 x 8 B written = 144 B "
+      "per node update (Wittmann et al. 2013, Comput Math Appl 65:924, roofline model); copy bandwidth measured "
+      "with a STREAM-like copy (McCalpin 1995), counted as read + write bytes.");
+  record.set_parameter("cpu", cpu_model());
+  record.set_parameter("load_average_start", load_start);
+  record.set_parameter("tau", kTau);
+  record.set_parameter("repeats", static_cast<double>(o.repeats));
+  record.set_parameter("sample_seconds", o.sample_seconds);
+  record.set_parameter("bytes_per_update", kBytesPerUpdate);
+  record.set_parameter("copy_array_mib", static_cast<double>(kCopyElements * sizeof(double)) / (1 << 20));
+
+  // Copy bandwidth per thread count: plain stores (write-allocate: 24 B really move
+  // per 16 B counted) and streaming stores. The bound uses the better of the two.
+  std::printf("copy bandwidth (STREAM-like, read + write bytes, 2 x %zu MiB arrays), load %s\n",
+              kCopyElements * sizeof(double) >> 20, load_start.c_str());
+  std::vector<double> bandwidth(o.threads.size());
+  for (std::size_t t = 0; t < o.threads.size(); ++t) {
+    const int th = o.threads[t];
+    const Stats plain = copy_bandwidth(th, false, o.repeats);
+    std::printf("  %d thread(s): plain stores %6.1f GB/s (%.1f-%.1f)", th, plain.median, plain.min, plain.max);
+    record.add_metric(informative("copy_gbs_t" + std::to_string(th), "STREAM-like copy, plain stores", "GB/s",
+                                  plain.median));
+    bandwidth[t] = plain.median;
+    if (streaming_stores_available()) {
+      const Stats nt = copy_bandwidth(th, true, o.repeats);
+      std::printf(", streaming stores %6.1f GB/s (%.1f-%.1f)", nt.median, nt.min, nt.max);
+      record.add_metric(informative("copy_nt_gbs_t" + std::to_string(th), "STREAM-like copy, streaming stores",
+                                    "GB/s", nt.median));
+      bandwidth[t] = std::max(bandwidth[t], nt.median);
+    }
+    std::printf(" -> bound %.0f MLUPS\n", bandwidth[t] * 1e9 / kBytesPerUpdate / 1e6);
+    record.set_parameter("bandwidth_gbs_t" + std::to_string(th), bandwidth[t]);
+  }
+
+  std::printf("\n%-9s %-4s %6s %3s %9s %17s %7s %8s %8s %9s\n", "boundary", "coll", "grid", "thr", "MLUPS",
+              "min-max", "spread", "GB/s", "bound", "fraction");
+  for (bool channel : {false, true}) {
+    for (auto model : {fluid::CollisionModel::bgk, fluid::CollisionModel::trt}) {
+      // One plot series per thread count: MLUPS vs nodes, the bound as reference.
+      std::vector<io::Series> series(o.threads.size());
+      for (std::size_t t = 0; t < o.threads.size(); ++t) {
+        io::Series& s = series[t];
+        s.name = boundary_name(channel) + " " + std::string(fluid::to_string(model)) + " " +
+                 std::to_string(o.threads[t]) + " thread(s)";
+        s.title = "Fluid step throughput, " + s.name + " (reference: bandwidth bound)";
+        s.xlabel = "nodes";
+        s.ylabel = "MLUPS";
+      }
+      for (int n : o.sizes) {
+        for (std::size_t t = 0; t < o.threads.size(); ++t) {
+          const StepConfig c{n, model, channel, o.threads[t]};
+          const StepResult r = measure_step(c, o.repeats, o.sample_seconds);
+          const double bound = bandwidth[t] * 1e9 / kBytesPerUpdate / 1e6;
+          const double fraction = r.mlups.median / bound;
+          const double gbs = r.mlups.median * 1e6 * kBytesPerUpdate / 1e9;
+          std::printf("%-9s %-4s %6d %3d %9.1f %8.1f-%-8.1f %6.1f%% %8.1f %8.0f %8.0f%%\n",
+                      boundary_name(channel).c_str(), std::string(fluid::to_string(model)).c_str(), n, c.threads,
+                      r.mlups.median, r.mlups.min, r.mlups.max, 100.0 * r.mlups.spread(), gbs, bound,
+                      100.0 * fraction);
+          std::fflush(stdout);
+          record.add_run({{"boundary", boundary_name(channel)},
+                          {"model", std::string(fluid::to_string(model))},
+                          {"grid_n", static_cast<double>(n)},
+                          {"threads", static_cast<double>(c.threads)},
+                          {"steps_per_sample", static_cast<double>(r.steps_per_sample)},
+                          {"samples", static_cast<double>(r.samples)},
+                          {"mlups_median", r.mlups.median},
+                          {"mlups_min", r.mlups.min},
+                          {"mlups_max", r.mlups.max},
+                          {"effective_gbs", gbs},
+                          {"bandwidth_gbs", bandwidth[t]},
+                          {"bound_mlups", bound},
+                          {"fraction_of_bound", fraction},
+                          {"wall_time_s", r.wall_time_s}});
+          record.add_metric(informative("mlups_" + tag(c), "median MLUPS of FluidLattice::step()", "MLUPS",
+                                        r.mlups.median));
+          record.add_metric(informative("fraction_of_bound_" + tag(c),
+                                        "median MLUPS / (copy bandwidth / 144 B)", "", fraction));
+          series[t].x.push_back(static_cast<double>(n) * n);
+          series[t].y.push_back(r.mlups.median);
+          series[t].y_reference.push_back(bound);
+        }
+      }
+      for (const auto& s : series) record.add_series(s);
+    }
+  }
+  const std::string load_end = load_average();
+  record.set_parameter("load_average_end", load_end);
+  record.set_wall_time(seconds_since(start_all));
+  std::printf("\nload average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
+  const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
+  std::printf("record: %s\n", path.c_str());
+  return record.passed() ? exit_code::ok : exit_code::runtime_failure;
+}
+
+}  // namespace
+
+CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
+  auto* cmd = cli.add_subcommand("bench", "Measure the fluid step (MLUPS) against the memory-bandwidth bound");
+  cmd->add_option("--out", options.out, "Result record (default: $ERYTHRO_RESULTS_DIR/benchmark.fluid.h5)");
+  cmd->add_option("--sizes", options.sizes, "Grid sizes n of the n x n grids")->check(CLI::Range(3, 16384));
+  cmd->add_option("--threads", options.threads, "Thread counts")->check(CLI::Range(1, 1024));
+  cmd->add_option("--repeats", options.repeats, "Timed samples per configuration")->check(CLI::Range(1, 1000));
+  cmd->add_option("--sample-seconds", options.sample_seconds, "Minimum duration of one sample")
+      ->check(CLI::Range(1e-3, 60.0));
+  cmd->add_flag("--quick", options.quick, "Smoke run: 256^2 and 1024^2, 3 short samples");
+  return cmd;
+}
+
+int bench_command(const BenchOptions& options) {
+  try {
+    return run_bench(options);
+  } catch (const OutputError& e) {
+    std::cerr << "erythro: error: " << e.what() << "\n";
+    return exit_code::output_failure;
+  } catch (const std::exception& e) {
+    std::cerr << "erythro: error: " << e.what() << "\n";
+    return exit_code::runtime_failure;
+  }
+}
+
+}  // namespace erythro::app
