@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Main job: install what is missing, build, run the whole V&V suite (ctest label
-# `full`: unit, verification, validation, regression, long studies), then generate
-# the report and print where it is. Exits non-zero if any case failed.
+# `full`: unit, verification, validation, regression, long studies) and the fluid
+# benchmark, then generate the report and print where it is. Exits non-zero if any
+# case failed.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ERYTHRO_BUILD_DIR:-$root/build}
@@ -10,6 +11,9 @@ report=${ERYTHRO_REPORT_DIR:-$root/reports-out}
 "$root/ci/build.sh" || exit 1
 ctest --test-dir "$build" -L full --output-on-failure -j "$(nproc)"
 tests_status=$?
+# Speed against the machine's bandwidth bound, alone on the machine (not in parallel
+# with tests), so the report can show it.
+ctest --test-dir "$build" -L benchmark --output-on-failure || tests_status=1
 /usr/bin/python3 "$root/reports/generate.py" "$build/results" --out "$report"
 report_status=$?
 echo "report: $report/index.html"

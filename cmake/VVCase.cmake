@@ -1,18 +1,25 @@
 # Registration of tests and V&V cases.
 #
+# Tests run with 2 OpenMP threads and a passive wait policy: ctest runs two tests at
+# once on 2 cores, and spinning idle workers would then steal each other's cores.
+#
 # Every test gets the label `full`; tests that belong to the CI tier also get `ci`.
 # A V&V case additionally writes <results>/<case>.h5 and is listed in
 # <results>/expected_cases.tsv so that the report generator can name a case whose
 # record is missing.
 #
-#   erythro_add_test(NAME n COMMAND cmd... LABELS unit [CI] [TIMEOUT s])
+#   erythro_add_test(NAME n COMMAND cmd... LABELS unit [CI] [NO_FULL] [TIMEOUT s] [ENVIRONMENT k=v...])
+#   (NO_FULL: not in `full`, e.g. benchmarks)
 #   vv_add_case(CASE c COMMAND cmd... LABELS verification [CI] [TIMEOUT s])
 
 set_property(GLOBAL PROPERTY ERYTHRO_VV_MANIFEST "")
 
 function(erythro_add_test)
-  cmake_parse_arguments(T "CI" "NAME;TIMEOUT;WORKING_DIRECTORY" "COMMAND;LABELS;ENVIRONMENT" ${ARGN})
-  set(labels ${T_LABELS} full)
+  cmake_parse_arguments(T "CI;NO_FULL" "NAME;TIMEOUT;WORKING_DIRECTORY" "COMMAND;LABELS;ENVIRONMENT" ${ARGN})
+  set(labels ${T_LABELS})
+  if(NOT T_NO_FULL)
+    list(APPEND labels full)
+  endif()
   if(T_CI)
     list(APPEND labels ci)
   endif()
@@ -24,7 +31,7 @@ function(erythro_add_test)
   endif()
   add_test(NAME ${T_NAME} COMMAND ${T_COMMAND} WORKING_DIRECTORY ${T_WORKING_DIRECTORY})
   set_tests_properties(${T_NAME} PROPERTIES LABELS "${labels}" TIMEOUT ${T_TIMEOUT}
-    ENVIRONMENT "ERYTHRO_RESULTS_DIR=${ERYTHRO_RESULTS_DIR};ERYTHRO_SOURCE_DIR=${PROJECT_SOURCE_DIR};OMP_NUM_THREADS=2;${T_ENVIRONMENT}")
+    ENVIRONMENT "ERYTHRO_RESULTS_DIR=${ERYTHRO_RESULTS_DIR};ERYTHRO_SOURCE_DIR=${PROJECT_SOURCE_DIR};OMP_NUM_THREADS=2;OMP_WAIT_POLICY=passive;${T_ENVIRONMENT}")
 endfunction()
 
 function(vv_add_case)

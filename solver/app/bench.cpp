@@ -3,8 +3,10 @@
 // bandwidth of the same run, giving the bandwidth bound
 //   bound_MLUPS = bandwidth / 144 B   (D2Q9, two double lattices: 9·8 B read + 9·8 B written).
 // Every configuration is warmed up, then timed `repeats` times; the table shows the
-// median and the spread (min, max). The result record is informative: MLUPS and the
-// fraction of the bound are recorded with `at_least 0`, never asserted.
+// median and the spread (min, max). A short ablation times the kernel with its
+// store mode forced (cached vs non-temporal stores). The result record is
+// informative: MLUPS and the fraction of the bound are recorded with `at_least 0`,
+// never asserted. Method and figures: docs/performance.md.
 #include "app/bench.hpp"
 
 #include <omp.h>
@@ -16,15 +18,19 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "common/error.hpp"
 #include "fluid/fluid_lattice.hpp"
+#include "fluid/stream_collide.hpp"
 #include "io/result_record.hpp"
+#include "lattice/d2q9.hpp"
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -62,7 +68,7 @@ using AlignedArray = std::unique_ptr<double[], FreeDeleter>;
 
 AlignedArray aligned_array(std::size_t n) {
   auto* p = static_cast<double*>(std::aligned_alloc(64, n * sizeof(double)));
-  if (!p) throw std::runtime_error("bench: cannot allocate the copy arrays");
+  if (!p) throw std::runtime_error("bench: cannot allocate " + std::to_string(n * sizeof(double) >> 20) + " MiB");
   return AlignedArray(p);
 }
 
@@ -84,7 +90,14 @@ void copy_once(const double* __restrict a, double* __restrict b, std::size_t n, 
   {
 #pragma omp for schedule(static)
     for (std::size_t i = 0; i < n; i += 8) {
-#if defined(__AVX__)
+#if defined(__AVX512F__)
+      const __m512d v = _mm512_load_pd(a + i);
+      if (streaming) {
+        _mm512_stream_pd(b + i, v);
+      } else {
+        _mm512_store_pd(b + i, v);
+      }
+#elif defined(__AVX__)
       const __m256d lo = _mm256_load_pd(a + i), hi = _mm256_load_pd(a + i + 4);
       if (streaming) {
         _mm256_stream_pd(b + i, lo);
@@ -112,7 +125,7 @@ void copy_once(const double* __restrict a, double* __restrict b, std::size_t n, 
   }
 }
 
-// Median copy bandwidth in GB/s (10⁹ B/s, read + write bytes) over `repeats` copies.
+// Copy bandwidth in GB/s (10⁹ B/s, read + write bytes) over `repeats` copies.
 Stats copy_bandwidth(int threads, bool streaming, int repeats) {
   omp_set_num_threads(threads);
   AlignedArray a = aligned_array(kCopyElements), b = aligned_array(kCopyElements);
@@ -133,13 +146,6 @@ Stats copy_bandwidth(int threads, bool streaming, int repeats) {
 
 // ---------------------------------------------------------------- fluid step
 
-struct StepConfig {
-  int n = 0;
-  fluid::CollisionModel model = fluid::CollisionModel::bgk;
-  bool channel = false;  // walls at bottom and top; otherwise periodic box
-  int threads = 1;
-};
-
 struct StepResult {
   Stats mlups;
   long steps_per_sample = 0;
@@ -147,41 +153,91 @@ struct StepResult {
   double wall_time_s = 0.0;
 };
 
-std::string boundary_name(bool channel) { return channel ? "channel" : "periodic"; }
-
-// A decaying shear wave u_x = 0.01 sin(2π (y+½)/n): a valid flow for both set-ups.
-StepResult measure_step(const StepConfig& c, int repeats, double sample_seconds) {
+// Warm-up (at least 3 steps and 0.1 s, which also sizes a sample), then `repeats`
+// samples of at least `sample_seconds` each.
+StepResult time_steps(const std::function<void()>& step, std::size_t nodes, int repeats, double sample_seconds) {
   const auto start_all = Clock::now();
-  omp_set_num_threads(c.threads);
-  fluid::BoundaryConfig b;
-  if (c.channel) b.bottom.type = b.top.type = fluid::SideType::wall;
-  fluid::FluidLattice lat(Grid{c.n, c.n}, {c.model, kTau, 3.0 / 16.0}, b);
-  const std::size_t N = lat.grid().size();
-  std::vector<double> rho(N, 1.0), ux(N), uy(N, 0.0);
-  for (int y = 0; y < c.n; ++y) {
-    const double u = 0.01 * std::sin(2.0 * std::numbers::pi * (y + 0.5) / c.n);
-    for (int x = 0; x < c.n; ++x) ux[lat.grid().index(x, y)] = u;
-  }
-  lat.initialize(rho, ux, uy);
-
-  // Warm-up: at least 3 steps and 0.1 s; it also sizes a sample.
   long warm = 0;
-  const auto start_warm = Clock::now();
-  while (warm < 3 || seconds_since(start_warm) < 0.1) {
-    lat.step();
+  while (warm < 3 || seconds_since(start_all) < 0.1) {
+    step();
     ++warm;
   }
-  const double per_step = seconds_since(start_warm) / static_cast<double>(warm);
+  const double per_step = seconds_since(start_all) / static_cast<double>(warm);
   const long steps = std::max(1L, static_cast<long>(std::ceil(sample_seconds / per_step)));
-
   std::vector<double> mlups;
   for (int r = 0; r < repeats; ++r) {
     const auto start = Clock::now();
-    for (long s = 0; s < steps; ++s) lat.step();
-    mlups.push_back(static_cast<double>(N) * static_cast<double>(steps) / seconds_since(start) / 1e6);
+    for (long s = 0; s < steps; ++s) step();
+    mlups.push_back(static_cast<double>(nodes) * static_cast<double>(steps) / seconds_since(start) / 1e6);
   }
-  if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
   return {stats_of(mlups), steps, repeats, seconds_since(start_all)};
+}
+
+struct StepConfig {
+  int n = 0;
+  fluid::CollisionModel model = fluid::CollisionModel::bgk;
+  bool channel = false;  // walls at bottom and top; otherwise periodic box
+  int threads = 1;
+};
+
+std::string boundary_name(bool channel) { return channel ? "channel" : "periodic"; }
+
+fluid::BoundaryConfig boundaries(bool channel) {
+  fluid::BoundaryConfig b;
+  if (channel) b.bottom.type = b.top.type = fluid::SideType::wall;
+  return b;
+}
+
+// u_x(y) of a decaying shear wave, 0.01 sin(2π (y+½)/n): a valid flow for both set-ups.
+double shear_wave(int y, int n) { return 0.01 * std::sin(2.0 * std::numbers::pi * (y + 0.5) / n); }
+
+StepResult measure_lattice(const StepConfig& c, int repeats, double sample_seconds) {
+  const auto start = Clock::now();
+  omp_set_num_threads(c.threads);
+  fluid::FluidLattice lat(Grid{c.n, c.n}, {c.model, kTau, 3.0 / 16.0}, boundaries(c.channel));
+  const std::size_t N = lat.grid().size();
+  std::vector<double> rho(N, 1.0), ux(N), uy(N, 0.0);
+  for (int y = 0; y < c.n; ++y) {
+    for (int x = 0; x < c.n; ++x) ux[lat.grid().index(x, y)] = shear_wave(y, c.n);
+  }
+  lat.initialize(rho, ux, uy);
+  StepResult r = time_steps([&] { lat.step(); }, N, repeats, sample_seconds);
+  if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
+  r.wall_time_s = seconds_since(start);
+  return r;
+}
+
+// The kernel alone with its store mode forced (periodic BGK), on 64-byte aligned lattices.
+StepResult measure_kernel(int n, int threads, fluid::detail::StoreMode mode, int repeats, double sample_seconds) {
+  const auto start = Clock::now();
+  omp_set_num_threads(threads);
+  const Grid g{n, n};
+  const std::size_t N = g.size();
+  AlignedArray a = aligned_array(d2q9::Q * N), b = aligned_array(d2q9::Q * N);
+  for (int i = 0; i < d2q9::Q; ++i) {
+    for (int y = 0; y < n; ++y) {
+      for (int x = 0; x < n; ++x) {
+        a[i * N + g.index(x, y)] = d2q9::equilibrium_deviation(i, 1.0, shear_wave(y, n), 0.0);
+        b[i * N + g.index(x, y)] = 0.0;
+      }
+    }
+  }
+  fluid::detail::KernelArgs k;
+  k.grid = g;
+  k.collision = {fluid::CollisionModel::bgk, kTau, 3.0 / 16.0};
+  k.stores = mode;
+  double* src = a.get();
+  double* dst = b.get();
+  StepResult r = time_steps(
+      [&] {
+        k.src = src;
+        k.dst = dst;
+        fluid::detail::stream_collide(k);
+        std::swap(src, dst);
+      },
+      N, repeats, sample_seconds);
+  r.wall_time_s = seconds_since(start);
+  return r;
 }
 
 // ---------------------------------------------------------------- machine state
@@ -206,10 +262,21 @@ std::string cpu_model() {
   return "unknown";
 }
 
+std::string env_or(const char* name, const char* fallback) {
+  const char* v = std::getenv(name);
+  return v && *v ? v : fallback;
+}
+
 std::string tag(const StepConfig& c) {
   std::ostringstream s;
   s << boundary_name(c.channel) << "_" << fluid::to_string(c.model) << "_" << c.n << "_t" << c.threads;
   return s.str();
+}
+
+std::string store_name(const Grid& g, fluid::detail::StoreMode mode) {
+  const bool nt = fluid::detail::uses_streaming_stores(g, mode);
+  if (mode == fluid::detail::StoreMode::automatic) return nt ? "auto: streaming" : "auto: cached";
+  return nt ? "forced streaming" : "forced cached";
 }
 
 io::Metric informative(std::string name, std::string description, std::string unit, double value) {
@@ -224,6 +291,13 @@ io::Metric informative(std::string name, std::string description, std::string un
       "informative: speed on a shared machine is never asserted; the metric only has to be a finite measurement";
   return m;
 }
+
+struct Bandwidth {
+  double plain = 0.0, streaming = 0.0;  // GB/s, read + write bytes
+  double best() const { return std::max(plain, streaming); }
+};
+
+double bound_mlups(double gbs) { return gbs * 1e9 / kBytesPerUpdate / 1e6; }
 
 int run_bench(BenchOptions o) {
   if (o.quick) {
@@ -243,37 +317,74 @@ int run_bench(BenchOptions o) {
       "with a STREAM-like copy (McCalpin 1995), counted as read + write bytes.");
   record.set_parameter("cpu", cpu_model());
   record.set_parameter("load_average_start", load_start);
+  record.set_parameter("omp_wait_policy", env_or("OMP_WAIT_POLICY", "default"));
   record.set_parameter("tau", kTau);
   record.set_parameter("repeats", static_cast<double>(o.repeats));
   record.set_parameter("sample_seconds", o.sample_seconds);
   record.set_parameter("bytes_per_update", kBytesPerUpdate);
   record.set_parameter("copy_array_mib", static_cast<double>(kCopyElements * sizeof(double)) / (1 << 20));
+  record.set_parameter("streaming_footprint_mib",
+                       static_cast<double>(fluid::detail::kStreamingFootprintBytes) / (1 << 20));
+  record.set_parameter("bound_definition",
+                       "best of the plain-store and streaming-store copy bandwidths / 144 B; the plain-store bound "
+                       "(write-allocate traffic uncounted, as in most published STREAM figures) is also given");
 
   // Copy bandwidth per thread count: plain stores (write-allocate: 24 B really move
-  // per 16 B counted) and streaming stores. The bound uses the better of the two.
+  // per 16 B counted) and streaming stores.
   std::printf("copy bandwidth (STREAM-like, read + write bytes, 2 x %zu MiB arrays), load %s\n",
               kCopyElements * sizeof(double) >> 20, load_start.c_str());
-  std::vector<double> bandwidth(o.threads.size());
+  std::vector<Bandwidth> bandwidth(o.threads.size());
   for (std::size_t t = 0; t < o.threads.size(); ++t) {
     const int th = o.threads[t];
     const Stats plain = copy_bandwidth(th, false, o.repeats);
     std::printf("  %d thread(s): plain stores %6.1f GB/s (%.1f-%.1f)", th, plain.median, plain.min, plain.max);
     record.add_metric(informative("copy_gbs_t" + std::to_string(th), "STREAM-like copy, plain stores", "GB/s",
                                   plain.median));
-    bandwidth[t] = plain.median;
+    bandwidth[t].plain = plain.median;
     if (streaming_stores_available()) {
       const Stats nt = copy_bandwidth(th, true, o.repeats);
       std::printf(", streaming stores %6.1f GB/s (%.1f-%.1f)", nt.median, nt.min, nt.max);
       record.add_metric(informative("copy_nt_gbs_t" + std::to_string(th), "STREAM-like copy, streaming stores",
                                     "GB/s", nt.median));
-      bandwidth[t] = std::max(bandwidth[t], nt.median);
+      bandwidth[t].streaming = nt.median;
     }
-    std::printf(" -> bound %.0f MLUPS\n", bandwidth[t] * 1e9 / kBytesPerUpdate / 1e6);
-    record.set_parameter("bandwidth_gbs_t" + std::to_string(th), bandwidth[t]);
+    std::printf("\n      bound %.0f MLUPS (plain-store bound %.0f MLUPS)\n", bound_mlups(bandwidth[t].best()),
+                bound_mlups(bandwidth[t].plain));
+    record.set_parameter("bandwidth_gbs_t" + std::to_string(th), bandwidth[t].best());
   }
 
-  std::printf("\n%-9s %-4s %6s %3s %9s %17s %7s %8s %8s %9s\n", "boundary", "coll", "grid", "thr", "MLUPS",
-              "min-max", "spread", "GB/s", "bound", "fraction");
+  std::printf("\n%-9s %-4s %5s %3s %-16s %7s %15s %6s %6s %6s %6s %6s\n", "boundary", "coll", "grid", "thr", "stores",
+              "MLUPS", "min-max", "spread", "GB/s", "bound", "frac", "fr.pl");
+  auto report = [&](const std::string& kind, const std::string& stores, const StepConfig& c, std::size_t t,
+                    const StepResult& r) {
+    const double bound = bound_mlups(bandwidth[t].best()), plain_bound = bound_mlups(bandwidth[t].plain);
+    const double fraction = r.mlups.median / bound, fraction_plain = r.mlups.median / plain_bound;
+    const double gbs = r.mlups.median * 1e6 * kBytesPerUpdate / 1e9;
+    std::printf("%-9s %-4s %5d %3d %-16s %7.1f %7.1f-%-7.1f %5.1f%% %6.1f %6.0f %5.0f%% %5.0f%%\n",
+                boundary_name(c.channel).c_str(), std::string(fluid::to_string(c.model)).c_str(), c.n, c.threads,
+                stores.c_str(), r.mlups.median, r.mlups.min, r.mlups.max, 100.0 * r.mlups.spread(), gbs, bound,
+                100.0 * fraction, 100.0 * fraction_plain);
+    std::fflush(stdout);
+    record.add_run({{"kind", kind},
+                    {"boundary", boundary_name(c.channel)},
+                    {"model", std::string(fluid::to_string(c.model))},
+                    {"grid_n", static_cast<double>(c.n)},
+                    {"threads", static_cast<double>(c.threads)},
+                    {"stores", stores},
+                    {"steps_per_sample", static_cast<double>(r.steps_per_sample)},
+                    {"samples", static_cast<double>(r.samples)},
+                    {"mlups_median", r.mlups.median},
+                    {"mlups_min", r.mlups.min},
+                    {"mlups_max", r.mlups.max},
+                    {"effective_gbs", gbs},
+                    {"bandwidth_gbs", bandwidth[t].best()},
+                    {"bound_mlups", bound},
+                    {"fraction_of_bound", fraction},
+                    {"fraction_of_plain_store_bound", fraction_plain},
+                    {"wall_time_s", r.wall_time_s}});
+    return std::pair{bound, fraction};
+  };
+
   for (bool channel : {false, true}) {
     for (auto model : {fluid::CollisionModel::bgk, fluid::CollisionModel::trt}) {
       // One plot series per thread count: MLUPS vs nodes, the bound as reference.
@@ -289,33 +400,13 @@ int run_bench(BenchOptions o) {
       for (int n : o.sizes) {
         for (std::size_t t = 0; t < o.threads.size(); ++t) {
           const StepConfig c{n, model, channel, o.threads[t]};
-          const StepResult r = measure_step(c, o.repeats, o.sample_seconds);
-          const double bound = bandwidth[t] * 1e9 / kBytesPerUpdate / 1e6;
-          const double fraction = r.mlups.median / bound;
-          const double gbs = r.mlups.median * 1e6 * kBytesPerUpdate / 1e9;
-          std::printf("%-9s %-4s %6d %3d %9.1f %8.1f-%-8.1f %6.1f%% %8.1f %8.0f %8.0f%%\n",
-                      boundary_name(channel).c_str(), std::string(fluid::to_string(model)).c_str(), n, c.threads,
-                      r.mlups.median, r.mlups.min, r.mlups.max, 100.0 * r.mlups.spread(), gbs, bound,
-                      100.0 * fraction);
-          std::fflush(stdout);
-          record.add_run({{"boundary", boundary_name(channel)},
-                          {"model", std::string(fluid::to_string(model))},
-                          {"grid_n", static_cast<double>(n)},
-                          {"threads", static_cast<double>(c.threads)},
-                          {"steps_per_sample", static_cast<double>(r.steps_per_sample)},
-                          {"samples", static_cast<double>(r.samples)},
-                          {"mlups_median", r.mlups.median},
-                          {"mlups_min", r.mlups.min},
-                          {"mlups_max", r.mlups.max},
-                          {"effective_gbs", gbs},
-                          {"bandwidth_gbs", bandwidth[t]},
-                          {"bound_mlups", bound},
-                          {"fraction_of_bound", fraction},
-                          {"wall_time_s", r.wall_time_s}});
+          const StepResult r = measure_lattice(c, o.repeats, o.sample_seconds);
+          const auto [bound, fraction] =
+              report("FluidLattice::step", store_name(Grid{n, n}, fluid::detail::StoreMode::automatic), c, t, r);
           record.add_metric(informative("mlups_" + tag(c), "median MLUPS of FluidLattice::step()", "MLUPS",
                                         r.mlups.median));
           record.add_metric(informative("fraction_of_bound_" + tag(c),
-                                        "median MLUPS / (copy bandwidth / 144 B)", "", fraction));
+                                        "median MLUPS / (best copy bandwidth / 144 B)", "", fraction));
           series[t].x.push_back(static_cast<double>(n) * n);
           series[t].y.push_back(r.mlups.median);
           series[t].y_reference.push_back(bound);
@@ -324,10 +415,30 @@ int run_bench(BenchOptions o) {
       for (const auto& s : series) record.add_series(s);
     }
   }
+
+  // Ablation: the kernel with cached vs non-temporal stores, periodic BGK, one thread,
+  // at the largest benchmark grid of at most 1024² (the bound-relevant case).
+  int n_ablation = 0;
+  for (int n : o.sizes) {
+    if (n <= 1024) n_ablation = std::max(n_ablation, n);
+  }
+  if (n_ablation > 0 && streaming_stores_available()) {
+    std::printf("\nablation: kernel store mode (periodic BGK, 1 thread)\n");
+    const std::size_t t1 = static_cast<std::size_t>(std::find(o.threads.begin(), o.threads.end(), 1) - o.threads.begin());
+    if (t1 < o.threads.size()) {
+      for (auto mode : {fluid::detail::StoreMode::cached, fluid::detail::StoreMode::streaming}) {
+        const StepConfig c{n_ablation, fluid::CollisionModel::bgk, false, 1};
+        const StepResult r = measure_kernel(n_ablation, 1, mode, o.repeats, o.sample_seconds);
+        report("kernel, store mode forced", store_name(Grid{n_ablation, n_ablation}, mode), c, t1, r);
+      }
+    }
+  }
+
   const std::string load_end = load_average();
   record.set_parameter("load_average_end", load_end);
   record.set_wall_time(seconds_since(start_all));
-  std::printf("\nload average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
+  std::printf("\nfrac: of the bound (best copy bandwidth / 144 B); fr.pl: of the plain-store copy bound\n");
+  std::printf("load average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
   const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
   std::printf("record: %s\n", path.c_str());
   return record.passed() ? exit_code::ok : exit_code::runtime_failure;

@@ -1,7 +1,8 @@
-// The `erythro` command: run, check, compare (and bench). Exit codes: docs/cli.md.
+// The `erythro` command: run, check, compare, bench. Exit codes: docs/cli.md.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "app/bench.hpp"
 #include "app/commands.hpp"
 #include "common/build_info.hpp"
 #include "common/error.hpp"
@@ -33,6 +34,9 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("baseline", baseline, "Baseline .h5")->required()->check(CLI::ExistingFile);
   compare_cmd->add_option("--tolerances", tolerances, "Tolerance file (TOML)")->required()->check(CLI::ExistingFile);
 
+  app::BenchOptions bench;
+  auto* bench_cmd = app::add_bench_subcommand(cli, bench);
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -47,6 +51,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return app::run_command(run);
   if (*check_cmd) return app::check_command(check_scene, check_overrides);
   if (*compare_cmd) return app::compare_command(current, baseline, tolerances);
+  if (*bench_cmd) return app::bench_command(bench);
   std::cout << cli.help();
   return exit_code::bad_input;
 }

@@ -12,8 +12,8 @@ struct Rates {
 };
 
 inline Rates rates_for(CollisionModel model, double tau, double magic) {
-  if (model == CollisionModel::bgk) return {1.0 / tau, 1.0 / tau};
-  return {1.0 / tau, 1.0 / trt_tau_minus(tau, magic)};
+  if (model == CollisionModel::trt) return {1.0 / tau, 1.0 / trt_tau_minus(tau, magic)};
+  return {1.0 / tau, 1.0 / tau};  // BGK, regularized: one rate
 }
 
 // f: the nine streamed populations of the node, stored as deviations from the rest
@@ -23,6 +23,18 @@ inline Rates rates_for(CollisionModel model, double tau, double magic) {
 //  TRT: f' = f − ω+(f⁺ − f^eq⁺) − ω−(f⁻ − f^eq⁻) + (1 − ω+/2) S⁺ + (1 − ω−/2) S⁻,
 //  S_i = w_i [ (c_i − u)·F/c_s² + (c_i·u)(c_i·F)/c_s⁴ ]  (Guo et al. 2002),
 //  split S⁺_i = w_i[(c_i·u)(c_i·F)/c_s⁴ − u·F/c_s²], S⁻_i = w_i (c_i·F)/c_s².
+//  Regularized (Latt & Chopard 2006, Math Comput Simul 72:165), with
+//  Q_i = c_i c_i − c_s² I and Guo forcing:
+//    Π^neq = Σ c_i c_i (f_i − f^eq_i) + ½(uF + Fu)   (non-equilibrium stress with the
+//            force correction, the part ∝ the strain rate: Guo et al. 2002, PRE 65:046308)
+//    f^neq,R_i = w_i Q_i : Π^neq / (2 c_s⁴)           (projection on the 2nd Hermite order)
+//    f'_i = f^eq_i + (1 − ω) f^neq,R_i + ½ S_i.
+//  This is BGK-plus-Guo, f' = f^R − ω(f^R − f^eq) + (1 − ω/2) S, applied to the
+//  regularised populations f^R = f^eq + f^neq,R − ½ S, i.e. to the projection of f
+//  on the Hermite orders 0–2 (it keeps ρ, Σ c f = ρu − F/2 and Σ c c f; S holds
+//  only orders 1 and 2). Hence Σ f' = Σ f and Σ c f' = Σ c f + F exactly, and the
+//  2nd moment after collision equals BGK's: the model differs from BGK only in the
+//  discarded 3rd/4th-order (ghost) moments, which it resets to equilibrium.
 template <CollisionModel Model, bool HasForce>
 inline void collide_node(double* f, Rates r, double Fx, double Fy) {
   using namespace d2q9;
@@ -51,6 +63,36 @@ inline void collide_node(double* f, Rates r, double Fx, double Fy) {
       if constexpr (HasForce) {
         const double cF = cx[i] * Fx + cy[i] * Fy;
         fi += force_pref * w[i] * (3.0 * (cF - uF) + 9.0 * cu * cF);
+      }
+      f[i] = fi;
+    }
+  } else if constexpr (Model == CollisionModel::regularized) {
+    const double om = r.omega_plus;
+    // Raw second moments of the stored deviations: Σ c c f = Σ c c f̃ + c_s² I.
+    const double sxx = f[1] + f[3] + f[5] + f[6] + f[7] + f[8];
+    const double syy = f[2] + f[4] + f[5] + f[6] + f[7] + f[8];
+    const double sxy = f[5] - f[6] + f[7] - f[8];
+    // Π^neq = Σ c c f − (ρ c_s² I + ρ u u) + ½(uF + Fu)   (D2Q9 equilibrium moments exact).
+    double pxx = sxx - drho / 3.0 - rho * ux * ux;
+    double pyy = syy - drho / 3.0 - rho * uy * uy;
+    double pxy = sxy - rho * ux * uy;
+    if constexpr (HasForce) {
+      pxx += ux * Fx;
+      pyy += uy * Fy;
+      pxy += 0.5 * (ux * Fy + uy * Fx);
+    }
+    // (1 − ω) Q_i:Π^neq / (2 c_s⁴) = (1 − ω) 4.5 [(cx² − ⅓) Πxx + (cy² − ⅓) Πyy + 2 cx cy Πxy]
+    const double keep = 4.5 * (1.0 - om);
+    const double trace = (pxx + pyy) / 3.0;
+#pragma GCC unroll 9
+    for (int i = 0; i < Q; ++i) {
+      const double cu = cx[i] * ux + cy[i] * uy;
+      const double feq = w[i] * (drho + rho * (uu_term + 3.0 * cu + 4.5 * cu * cu));
+      const double qp = cx[i] * cx[i] * pxx + cy[i] * cy[i] * pyy + 2.0 * cx[i] * cy[i] * pxy - trace;
+      double fi = feq + w[i] * keep * qp;
+      if constexpr (HasForce) {
+        const double cF = cx[i] * Fx + cy[i] * Fy;
+        fi += 0.5 * w[i] * (3.0 * (cF - uF) + 9.0 * cu * cF);
       }
       f[i] = fi;
     }

@@ -11,6 +11,7 @@
 // per-node fields (force density, relaxation time) are allocated only when a
 // caller enables them, so a plain channel flow carries neither.
 #include <array>
+#include <new>
 #include <span>
 #include <vector>
 
@@ -20,6 +21,24 @@
 #include "lattice/grid.hpp"
 
 namespace erythro::fluid {
+
+namespace detail {
+// Cache-line (64 B) aligned storage for the population lattices: rows of grids with
+// nx a multiple of 8 start on a cache line, so the kernel's non-temporal stores
+// write whole lines (docs/performance.md).
+template <class T>
+struct CacheLineAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t alignment{64};
+  CacheLineAllocator() = default;
+  template <class U>
+  CacheLineAllocator(const CacheLineAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), alignment)); }
+  void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, alignment); }
+  template <class U>
+  bool operator==(const CacheLineAllocator<U>&) const noexcept { return true; }
+};
+}  // namespace detail
 
 // Macroscopic fields with Guo's half-force correction: ρu = Σ f_i c_i + F/2.
 struct Moments {
@@ -86,7 +105,7 @@ class FluidLattice {
   Grid grid_;
   CollisionConfig collision_;
   BoundaryConfig boundaries_;
-  std::vector<double> f_, f_next_;
+  std::vector<double, detail::CacheLineAllocator<double>> f_, f_next_;
   std::vector<double> force_x_, force_y_, tau_field_;
   std::array<double, 2> uniform_force_{0.0, 0.0};
   std::array<double, 2> applied_force_{0.0, 0.0};  // uniform force of the last step

@@ -118,7 +118,7 @@ const std::vector<KeySpec>& known_keys() {
         {"time.tau", Kind::number, "", Bound{0.5, true}, {}},
         {"fluid.density_kg_m3", Kind::number, "kg/m³", positive, {}},
         {"fluid.viscosity_cP", Kind::number, "cP", positive, {}},
-        {"fluid.collision", Kind::string, "", any, {"bgk", "trt"}},
+        {"fluid.collision", Kind::string, "", any, {"bgk", "trt", "regularized"}},
         {"fluid.trt_magic", Kind::number, "", positive, {}},
         {"body_force.density_N_m3", Kind::vec2, "N/m³", any, {}},
         {"body_force.frequency_Hz", Kind::number, "Hz", non_negative, {}},

@@ -176,7 +176,7 @@ LatticeSetup derive_lattice(const Scene& s) {
 
   // --- collision
   if (!fluid::parse_collision_model(s.fluid.collision, L.collision.model))
-    reject(s, "fluid.collision = \"" + s.fluid.collision + "\" is not one of \"bgk\", \"trt\"");
+    reject(s, "fluid.collision = \"" + s.fluid.collision + "\" is not one of \"bgk\", \"trt\", \"regularized\"");
   if (!(s.fluid.trt_magic > 0.0)) reject(s, "fluid.trt_magic = " + num(s.fluid.trt_magic) + " must be > 0");
   L.collision.tau = tau;
   L.collision.trt_magic = s.fluid.trt_magic;
@@ -300,7 +300,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
     rows.push_back({"collision", "trt, Λ = " + num(L.collision.trt_magic),
                     "τ− = " + num(fluid::trt_tau_minus(L.collision.tau, L.collision.trt_magic))});
   else
-    rows.push_back({"collision", "bgk", ""});
+    rows.push_back({"collision", std::string(fluid::to_string(L.collision.model)), ""});
   // One row per pair of opposite sides; moving walls show their velocity.
   const auto pair_row = [&](const char* label, const fluid::Side& a, const fluid::Side& b, const char* na,
                             const char* nb) {

@@ -20,6 +20,13 @@ void FlowField::resize(std::size_t n, bool with_gradients) {
   duy_dy.assign(m, 0.0);
 }
 
+void FlowField::drop_gradients() {
+  dux_dx.clear();
+  dux_dy.clear();
+  duy_dx.clear();
+  duy_dy.clear();
+}
+
 void initialize_post_collision(fluid::FluidLattice& lattice, const FlowField& field, std::span<const double> fx,
                                std::span<const double> fy) {
   using namespace d2q9;

@@ -15,6 +15,7 @@ struct FlowField {
   std::vector<double> dux_dx, dux_dy, duy_dx, duy_dy;  // empty: equilibrium only
   explicit FlowField(std::size_t n = 0);
   void resize(std::size_t n, bool with_gradients);
+  void drop_gradients();  // equilibrium-only initialisation
 };
 
 // Overwrites the stored populations of `lattice` with a state consistent with `field`

@@ -1,0 +1,159 @@
+#include "ib/transfer.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace erythro::ib {
+
+namespace {
+
+inline int wrap(int i, int n) {
+  const int r = i % n;
+  return r < 0 ? r + n : r;
+}
+
+void check_finite(std::span<const double> X, std::span<const double> Y) {
+  for (std::size_t m = 0; m < X.size(); ++m) {
+    if (!std::isfinite(X[m]) || !std::isfinite(Y[m])) {
+      throw std::domain_error("immersed boundary: marker " + std::to_string(m) + " has a non-finite position (" +
+                              std::to_string(X[m]) + ", " + std::to_string(Y[m]) + ")");
+    }
+  }
+}
+
+// Support origin and the 1D weights φ(X − (i0 + b + ½)), b = 0 … W − 1.
+template <class K>
+inline void weights_1d(double X, int& i0, double* w) {
+  i0 = support_start(X, K::width);
+  for (int b = 0; b < K::width; ++b) w[b] = K::phi(X - (i0 + b + 0.5));
+}
+
+template <class K>
+void interpolate_impl(const Domain& d, std::span<const double> X, std::span<const double> Y,
+                      std::span<const double> ux, std::span<const double> uy, std::span<double> Ux,
+                      std::span<double> Uy) {
+  constexpr int W = K::width;
+  const int nx = d.grid.nx, ny = d.grid.ny;
+  const long M = static_cast<long>(X.size());
+#pragma omp parallel for schedule(static) if (M >= 2048)
+  for (long m = 0; m < M; ++m) {
+    int i0, j0;
+    double wx[W], wy[W];
+    weights_1d<K>(X[m], i0, wx);
+    weights_1d<K>(Y[m], j0, wy);
+    double sx = 0.0, sy = 0.0;
+    for (int a = 0; a < W; ++a) {
+      int j = j0 + a;
+      if (d.periodic_y) j = wrap(j, ny);
+      else if (j < 0 || j >= ny) continue;  // beyond a wall: no node (ib/domain.hpp)
+      double rx = 0.0, ry = 0.0;
+      for (int b = 0; b < W; ++b) {
+        int i = i0 + b;
+        if (d.periodic_x) i = wrap(i, nx);
+        else if (i < 0 || i >= nx) continue;
+        const std::size_t n = d.grid.index(i, j);
+        rx += ux[n] * wx[b];
+        ry += uy[n] * wx[b];
+      }
+      sx += rx * wy[a];
+      sy += ry * wy[a];
+    }
+    Ux[m] = sx;
+    Uy[m] = sy;
+  }
+}
+
+}  // namespace
+
+void Transfer::spread(std::span<const double> X, std::span<const double> Y, std::span<const double> Fx,
+                      std::span<const double> Fy, std::span<double> fx, std::span<double> fy) {
+  const std::size_t M = X.size();
+  if (Y.size() != M || Fx.size() != M || Fy.size() != M) {
+    throw std::invalid_argument("ib::Transfer::spread: marker arrays differ in size");
+  }
+  if (fx.size() != domain_.grid.size() || fy.size() != domain_.grid.size()) {
+    throw std::invalid_argument("ib::Transfer::spread: force field size does not match the grid");
+  }
+  check_finite(X, Y);
+  dispatch(kernel_, [&](auto k) {
+    using K = decltype(k);
+    constexpr int W = K::width;
+    const Domain& d = domain_;
+    const int nx = d.grid.nx, ny = d.grid.ny;
+    // 1. Support origins and weights of every marker.
+    i0_.resize(M);
+    j0_.resize(M);
+    wx_.resize(M * W);
+    wy_.resize(M * W);
+    for (std::size_t m = 0; m < M; ++m) {
+      weights_1d<K>(X[m], i0_[m], &wx_[m * W]);
+      weights_1d<K>(Y[m], j0_[m], &wy_[m * W]);
+    }
+    // 2. Stable counting sort of markers by the bucket of their first support row.
+    //    Periodic y: bucket = j0 mod ny. Walls: bucket = j0 + W − 1 ∈ [0, ny + W − 1);
+    //    a marker whose whole support lies beyond a wall gets no bucket.
+    const int nb = d.periodic_y ? ny : ny + W - 1;
+    auto bucket_of = [&](int j0) { return d.periodic_y ? wrap(j0, ny) : j0 + W - 1; };
+    bucket_start_.assign(static_cast<std::size_t>(nb) + 1, 0);
+    for (std::size_t m = 0; m < M; ++m) {
+      const int b = bucket_of(j0_[m]);
+      if (b >= 0 && b < nb) ++bucket_start_[static_cast<std::size_t>(b) + 1];
+    }
+    for (int b = 0; b < nb; ++b) bucket_start_[b + 1] += bucket_start_[b];
+    order_.resize(static_cast<std::size_t>(bucket_start_[nb]));
+    {
+      std::vector<int> next(bucket_start_.begin(), bucket_start_.end() - 1);
+      for (std::size_t m = 0; m < M; ++m) {
+        const int b = bucket_of(j0_[m]);
+        if (b >= 0 && b < nb) order_[static_cast<std::size_t>(next[b]++)] = static_cast<int>(m);
+      }
+    }
+    // 3. Gather per row: row y receives support row a of markers whose first row is y − a.
+    const bool threads = d.grid.worth_threading() && M >= 64;
+#pragma omp parallel for schedule(static) if (threads)
+    for (int y = 0; y < ny; ++y) {
+      double* rowx = fx.data() + d.grid.index(0, y);
+      double* rowy = fy.data() + d.grid.index(0, y);
+      for (int a = 0; a < W; ++a) {
+        const int b = bucket_of(y - a);
+        if (b < 0 || b >= nb) continue;
+        for (int q = bucket_start_[b]; q < bucket_start_[b + 1]; ++q) {
+          const std::size_t m = static_cast<std::size_t>(order_[q]);
+          const double gx = Fx[m] * wy_[m * W + a], gy = Fy[m] * wy_[m * W + a];
+          const double* w = &wx_[m * W];
+          for (int c = 0; c < W; ++c) {
+            int i = i0_[m] + c;
+            if (d.periodic_x) i = wrap(i, nx);
+            else if (i < 0 || i >= nx) continue;  // beyond a wall: dropped (ib/domain.hpp)
+            rowx[i] += gx * w[c];
+            rowy[i] += gy * w[c];
+          }
+        }
+      }
+    }
+  });
+}
+
+void Transfer::interpolate(std::span<const double> X, std::span<const double> Y, std::span<const double> ux,
+                           std::span<const double> uy, std::span<double> Ux, std::span<double> Uy) const {
+  const std::size_t M = X.size();
+  if (Y.size() != M || Ux.size() != M || Uy.size() != M) {
+    throw std::invalid_argument("ib::Transfer::interpolate: marker arrays differ in size");
+  }
+  if (ux.size() != domain_.grid.size() || uy.size() != domain_.grid.size()) {
+    throw std::invalid_argument("ib::Transfer::interpolate: velocity field size does not match the grid");
+  }
+  check_finite(X, Y);
+  dispatch(kernel_, [&](auto k) { interpolate_impl<decltype(k)>(domain_, X, Y, ux, uy, Ux, Uy); });
+}
+
+void advance_markers(std::span<double> X, std::span<double> Y, std::span<const double> Ux,
+                     std::span<const double> Uy, double dt) {
+  for (std::size_t m = 0; m < X.size(); ++m) {
+    X[m] += Ux[m] * dt;
+    Y[m] += Uy[m] * dt;
+  }
+}
+
+}  // namespace erythro::ib

@@ -1,0 +1,56 @@
+#pragma once
+// Immersed-boundary transfer between Lagrangian markers and the lattice
+// (model.md §2, thesis eqs 23–25), over the full width × width support square of
+// the kernel (4 × 4 nodes for the 4-point kernels), h = 1:
+//
+//   spreading      f(x) += Σ_m F_m δ_h(x − X_m)           (eq 23)
+//   interpolation  U_m   = Σ_x u(x) δ_h(x − X_m) h²        (eq 25)
+//
+// F_m is a FORCE (force density × marker arc length), so Σ_x f = Σ_m F_m when the
+// kernel sums to one. Periodic axes wrap, walls drop support nodes (ib/domain.hpp).
+// Marker coordinates may be unwrapped (outside [0, n) on a periodic axis).
+//
+// Threading: spreading gathers per grid row. Markers are bucketed (counting sort,
+// stable) by the first row of their support; each row, owned by one thread, adds
+// the contributions of the `width` buckets that reach it in a fixed order (bucket
+// offset, then marker index). No two threads write the same node and every node
+// sums its terms in the same order for ANY thread count: the result is bitwise
+// independent of OMP_NUM_THREADS. Interpolation is parallel over markers (reads only).
+#include <span>
+#include <vector>
+
+#include "ib/domain.hpp"
+#include "ib/kernel.hpp"
+
+namespace erythro::ib {
+
+class Transfer {
+ public:
+  Transfer(KernelType kernel, Domain domain) : kernel_(kernel), domain_(domain) {}
+
+  KernelType kernel() const { return kernel_; }
+  const Domain& domain() const { return domain_; }
+
+  // Adds the spread marker forces (Fx, Fy) at (X, Y) to the node force density
+  // (fx, fy), each of size grid.size(). Throws std::invalid_argument on size
+  // mismatch and std::domain_error naming the marker if a position is not finite.
+  void spread(std::span<const double> X, std::span<const double> Y, std::span<const double> Fx,
+              std::span<const double> Fy, std::span<double> fx, std::span<double> fy);
+
+  // Writes the interpolated velocity (Ux, Uy) of every marker from node fields (ux, uy).
+  void interpolate(std::span<const double> X, std::span<const double> Y, std::span<const double> ux,
+                   std::span<const double> uy, std::span<double> Ux, std::span<double> Uy) const;
+
+ private:
+  KernelType kernel_;
+  Domain domain_;
+  // Scratch reused across calls: per-marker support origin and weights, buckets.
+  std::vector<int> i0_, j0_, bucket_start_, order_;
+  std::vector<double> wx_, wy_;
+};
+
+// Explicit Euler marker update of the thesis: X ← X + U Δt (lattice Δt = 1 by default).
+void advance_markers(std::span<double> X, std::span<double> Y, std::span<const double> Ux,
+                     std::span<const double> Uy, double dt = 1.0);
+
+}  // namespace erythro::ib

@@ -1,0 +1,92 @@
+#include "membrane/immersed_cells.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace erythro::membrane {
+
+ImmersedCells::ImmersedCells(ib::KernelType kernel, const fluid::FluidLattice& lattice)
+    : transfer_(kernel, ib::Domain::from(lattice.grid(), lattice.boundaries())) {}
+
+int ImmersedCells::add_cell(const Polygon& shape, const RestShape& rest, const MembraneModel& model) {
+  if (shape.size() != rest.size()) {
+    throw std::invalid_argument("ImmersedCells::add_cell: the shape and the rest shape differ in marker count");
+  }
+  cells_.push_back({x_.size(), rest, model});
+  x_.insert(x_.end(), shape.x.begin(), shape.x.end());
+  y_.insert(y_.end(), shape.y.begin(), shape.y.end());
+  fx_.resize(x_.size(), 0.0);
+  fy_.resize(x_.size(), 0.0);
+  ux_.resize(x_.size(), 0.0);
+  uy_.resize(x_.size(), 0.0);
+  return cell_count() - 1;
+}
+
+Polygon ImmersedCells::polygon(int c) const {
+  Polygon p;
+  p.x.assign(x(c).begin(), x(c).end());
+  p.y.assign(y(c).begin(), y(c).end());
+  return p;
+}
+
+void ImmersedCells::compute_forces() {
+  std::fill(fx_.begin(), fx_.end(), 0.0);
+  std::fill(fy_.begin(), fy_.end(), 0.0);
+  const int n = cell_count();
+  // Cells own disjoint marker ranges: parallel over cells is race-free and deterministic.
+#pragma omp parallel for schedule(dynamic) if (n >= 4)
+  for (int c = 0; c < n; ++c) {
+    add_membrane_forces(cells_[c].model, cells_[c].rest, x(c), y(c), range(fx_, c), range(fy_, c));
+  }
+}
+
+void ImmersedCells::spread_forces(fluid::FluidLattice& lattice) {
+  lattice.enable_force_field();
+  std::fill(lattice.force_x().begin(), lattice.force_x().end(), 0.0);
+  std::fill(lattice.force_y().begin(), lattice.force_y().end(), 0.0);
+  transfer_.spread(x_, y_, fx_, fy_, lattice.force_x(), lattice.force_y());
+}
+
+void ImmersedCells::move_markers(std::span<const double> ux, std::span<const double> uy) {
+  transfer_.interpolate(x_, y_, ux, uy, ux_, uy_);
+  ib::advance_markers(x_, y_, ux_, uy_);
+}
+
+void ImmersedCells::advance(fluid::FluidLattice& lattice) {
+  compute_forces();
+  spread_forces(lattice);
+  lattice.step();
+  const std::size_t N = lattice.grid().size();
+  rho_.resize(N);
+  grid_ux_.resize(N);
+  grid_uy_.resize(N);
+  lattice.compute_moments(rho_, grid_ux_, grid_uy_);  // force field still that of this step
+  move_markers(grid_ux_, grid_uy_);
+  wrap_periodic();
+}
+
+void ImmersedCells::wrap_periodic() {
+  const ib::Domain& d = transfer_.domain();
+  auto shift_of = [](double v, int n) { return v < 0.0 ? double(n) : (v >= n ? -double(n) : 0.0); };
+  for (std::size_t c = 0; c < cells_.size(); ++c) {
+    const std::size_t o = cells_[c].offset, n = cells_[c].rest.size();
+    const double sx = d.periodic_x ? shift_of(x_[o], d.grid.nx) : 0.0;
+    const double sy = d.periodic_y ? shift_of(y_[o], d.grid.ny) : 0.0;
+    if (sx == 0.0 && sy == 0.0) continue;
+    for (std::size_t m = o; m < o + n; ++m) {
+      x_[m] += sx;
+      y_[m] += sy;
+    }
+  }
+}
+
+Energy ImmersedCells::energy(int c) const { return membrane_energy(cells_[c].model, cells_[c].rest, x(c), y(c)); }
+
+double ImmersedCells::max_marker_speed() const {
+  double s = 0.0;
+  for (std::size_t m = 0; m < ux_.size(); ++m) s = std::max(s, std::hypot(ux_[m], uy_[m]));
+  return s;
+}
+
+}  // namespace erythro::membrane

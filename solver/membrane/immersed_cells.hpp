@@ -1,0 +1,89 @@
+#pragma once
+// Membranes immersed in the lattice fluid: the immersed-boundary cycle of the
+// thesis (§II.3, eqs 23–25), one call per fluid step:
+//
+//   1. F_m = −∂E/∂X_m of every cell (membrane_energy.hpp)
+//   2. f(x) = Σ_m F_m δ_h(x − X_m)  into the lattice force field (overwritten)
+//   3. the fluid step (Guo forcing with f)
+//   4. U_m = Σ_x u(x) δ_h(x − X_m), u of that step (ρu = Σcf* − f/2)
+//   5. X_m ← X_m + U_m Δt (explicit Euler, Δt = 1)
+//
+// The markers of all cells live in one contiguous array (cell c owns the range
+// offset(c) … offset(c) + size(c)), so one spreading pass serves every cell.
+#include <span>
+#include <vector>
+
+#include "fluid/fluid_lattice.hpp"
+#include "ib/transfer.hpp"
+#include "membrane/membrane_energy.hpp"
+#include "membrane/polygon.hpp"
+#include "membrane/rest_shape.hpp"
+
+namespace erythro::membrane {
+
+class ImmersedCells {
+ public:
+  ImmersedCells(ib::KernelType kernel, const fluid::FluidLattice& lattice);
+
+  // Adds a cell with markers at `shape` (lattice units) and the given rest shape
+  // and moduli; returns its index. Invalidates spans previously returned.
+  int add_cell(const Polygon& shape, const RestShape& rest, const MembraneModel& model);
+
+  int cell_count() const { return static_cast<int>(cells_.size()); }
+  std::size_t marker_count() const { return x_.size(); }
+  std::size_t offset(int c) const { return cells_[c].offset; }
+  std::size_t size(int c) const { return cells_[c].rest.size(); }
+  const RestShape& rest(int c) const { return cells_[c].rest; }
+  const MembraneModel& model(int c) const { return cells_[c].model; }
+
+  // Marker positions, forces and velocities of cell c (or of all markers).
+  std::span<const double> x(int c) const { return range(x_, c); }
+  std::span<const double> y(int c) const { return range(y_, c); }
+  std::span<const double> fx(int c) const { return range(fx_, c); }
+  std::span<const double> fy(int c) const { return range(fy_, c); }
+  std::span<const double> ux(int c) const { return range(ux_, c); }
+  std::span<const double> uy(int c) const { return range(uy_, c); }
+  std::span<double> marker_x() { return x_; }
+  std::span<double> marker_y() { return y_; }
+  std::span<double> marker_fx() { return fx_; }
+  std::span<double> marker_fy() { return fy_; }
+  Polygon polygon(int c) const;
+
+  // Step 1: overwrites the marker forces with the internal membrane forces
+  // (other forces, e.g. aggregation, may be added to marker_fx/fy afterwards).
+  void compute_forces();
+  // Step 2: zeroes the lattice force field, then spreads the marker forces into it.
+  void spread_forces(fluid::FluidLattice& lattice);
+  // Steps 4–5 from the velocity of the last fluid step.
+  void move_markers(std::span<const double> ux, std::span<const double> uy);
+  // Steps 1–5 for one fluid step.
+  void advance(fluid::FluidLattice& lattice);
+  // Shifts every cell whose marker 0 left [0, n) on a periodic axis back by ±n
+  // (a rigid shift of the whole cell: its shape and forces are unchanged), so
+  // unwrapped coordinates stay small over long runs. Called by advance().
+  void wrap_periodic();
+
+  Energy energy(int c) const;
+  double max_marker_speed() const;
+  const ib::Transfer& transfer() const { return transfer_; }
+
+ private:
+  struct Cell {
+    std::size_t offset;
+    RestShape rest;
+    MembraneModel model;
+  };
+  std::span<const double> range(const std::vector<double>& v, int c) const {
+    return {v.data() + cells_[c].offset, cells_[c].rest.size()};
+  }
+  std::span<double> range(std::vector<double>& v, int c) {
+    return {v.data() + cells_[c].offset, cells_[c].rest.size()};
+  }
+
+  ib::Transfer transfer_;
+  std::vector<Cell> cells_;
+  std::vector<double> x_, y_, fx_, fy_, ux_, uy_;
+  std::vector<double> rho_, grid_ux_, grid_uy_;  // scratch moments
+};
+
+}  // namespace erythro::membrane

@@ -1,0 +1,101 @@
+#include "membrane/membrane_energy.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+namespace erythro::membrane {
+
+namespace {
+
+void check_sizes(const RestShape& rest, std::size_t a, std::size_t b) {
+  if (a != rest.size() || b != rest.size()) {
+    throw std::invalid_argument("membrane energy: marker arrays do not match the rest shape");
+  }
+}
+
+// One pass computing the energy and, if forces is set, adding −∂E/∂X.
+template <bool kForces>
+Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<const double> x,
+                std::span<const double> y, double* fx, double* fy) {
+  const std::size_t n = rest.size();
+  Energy E;
+  // Tension: E_T = Σ L_e W(ℓ_e/L_e); −∂E_T/∂X_{e+1} = −T t_e, −∂E_T/∂X_e = +T t_e.
+  for (std::size_t e = 0; e < n; ++e) {
+    const std::size_t f = (e + 1 == n) ? 0 : e + 1;
+    const double dx = x[f] - x[e], dy = y[f] - y[e];
+    const double l = std::hypot(dx, dy);
+    const double lambda = l / rest.length[e];
+    E.tension += rest.length[e] * model.tension.energy(lambda);
+    if constexpr (kForces) {
+      const double T = model.tension.tension(lambda) / l;  // T · t_e = (T/ℓ)(dx, dy)
+      fx[e] += T * dx;
+      fy[e] += T * dy;
+      fx[f] -= T * dx;
+      fy[f] -= T * dy;
+    }
+  }
+  // Bending: E_B = ½ E_B Σ (θ_i − θ0_i)² / D̄_i; with a = X_i − X_{i−1}, b = X_{i+1} − X_i,
+  // ∂θ/∂X_{i+1} = b⊥/|b|², ∂θ/∂X_{i−1} = a⊥/|a|², ∂θ/∂X_i = −(both), v⊥ = (−v_y, v_x).
+  if (model.bending != 0.0) {
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t im = (i == 0) ? n - 1 : i - 1, ip = (i + 1 == n) ? 0 : i + 1;
+      const double ax = x[i] - x[im], ay = y[i] - y[im], bx = x[ip] - x[i], by = y[ip] - y[i];
+      double dtheta = turning_angle(ax, ay, bx, by) - rest.turning[i];
+      // Keep the difference in (−π, π] (a rest angle near ±π must not jump by 2π).
+      if (dtheta > std::numbers::pi) dtheta -= 2.0 * std::numbers::pi;
+      if (dtheta <= -std::numbers::pi) dtheta += 2.0 * std::numbers::pi;
+      E.bending += 0.5 * model.bending * dtheta * dtheta / rest.dual[i];
+      if constexpr (kForces) {
+        const double g = model.bending * dtheta / rest.dual[i];  // ∂E/∂θ_i
+        const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
+        const double gax = -g * (-ay) / a2, gay = -g * ax / a2;  // −g ∂θ/∂X_{i−1}
+        const double gbx = -g * (-by) / b2, gby = -g * bx / b2;  // −g ∂θ/∂X_{i+1}
+        fx[im] += gax;
+        fy[im] += gay;
+        fx[ip] += gbx;
+        fy[ip] += gby;
+        fx[i] -= gax + gbx;
+        fy[i] -= gay + gby;
+      }
+    }
+  }
+  // Area: A = ½ Σ (x_i y_{i+1} − x_{i+1} y_i) (relative to marker 0 against cancellation),
+  // ∂A/∂x_i = ½(y_{i+1} − y_{i−1}), ∂A/∂y_i = ½(x_{i−1} − x_{i+1}).
+  if (model.area_modulus != 0.0) {
+    const double ox = x[0], oy = y[0];
+    double A2 = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::size_t j = (i + 1 == n) ? 0 : i + 1;
+      A2 += (x[i] - ox) * (y[j] - oy) - (x[j] - ox) * (y[i] - oy);
+    }
+    const double dA = 0.5 * A2 - rest.area;
+    E.area = 0.5 * model.area_modulus * dA * dA / rest.area;
+    if constexpr (kForces) {
+      const double p = model.area_modulus * dA / rest.area;  // pressure-like −∂E/∂A
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t im = (i == 0) ? n - 1 : i - 1, ip = (i + 1 == n) ? 0 : i + 1;
+        fx[i] -= 0.5 * p * (y[ip] - y[im]);
+        fy[i] -= 0.5 * p * (x[im] - x[ip]);
+      }
+    }
+  }
+  return E;
+}
+
+}  // namespace
+
+Energy membrane_energy(const MembraneModel& model, const RestShape& rest, std::span<const double> x,
+                       std::span<const double> y) {
+  check_sizes(rest, x.size(), y.size());
+  return evaluate<false>(model, rest, x, y, nullptr, nullptr);
+}
+
+Energy add_membrane_forces(const MembraneModel& model, const RestShape& rest, std::span<const double> x,
+                           std::span<const double> y, std::span<double> fx, std::span<double> fy) {
+  check_sizes(rest, x.size(), y.size());
+  check_sizes(rest, fx.size(), fy.size());
+  return evaluate<true>(model, rest, x, y, fx.data(), fy.data());
+}
+
+}  // namespace erythro::membrane

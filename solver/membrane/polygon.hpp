@@ -1,0 +1,27 @@
+#pragma once
+// A closed polygon of membrane markers, structure of arrays; edge e joins marker
+// e to marker e + 1 (mod n). Counter-clockwise order gives a positive area.
+#include <cstddef>
+#include <vector>
+
+namespace erythro::membrane {
+
+struct Polygon {
+  std::vector<double> x, y;
+  std::size_t size() const { return x.size(); }
+};
+
+// Shoelace area ½ Σ (x_i y_{i+1} − x_{i+1} y_i), positive when counter-clockwise.
+double signed_area(const Polygon& p);
+double perimeter(const Polygon& p);
+// Area centroid (exact for the polygon).
+void centroid(const Polygon& p, double& cx, double& cy);
+
+// Reverses the marker order (keeping marker 0 first) if the polygon is clockwise.
+void make_counter_clockwise(Polygon& p);
+
+// Scales by s about the origin, rotates by angle (radians, counter-clockwise)
+// about the origin, then translates by (cx, cy): X ← R(angle)·s·X + c.
+Polygon transformed(const Polygon& p, double scale, double angle, double cx, double cy);
+
+}  // namespace erythro::membrane

@@ -1,0 +1,235 @@
+// Case verification.divergence_diagnosis (issue 3 item 7).
+//
+// Requirement: every diverging run stops with the health monitor's diagnosis. A few
+// deliberately unstable set-ups run through the simulation layer (sim::Simulation with
+// a scene and lattice set-up built in code) and one through FluidLattice::check_health
+// directly; each must end with status `diverged` and a diagnosis naming the step (the
+// step at which the run stopped), the node (inside the grid) and the quantity
+// (density, velocity_x, velocity_y or mach), and no observer may ever receive a
+// non-finite density or velocity.
+// Reference: the monitor of solver/simulation/simulation.cpp (health scan before
+// anything is handed to an observer; describe_divergence). The runaway set-up has an
+// exact stop step: in a periodic box from rest under a uniform force F (Guo forcing)
+// the velocity of the s-th collision is u_s = (s − ½)F at every node, so the first
+// health scan with u_s/c_s > max_mach comes at the first step ≥ s* = ⌊max_mach c_s/F + ½⌋ + 1
+// at which the loop observes the state (a multiple of the monitor, fields or
+// diagnostics interval: the scan precedes every observation), at node (0, 0)
+// (row-major scan, all nodes equal).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <regex>
+
+#include "common/case_support.hpp"
+#include "lattice/d2q9.hpp"
+#include "simulation/simulation.hpp"
+#include "vv4_shear_layer.hpp"
+
+using namespace erythro;
+
+namespace {
+
+// Checks every field and diagnostics sample it receives is finite.
+class FiniteObserver : public sim::RunObserver {
+ public:
+  void on_diagnostics(const sim::DiagnosticsSample& d) override {
+    ++samples;
+    if (!std::isfinite(d.total_mass) || !std::isfinite(d.kinetic_energy) || !std::isfinite(d.max_speed)) ++non_finite;
+  }
+  void on_fields(long step, const fluid::Moments& m) override {
+    ++fields;
+    last_step = step;
+    for (const auto* v : {&m.rho, &m.ux, &m.uy})
+      for (double x : *v)
+        if (!std::isfinite(x)) ++non_finite;
+  }
+  void on_finish(const sim::RunSummary& s) override { finished = s; }
+  long samples = 0, fields = 0, non_finite = 0, last_step = -1;
+  sim::RunSummary finished;
+};
+
+struct Diagnosis {
+  bool parsed = false;
+  long step = -1, x = -1, y = -1;
+  std::string quantity;
+};
+
+// "diverged at step S: Q = V at node (X, Y) ..." (sim::describe_divergence) or
+// "step S: Q = V at node (X, Y) ..." (vv::describe_health).
+Diagnosis parse(const std::string& text) {
+  static const std::regex re(R"(step (\d+): (\w+) = \S+ at node \((-?\d+), (-?\d+)\))");
+  std::smatch m;
+  Diagnosis d;
+  if (!std::regex_search(text, m, re)) return d;
+  d.parsed = true;
+  d.step = std::stol(m[1]);
+  d.quantity = m[2];
+  d.x = std::stol(m[3]);
+  d.y = std::stol(m[4]);
+  return d;
+}
+
+bool complete(const Diagnosis& d, long stop_step, const Grid& g) {
+  const bool known = d.quantity == "density" || d.quantity == "velocity_x" || d.quantity == "velocity_y" ||
+                     d.quantity == "mach";
+  return d.parsed && known && d.step == stop_step && d.x >= 0 && d.x < g.nx && d.y >= 0 && d.y < g.ny;
+}
+
+struct UnstableSetup {
+  std::string name;
+  scene::Scene scene;
+  scene::LatticeSetup lattice;
+  long predicted_step = -1;  // -1: not predicted
+};
+
+// A scene in lattice units (h = 1 µm, Δt = 1 µs, so describe_divergence can print µm).
+UnstableSetup base(const std::string& name, int nx, int ny, fluid::CollisionModel model, double tau, long steps) {
+  UnstableSetup s;
+  s.name = name;
+  s.scene.name = name;
+  s.scene.monitor.interval_steps = 10;
+  s.scene.monitor.max_mach = 0.3;
+  s.scene.output.fields_interval_steps = 7;  // not a multiple of the monitor interval
+  s.scene.output.diagnostics_interval_steps = 5;
+  s.lattice.grid = Grid{nx, ny};
+  s.lattice.scales = scene::UnitScales{1e-6, 1e-6, 1000.0};
+  s.lattice.collision = {model, tau, 3.0 / 16.0};
+  s.lattice.total_steps = steps;
+  s.lattice.viscosity = (tau - 0.5) / 3.0;
+  return s;
+}
+
+std::vector<UnstableSetup> unstable_setups() {
+  std::vector<UnstableSetup> out;
+  {  // Uniform force in a periodic box: unbounded acceleration, exact stop step.
+    UnstableSetup s = base("runaway_force", 32, 32, fluid::CollisionModel::bgk, 0.8, 2000);
+    const double F = 1e-3, limit = s.scene.monitor.max_mach * std::sqrt(d2q9::cs2);
+    s.lattice.body_force = {F, 0.0};
+    // The scan runs whenever anything is observed (monitor, fields or diagnostics due):
+    // the first such step at or after the first s with (s − ½)F > limit.
+    const long K = s.scene.monitor.interval_steps, Kf = s.scene.output.fields_interval_steps,
+               Kd = s.scene.output.diagnostics_interval_steps;
+    long step = static_cast<long>(std::floor(limit / F + 0.5)) + 1;
+    while (step % K != 0 && step % Kf != 0 && step % Kd != 0) ++step;
+    s.predicted_step = step;
+    out.push_back(s);
+  }
+  {  // Taylor–Green vortex at Ma ≈ 0.52, BGK with τ = 0.5001: blows up.
+    UnstableSetup s = base("taylor_green_bgk_tau0.5001", 32, 32, fluid::CollisionModel::bgk, 0.5001, 4000);
+    s.scene.initial.type = "taylor_green";
+    s.lattice.initial_velocity = {0.3, 0.0};
+    s.lattice.mach = 0.3 / std::sqrt(d2q9::cs2);
+    s.scene.monitor.max_mach = 1.0;
+    out.push_back(s);
+  }
+  {  // Same with TRT (Λ = 3/16).
+    UnstableSetup s = base("taylor_green_trt_tau0.5001", 32, 32, fluid::CollisionModel::trt, 0.5001, 4000);
+    s.scene.initial.type = "taylor_green";
+    s.lattice.initial_velocity = {0.3, 0.0};
+    s.lattice.mach = 0.3 / std::sqrt(d2q9::cs2);
+    s.scene.monitor.max_mach = 1.0;
+    out.push_back(s);
+  }
+  {  // Same with the regularized model, at a larger amplitude (it survives U = 0.3 longer).
+    UnstableSetup s = base("taylor_green_regularized_tau0.5001", 32, 32, fluid::CollisionModel::regularized, 0.5001, 4000);
+    s.scene.initial.type = "taylor_green";
+    s.lattice.initial_velocity = {0.4, 0.0};
+    s.lattice.mach = 0.4 / std::sqrt(d2q9::cs2);
+    s.scene.monitor.max_mach = 1.0;
+    out.push_back(s);
+  }
+  {  // BGK blow-up with the Mach limit out of reach: only the non-finite / density
+     // checks can stop it, while fields go to the observer every 7 steps.
+    UnstableSetup s = base("taylor_green_bgk_no_mach_limit", 32, 32, fluid::CollisionModel::bgk, 0.5001, 20000);
+    s.scene.initial.type = "taylor_green";
+    s.lattice.initial_velocity = {0.3, 0.0};
+    s.lattice.mach = 0.3 / std::sqrt(d2q9::cs2);
+    s.scene.monitor.max_mach = 1e300;
+    out.push_back(s);
+  }
+  return out;
+}
+}  // namespace
+
+TEST(DivergenceDiagnosis, EveryDivergedRunStopsWithDiagnosis) {
+  vv::Stopwatch total;
+  io::ResultRecord record("verification.divergence_diagnosis", "fluid");
+  record.set_requirement(
+      "Every deliberately unstable run stops with status diverged and a health-monitor diagnosis naming the stop "
+      "step, a node inside the grid and the quantity; no observer receives a non-finite field; the runaway-force "
+      "run stops exactly at the predicted check.");
+  record.set_reference(
+      "Health monitor of solver/simulation/simulation.cpp (scan before any observer call; describe_divergence) and "
+      "FluidLattice::check_health; runaway force: u_s = (s - 1/2) F under Guo forcing (model.md sec. 1), stop at "
+      "the first observed step (multiple of the monitor, fields or diagnostics interval) after u_s/c_s exceeds "
+      "max_mach.");
+  record.set_parameter("monitor_interval_steps", 10.0);
+  record.set_parameter("fields_interval_steps", 7.0);
+  record.set_parameter("diagnostics_interval_steps", 5.0);
+
+  long complete_count = 0, cases = 0, non_finite = 0;
+  double step_error = std::numeric_limits<double>::quiet_NaN();
+  for (UnstableSetup& s : unstable_setups()) {
+    ++cases;
+    vv::Stopwatch clock;
+    sim::Simulation simulation(s.scene, s.lattice);
+    FiniteObserver observer;
+    const sim::RunSummary summary = simulation.run(observer);
+    const Diagnosis d = parse(summary.diagnosis);
+    const bool ok = summary.status == sim::RunStatus::diverged && complete(d, summary.steps, s.lattice.grid) &&
+                    observer.finished.status == sim::RunStatus::diverged;
+    complete_count += ok ? 1 : 0;
+    non_finite += observer.non_finite;
+    if (s.predicted_step >= 0) step_error = double(summary.steps - s.predicted_step);
+    std::cout << s.name << ": " << sim::to_string(summary.status) << " after " << summary.steps << " steps; "
+              << summary.diagnosis << "\n";
+    record.add_run({{"setup", s.name}, {"path", std::string("sim::Simulation")},
+                    {"model", std::string(fluid::to_string(s.lattice.collision.model))},
+                    {"tau", s.lattice.collision.tau}, {"status", sim::to_string(summary.status)},
+                    {"steps", double(summary.steps)},
+                    {"predicted_step", s.predicted_step >= 0 ? double(s.predicted_step)
+                                                             : std::numeric_limits<double>::quiet_NaN()},
+                    {"quantity", d.quantity}, {"node_x", double(d.x)}, {"node_y", double(d.y)},
+                    {"diagnosis_complete", ok ? 1.0 : 0.0}, {"fields_observed", double(observer.fields)},
+                    {"non_finite_observed", double(observer.non_finite)}, {"diagnosis", summary.diagnosis},
+                    {"wall_time_s", clock.seconds()}});
+    EXPECT_TRUE(ok) << s.name << ": " << summary.diagnosis;
+  }
+  {  // The lattice-level monitor: double shear layer, BGK τ = 0.5001 (unstable in the stability map).
+    ++cases;
+    vv::ShearLayerSpec spec;
+    spec.collision = {fluid::CollisionModel::bgk, 0.5001, 3.0 / 16.0};
+    spec.U = 0.2;
+    spec.L = 32;
+    const vv::ShearLayerRun r = vv::run_double_shear_layer(spec);
+    const Diagnosis d = parse(r.diagnosis);
+    const bool ok = !r.stable && complete(d, r.steps, Grid{spec.L, spec.L});
+    complete_count += ok ? 1 : 0;
+    std::cout << "double_shear_layer_bgk_tau0.5001: " << (r.stable ? "stable" : "diverged") << " after " << r.steps
+              << " steps; " << r.diagnosis << "\n";
+    record.add_run({{"setup", std::string("double_shear_layer_bgk_tau0.5001")},
+                    {"path", std::string("FluidLattice::check_health")}, {"model", std::string("bgk")},
+                    {"tau", 0.5001}, {"status", std::string(r.stable ? "completed" : "diverged")},
+                    {"steps", double(r.steps)}, {"predicted_step", std::numeric_limits<double>::quiet_NaN()},
+                    {"quantity", d.quantity}, {"node_x", double(d.x)}, {"node_y", double(d.y)},
+                    {"diagnosis_complete", ok ? 1.0 : 0.0}, {"fields_observed", 0.0}, {"non_finite_observed", 0.0},
+                    {"diagnosis", r.diagnosis}, {"wall_time_s", r.wall_time_s}});
+    EXPECT_TRUE(ok) << r.diagnosis;
+  }
+
+  EXPECT_TRUE(record.add_metric({"diagnosed runs", "unstable set-ups that stopped as diverged with step, node and "
+                                 "quantity in the diagnosis", "", double(complete_count), double(cases), 0.0,
+                                 io::Comparison::at_least,
+                                 "every set-up is built to diverge; each one must be diagnosed"}));
+  EXPECT_TRUE(record.add_metric({"non-finite observations", "non-finite density/velocity values handed to observers",
+                                 "", double(non_finite), 0.0, 0.0, io::Comparison::at_most,
+                                 "the monitor scans the state before any observer call"}));
+  EXPECT_TRUE(record.add_metric({"runaway stop step error", "stop step minus predicted stop step (runaway force)",
+                                 "steps", step_error, 0.0, 0.0, io::Comparison::absolute,
+                                 "u_s = (s - 1/2) F holds to round-off at every node, far from the threshold"}));
+  record.set_wall_time(total.seconds());
+  record.write_to_results_dir();
+  EXPECT_TRUE(record.passed());
+}
