@@ -20,6 +20,7 @@ class CaseFigures:
     convergence: str = ""
     speed_error: str = ""
     series: list = field(default_factory=list)   # one relative path ("" if none) per series
+    stability_map: str = ""
 
 
 @dataclass
@@ -69,6 +70,9 @@ def _render_case(record, out_dir, namer, problems):
     if record.speed_error:
         figs.speed_error = _draw(plots.speed_error_figure, record, namer(record.case, "speed-error"),
                                  out_dir, record, problems)
+    if plots.has_stability_map(record):
+        figs.stability_map = _draw(plots.stability_map_figure, record, namer(record.case, "stability-map"),
+                                   out_dir, record, problems)
     for series in record.series:
         figs.series.append(_draw(plots.series_figure, series, namer(record.case, series.name),
                                  out_dir, record, problems))

@@ -206,6 +206,7 @@ def case_section(record, figs, anchor):
         _runs(record),
         _convergence(record, figs),
         _speed_error(record, figs),
+        _stability_map(record, figs),
         _series(record, figs),
         "<p class='muted'><a href='#results'>back to the table</a></p></section>",
     ]
@@ -297,6 +298,12 @@ def _speed_error(r, figs):
             + _figure(figs.speed_error if figs else "", f"{r.case}: error against wall time")
             + f"<p>Cheapest set-up with error ≤ {fmt.ERROR_TARGET_TEXT}: "
               f"<strong>{esc(fmt.cheapest_text(r))}</strong></p>")
+
+
+def _stability_map(r, figs):
+    if not figs or not figs.stability_map:
+        return ""
+    return "<h4>Stability map</h4>" + _figure(figs.stability_map, f"{r.case}: stable and diverged runs")
 
 
 def _series(r, figs):

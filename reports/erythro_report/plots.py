@@ -179,3 +179,44 @@ def series_figure(series, path):
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     return _save(fig, path)
+
+
+# -- stability map -----------------------------------------------------------------
+
+STABILITY_COLUMNS = ("model", "tau", "U", "stable")
+
+
+def has_stability_map(record):
+    """A record whose /runs table holds (model, tau, U, stable) rows: a stability scan."""
+    return all(c in record.runs.data for c in STABILITY_COLUMNS)
+
+
+def stability_map_figure(record, path):
+    """One panel per collision model: stable (o) and diverged (x) runs over
+    τ − ½ (log axis, so the region near ½ is visible) and the velocity amplitude U."""
+    if not has_stability_map(record):
+        return False
+    data = record.runs.data
+    models = [str(m) for m in data["model"]]
+    tau = np.asarray(data["tau"], dtype=float)
+    amp = np.asarray(data["U"], dtype=float)
+    stable = np.asarray(data["stable"], dtype=float) > 0.5
+    names = list(dict.fromkeys(models))
+    cols = min(len(names), 2)
+    rows = math.ceil(len(names) / cols)
+    fig = _new_figure(5.0 * cols, 3.6 * rows)
+    axes = np.atleast_1d(fig.subplots(rows, cols, sharex=True, sharey=True)).ravel()
+    for ax, name in zip(axes, names):
+        mine = np.array([m == name for m in models])
+        ok, bad = mine & stable, mine & ~stable
+        ax.semilogx(tau[ok] - 0.5, amp[ok], "o", color="C2", ms=5, label="stable")
+        ax.semilogx(tau[bad] - 0.5, amp[bad], "x", color="C3", ms=6, label="diverged")
+        ax.set_title(name)
+        ax.set_xlabel("τ − ½")
+        ax.set_ylabel("velocity amplitude U (lattice)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize="small", loc="lower right")
+    for ax in axes[len(names):]:
+        ax.set_visible(False)
+    fig.suptitle(f"{record.case}: stability map")
+    return _save(fig, path)

@@ -109,3 +109,28 @@ class Formatting(unittest.TestCase):
 
 if __name__ == "__main__":
     unittest.main()
+
+
+class StabilityMap(TempDir):
+    """A record whose runs hold (model, tau, U, stable) gets a stability-map figure."""
+
+    def _record(self, columns):
+        from erythro_report.records import Runs
+        data = {"model": ["BGK", "BGK", "TRT", "TRT"], "tau": np.array([0.51, 0.6, 0.51, 0.6]),
+                "U": np.array([0.1, 0.1, 0.1, 0.1]), "stable": np.array([0.0, 1.0, 1.0, 1.0])}
+        data = {k: v for k, v in data.items() if k in columns}
+        return SimpleNamespace(case="verification.stability_map", runs=Runs(columns=list(data), data=data))
+
+    def test_map_drawn(self):
+        from erythro_report import plots
+        record = self._record(plots.STABILITY_COLUMNS)
+        path = os.path.join(self.tmp, "map.png")
+        self.assertTrue(plots.has_stability_map(record))
+        self.assertTrue(plots.stability_map_figure(record, path))
+        self.assertGreater(os.path.getsize(path), 1000)
+
+    def test_no_map_without_columns(self):
+        from erythro_report import plots
+        record = self._record(("model", "tau", "U"))
+        self.assertFalse(plots.has_stability_map(record))
+        self.assertFalse(plots.stability_map_figure(record, os.path.join(self.tmp, "none.png")))

@@ -59,6 +59,43 @@ struct MirrorResult {
   double exact_zero_fraction = 0;  // nodes whose velocity is bitwise the mirror image, at the end
 };
 
+// Steps `lattice` and measures the asymmetry every 100 steps. Mirror about y (node
+// j ↔ N − 1 − j: u_x even, u_y odd) or about x (node i ↔ N − 1 − i: u_x odd, u_y even).
+enum class MirrorAxis { y, x };
+
+MirrorResult measure_mirror(fluid::FluidLattice& lattice, MirrorAxis axis, long steps, io::Series* trace) {
+  const Grid g = lattice.grid();
+  const int N = g.nx;
+  const double sx = axis == MirrorAxis::x ? -1.0 : 1.0;  // sign of u_x under the mirror
+  MirrorResult r;
+  for (long s = 1; s <= steps; ++s) {
+    lattice.step();
+    if (s % 100 != 0) continue;
+    const fluid::Moments m = lattice.moments();
+    double umax = 0, asym = 0, drho = 0;
+    long exact = 0;
+    for (int j = 0; j < N; ++j) {
+      for (int i = 0; i < N; ++i) {
+        const auto n = g.index(i, j);
+        const auto mirror = axis == MirrorAxis::y ? g.index(i, N - 1 - j) : g.index(N - 1 - i, j);
+        umax = std::max(umax, std::hypot(m.ux[n], m.uy[n]));
+        const double d = std::max({std::abs(m.ux[n] - sx * m.ux[mirror]), std::abs(m.uy[n] + sx * m.uy[mirror])});
+        drho = std::max(drho, std::abs(m.rho[n] - m.rho[mirror]));
+        asym = std::max(asym, d);
+        if (d == 0.0) ++exact;
+      }
+    }
+    r.velocity_asymmetry = std::max(r.velocity_asymmetry, asym / umax);
+    r.density_asymmetry = std::max(r.density_asymmetry, drho);
+    r.exact_zero_fraction = double(exact) / double(g.size());
+    if (trace) {
+      trace->x.push_back(double(s));
+      trace->y.push_back(asym / umax);
+    }
+  }
+  return r;
+}
+
 // Mirror about the mid-plane y = N/2 of a channel: node j ↔ N − 1 − j; u_x even, u_y odd.
 MirrorResult run_channel_mirror(fluid::CollisionModel model, long steps) {
   const int N = 32;
@@ -80,28 +117,7 @@ MirrorResult run_channel_mirror(fluid::CollisionModel model, long steps) {
   }
   vv::initialize_post_collision(lattice, start);
   lattice.set_uniform_force(1e-5, 0.0);
-  MirrorResult r;
-  for (long s = 1; s <= steps; ++s) {
-    lattice.step();
-    if (s % 100 != 0) continue;
-    const fluid::Moments m = lattice.moments();
-    double umax = 0, asym = 0, drho = 0;
-    long exact = 0;
-    for (int j = 0; j < N; ++j) {
-      for (int i = 0; i < N; ++i) {
-        const auto n = g.index(i, j), mirror = g.index(i, N - 1 - j);
-        umax = std::max(umax, std::hypot(m.ux[n], m.uy[n]));
-        const double d = std::max({std::abs(m.ux[n] - m.ux[mirror]), std::abs(m.uy[n] + m.uy[mirror])});
-        drho = std::max(drho, std::abs(m.rho[n] - m.rho[mirror]));
-        asym = std::max(asym, d);
-        if (d == 0.0) ++exact;
-      }
-    }
-    r.velocity_asymmetry = std::max(r.velocity_asymmetry, asym / umax);
-    r.density_asymmetry = std::max(r.density_asymmetry, drho);
-    r.exact_zero_fraction = double(exact) / double(g.size());
-  }
-  return r;
+  return measure_mirror(lattice, MirrorAxis::y, steps, nullptr);
 }
 
 // Mirror x → −x in a periodic box (node i ↔ N − 1 − i): u odd, v and ρ even.
@@ -122,32 +138,7 @@ MirrorResult run_box_mirror(fluid::CollisionModel model, long steps, io::Series*
     }
   }
   vv::initialize_post_collision(lattice, start);
-  MirrorResult r;
-  for (long s = 1; s <= steps; ++s) {
-    lattice.step();
-    if (s % 100 != 0) continue;
-    const fluid::Moments m = lattice.moments();
-    double umax = 0, asym = 0, drho = 0;
-    long exact = 0;
-    for (int j = 0; j < N; ++j) {
-      for (int i = 0; i < N; ++i) {
-        const auto n = g.index(i, j), mirror = g.index(N - 1 - i, j);
-        umax = std::max(umax, std::hypot(m.ux[n], m.uy[n]));
-        const double d = std::max({std::abs(m.ux[n] + m.ux[mirror]), std::abs(m.uy[n] - m.uy[mirror])});
-        drho = std::max(drho, std::abs(m.rho[n] - m.rho[mirror]));
-        asym = std::max(asym, d);
-        if (d == 0.0) ++exact;
-      }
-    }
-    r.velocity_asymmetry = std::max(r.velocity_asymmetry, asym / umax);
-    r.density_asymmetry = std::max(r.density_asymmetry, drho);
-    r.exact_zero_fraction = double(exact) / double(g.size());
-    if (trace) {
-      trace->x.push_back(double(s));
-      trace->y.push_back(asym / umax);
-    }
-  }
-  return r;
+  return measure_mirror(lattice, MirrorAxis::x, steps, trace);
 }
 
 // (c) Decay rate of the shear wave u_y = A sin(kx) on a uniform flow (ax, ay):

@@ -10,22 +10,12 @@
 #include <functional>
 
 #include "common/error.hpp"
+#include "input_error_matchers.hpp"
 
 namespace erythro::scene {
 namespace {
 
-// The InputError message of `f`, or a test failure if it does not throw one.
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part) EXPECT_NE((text).find(part), std::string::npos) << "message: " << (text)
+using testing::error_of;
 
 // Smallest valid scene: 4 lines of required keys.
 const std::string minimal = R"(

@@ -10,22 +10,13 @@
 #include <functional>
 
 #include "common/error.hpp"
+#include "input_error_matchers.hpp"
 #include "scene/scene_parser.hpp"
 
 namespace erythro::scene {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "expected an InputError";
-  return "";
-}
-
-#define EXPECT_CONTAINS(text, part) EXPECT_NE((text).find(part), std::string::npos) << "message: " << (text)
+using testing::error_of;
 
 // A 10 µm × 10 µm channel: periodic in x, walls at bottom and top.
 const std::string channel = R"(
