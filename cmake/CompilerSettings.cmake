@@ -14,5 +14,13 @@ endif()
 if(ERYTHRO_SANITIZE)
   target_compile_options(erythro_flags INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all)
   target_link_options(erythro_flags INTERFACE -fsanitize=address,undefined)
+  # GCC's -Wmaybe-uninitialized gives false positives inside libstdc++ (std::regex,
+  # std::function) under sanitizer instrumentation; the Release build keeps it.
+  target_compile_options(erythro_flags INTERFACE -Wno-maybe-uninitialized)
 endif()
-# Strict IEEE semantics: no -ffast-math, so round-off tests mean what they say.
+# Strict IEEE semantics: no -ffast-math, so round-off tests mean what they say, and no
+# floating-point contraction (a·b + c → fma): with contraction the compiler fuses
+# according to the surrounding code, so the same collide_node() rounded differently
+# in the kernel's interior and boundary paths, and a node's result depended on where
+# it sat (docs/performance.md, "Rounding and equivalence").
+target_compile_options(erythro_flags INTERFACE -ffp-contract=off)

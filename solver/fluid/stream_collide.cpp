@@ -17,18 +17,10 @@
 //    node update). A single thread also prefetches its nine source streams.
 //  - Smaller lattices stay in cache: ordinary stores, whole rows.
 //
-// Rounding: floating-point contraction (a·b + c → fma) is switched off for this file.
-// With contraction, GCC fuses according to the surrounding code, so the same
-// collide_node() rounded differently in the interior and the general path (a node
-// then depended on whether it sat next to the boundary). Without it, every path,
-// store mode and thread count gives the same bits, and a reference that calls
-// collide_node() under the same setting reproduces them exactly
-// (solver/tests/fluid/kernel_equivalence_test.cpp). Must precede every include.
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+// Rounding: floating-point contraction is off project-wide (-ffp-contract=off in
+// cmake/CompilerSettings.cmake), so every path, store mode and thread count gives the
+// same bits, and a reference that calls collide_node() reproduces them exactly
+// (solver/tests/fluid/kernel_equivalence_test.cpp).
 
 #include "fluid/stream_collide.hpp"
 

@@ -6,14 +6,8 @@
 // periodic sides and every wall type (moving walls, corners), odd and degenerate
 // grids, every store mode and thread count (issue 3 item 10).
 //
-// Contraction (a·b + c → fma) is off in this file as in the kernel, so that both
-// evaluate collide_node() with the same IEEE operations; see stream_collide.cpp.
-// Must precede every include.
-#if defined(__clang__)
-#pragma STDC FP_CONTRACT OFF
-#elif defined(__GNUC__)
-#pragma GCC optimize("fp-contract=off")
-#endif
+// Contraction (a·b + c → fma) is off project-wide (cmake/CompilerSettings.cmake), so
+// both evaluate collide_node() with the same IEEE operations; see stream_collide.cpp.
 
 #include <gtest/gtest.h>
 #include <omp.h>
