@@ -39,7 +39,7 @@ struct CapsuleResult {
   double area_change = 0;  // A_end/A_0 − 1
   double centre_drift = 0; // |y_c − H/2| / a at the end
   // Wall-time split (s) of the IB cycle.
-  double t_forces = 0, t_spread = 0, t_fluid = 0, t_moments = 0, t_move = 0, wall_time_s = 0;
+  double t_forces = 0, t_zero = 0, t_spread = 0, t_fluid = 0, t_moments = 0, t_move = 0, wall_time_s = 0;
   std::vector<double> strain_history, D_history, theta_history;  // every 0.1 strain unit
 };
 
