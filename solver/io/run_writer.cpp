@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
+#include <string>
 
 #include "common/build_info.hpp"
 #include "io/atomic_file.hpp"
@@ -63,7 +65,12 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
   h5::write_attr(meta.id(), "expected_mach", setup.mach);
   h5::write_attr(meta.id(), "reynolds", setup.reynolds);
   h5::write_attr(meta.id(), "total_steps", setup.total_steps);
-  h5::write_attr(meta.id(), "coupling", std::string("fluid only"));
+  h5::write_attr(meta.id(), "coupling", std::string(setup.membrane ? "immersed boundary" : "fluid only"));
+  if (setup.membrane) {
+    h5::write_attr(meta.id(), "cell_count", static_cast<long>(setup.membrane->cells.size()));
+    h5::write_attr(meta.id(), "membrane_kernel", std::string(ib::to_string(setup.membrane->kernel)));
+    h5::write_attr(meta.id(), "membrane_law", std::string(membrane::to_string(setup.membrane->model.tension.type)));
+  }
 
   h5::Handle grid = h5::create_group(root, "grid");
   const double h_um = setup.scales.length_m * 1e6;
@@ -76,7 +83,14 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
   for (const char* name : kSeriesNames) {
     series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), name));
   }
+  const std::size_t cell_count = setup.membrane ? setup.membrane->cells.size() : 0;
+  for (std::size_t c = 0; c < cell_count; ++c) {
+    for (const char* what : {"_area_change", "_taylor_deformation"})
+      series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(),
+                                                               "cell_" + std::to_string(c) + what));
+  }
   fields_group_ = h5::create_group(root, "fields");
+  if (setup.membrane) cells_group_ = h5::create_group(root, "cells");
 
   const auto& f = scene.output.fields;
   write_density_ = std::find(f.begin(), f.end(), "density") != f.end();
@@ -97,7 +111,15 @@ void RunWriter::on_diagnostics(const sim::DiagnosticsSample& d) {
                            d.kinetic_energy * energy_scale,
                            d.max_speed * s.velocity_m_s() * 1e6,
                            d.max_mach};
-  for (std::size_t k = 0; k < series_.size(); ++k) series_[k]->append(values[k]);
+  for (std::size_t k = 0; k < std::size(values); ++k) series_[k]->append(values[k]);
+}
+
+void RunWriter::on_cell_diagnostics(const sim::CellDiagnostics& d) {
+  const std::size_t base = std::size(kSeriesNames);  // cell series follow the fluid ones, 2 per cell
+  for (std::size_t c = 0; base + 2 * c + 1 < series_.size() && c < d.area_change.size(); ++c) {
+    series_[base + 2 * c]->append(d.area_change[c]);
+    series_[base + 2 * c + 1]->append(d.taylor_deformation[c]);
+  }
 }
 
 void RunWriter::on_fields(long step, const fluid::Moments& m) {
@@ -128,6 +150,30 @@ void RunWriter::on_fields(long step, const fluid::Moments& m) {
   write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
 }
 
+void RunWriter::on_cells(long step, const membrane::ImmersedCells& cells) {
+  if (!cells_group_.valid()) return;
+  const auto& s = setup_.scales;
+  const double to_um = s.length_m * 1e6;
+  h5::Handle frame = h5::create_group(cells_group_.id(), frame_group_name(step));
+  h5::write_attr(frame.id(), "step", step);
+  h5::write_attr(frame.id(), "time_s", static_cast<double>(step) * s.time_s);
+  h5::write_attr(frame.id(), "cells", static_cast<long>(cells.cell_count()));
+  const std::size_t M = cells.marker_count();
+  std::vector<double> xy(2 * M), offsets;
+  for (int c = 0; c < cells.cell_count(); ++c) {
+    offsets.push_back(static_cast<double>(cells.offset(c)));
+    const auto x = cells.x(c), y = cells.y(c);
+    for (std::size_t m = 0; m < x.size(); ++m) {
+      xy[2 * (cells.offset(c) + m)] = x[m] * to_um;
+      xy[2 * (cells.offset(c) + m) + 1] = y[m] * to_um;
+    }
+  }
+  offsets.push_back(static_cast<double>(M));
+  h5::write_dataset(frame.id(), "positions", xy, {static_cast<hsize_t>(M), 2});
+  h5::write_dataset(frame.id(), "offsets", offsets);
+  H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
+}
+
 void RunWriter::on_finish(const sim::RunSummary& summary) {
   h5::Handle meta = h5::open_group(file_.id(), "metadata");
   h5::write_attr(meta.id(), "status", sim::to_string(summary.status));
@@ -154,6 +200,7 @@ void RunWriter::close_and_commit() {
   series_.clear();
   diagnostics_group_.reset();
   fields_group_.reset();
+  cells_group_.reset();
   file_.reset();
   commit_temporary(h5_path());
   committed_ = true;

@@ -11,8 +11,15 @@
 //                     lattice parameters (spacing_um, time_step_s, tau, ...)
 //   /grid             attrs nx, ny, spacing_um, origin_um (cell-centred nodes)
 //   /diagnostics/*    step, time_s, total_mass_kg_per_m, kinetic_energy_J_per_m,
-//                     max_speed_um_s, max_mach (1-D, one entry per sample)
+//                     max_speed_um_s, max_mach (1-D, one entry per sample); with cells
+//                     also cell_<c>_area_change (A/A0 − 1) and cell_<c>_taylor_deformation
+//                     ((L − B)/(L + B)) for each cell c = 0, 1, ...
 //   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 2); attrs step, time_s
+//   /cells/<step>/    only for scenes with [[cells]], at every field output:
+//                     positions [µm] (markers of all cells, 2): (x, y) from the domain's
+//                     lower-left corner, unwrapped across periodic sides; cell c owns rows
+//                     offsets[c] … offsets[c+1] − 1 of
+//                     offsets (cells + 1) [marker index]; attrs step, time_s, cells
 #include <memory>
 #include <string>
 #include <vector>
@@ -31,7 +38,9 @@ class RunWriter : public sim::RunObserver {
 
   void on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) override;
   void on_diagnostics(const sim::DiagnosticsSample& sample) override;
+  void on_cell_diagnostics(const sim::CellDiagnostics& sample) override;
   void on_fields(long step, const fluid::Moments& moments) override;
+  void on_cells(long step, const membrane::ImmersedCells& cells) override;
   void on_finish(const sim::RunSummary& summary) override;
 
   // Closes the file with status "aborted: <reason>" and moves it into place.
@@ -46,7 +55,7 @@ class RunWriter : public sim::RunObserver {
   std::string out_dir_;
   scene::LatticeSetup setup_;
   h5::Handle file_;
-  h5::Handle diagnostics_group_, fields_group_;
+  h5::Handle diagnostics_group_, fields_group_, cells_group_;
   std::vector<std::unique_ptr<h5::AppendableSeries>> series_;  // step, time, mass, ke, speed, mach
   std::vector<XdmfFrame> frames_;
   XdmfGrid xdmf_grid_;

@@ -77,6 +77,29 @@ struct OutputSpec {
   std::vector<std::string> fields{"density", "velocity"};  // allowed: density, velocity
 };
 
+// [membrane]: one membrane model shared by every cell (thesis §II.3, model.md §3).
+// Interior viscosity = exterior (plasma) for now.
+struct MembraneSpec {
+  std::string law = "neo_hookean";     // "neo_hookean" | "skalak" | "hookean" (tension_law.hpp)
+  double shear_modulus_dyn_cm = 6e-3;  // E_s [dyn/cm] (RBC ≈ 6e-3 dyn/cm = 6 µN/m)
+  double bending_modulus_dyn_cm = 0.0; // E_B [dyn·cm] (RBC ≈ 1.8e-12 dyn·cm = 1.8e-19 J)
+  double area_modulus_Pa = 0.0;        // k_A [Pa] (area penalty ½k_A(A−A0)²/A0, per depth)
+  double skalak_c = 1.0;               // Skalak's C (law = "skalak" only)
+  std::string kernel = "cosine4";      // "cosine4" | "peskin4" | "roma3" | "linear2"
+};
+
+// [[cells]]: one entry per cell. Positions in µm from the domain's lower-left corner.
+struct CellSpec {
+  std::string shape = "circle";            // "circle" | "ellipse" | "biconcave"
+  double radius_um = 0.0;                  // circle radius; biconcave equivalent radius a
+  std::array<double, 2> semi_axes_um{0.0, 0.0};  // ellipse [a along x, b along y] (before rotation)
+  std::array<double, 2> center_um{0.0, 0.0};
+  double angle_deg = 0.0;                  // counter-clockwise rotation about the centre
+  double scale = 1.0;                      // multiplies the size
+  long markers = 0;                        // marker count (equally spaced in arc length);
+                                           // 0: automatic, spacing ≈ 0.7 h (units.cpp)
+};
+
 struct LimitsSpec {
   double min_tau_margin = 0.005;   // reject τ < 0.5 + margin
   double max_mach = 0.1;           // reject a set-up whose expected |u|/c_s exceeds this
@@ -98,6 +121,8 @@ struct Scene {
   MonitorSpec monitor;
   OutputSpec output;
   LimitsSpec limits;
+  std::optional<MembraneSpec> membrane;  // [membrane]; defaults apply when cells exist without it
+  std::vector<CellSpec> cells;           // [[cells]]; empty: a fluid-only scene
 };
 
 }  // namespace erythro::scene

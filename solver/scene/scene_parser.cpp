@@ -99,7 +99,7 @@ const std::vector<std::string>& known_tables() {
   static const std::vector<std::string> tables = {
       "scene", "domain", "time", "fluid", "boundaries", "boundaries.left", "boundaries.right",
       "boundaries.bottom", "boundaries.top", "body_force", "initial", "run", "run.steady_state",
-      "monitor", "output", "limits"};
+      "monitor", "output", "limits", "membrane"};
   return tables;
 }
 
@@ -137,6 +137,20 @@ const std::vector<KeySpec>& known_keys() {
         {"limits.min_tau_margin", Kind::number, "", non_negative, {}},
         {"limits.max_mach", Kind::number, "", positive, {}},
         {"limits.min_nodes_across_channel", Kind::integer, "nodes", Bound{1.0, false, 1e6, false}, {}},
+        {"membrane.law", Kind::string, "", any, {"neo_hookean", "skalak", "hookean"}},
+        {"membrane.shear_modulus_dyn_cm", Kind::number, "dyn/cm", non_negative, {}},
+        {"membrane.bending_modulus_dyn_cm", Kind::number, "dyn·cm", non_negative, {}},
+        {"membrane.area_modulus_Pa", Kind::number, "Pa", non_negative, {}},
+        {"membrane.skalak_c", Kind::number, "", non_negative, {}},
+        {"membrane.kernel", Kind::string, "", any, {"cosine4", "peskin4", "roma3", "linear2"}},
+        // [[cells]] entries: the schema path drops the index (cells[2].radius_um → cells.radius_um).
+        {"cells.shape", Kind::string, "", any, {"circle", "ellipse", "biconcave"}},
+        {"cells.radius_um", Kind::number, "µm", positive, {}},
+        {"cells.semi_axes_um", Kind::vec2, "µm", positive, {}},
+        {"cells.center_um", Kind::vec2, "µm", any, {}},
+        {"cells.angle_deg", Kind::number, "degrees", any, {}},
+        {"cells.scale", Kind::number, "", positive, {}},
+        {"cells.markers", Kind::integer, "markers", Bound{8.0, false, 1e6, false}, {}},
     };
     for (const char* side : {"left", "right", "bottom", "top"}) {
       const std::string p = std::string("boundaries.") + side + ".";
@@ -148,9 +162,25 @@ const std::vector<KeySpec>& known_keys() {
   return keys;
 }
 
+// "cells[3].radius_um" → "cells.radius_um" (the schema path of an array-of-tables entry).
+std::string schema_path(std::string_view path) {
+  std::string out;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    if (path[i] == '[') {
+      const auto close = path.find(']', i);
+      if (close == std::string_view::npos) return std::string(path);
+      i = close;
+      continue;
+    }
+    out += path[i];
+  }
+  return out;
+}
+
 const KeySpec* find_key(std::string_view path) {
+  const std::string p = schema_path(path);
   for (const KeySpec& k : known_keys())
-    if (k.path == path) return &k;
+    if (k.path == p) return &k;
   return nullptr;
 }
 
@@ -271,6 +301,20 @@ class Reader {
       const std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
       // A quoted key holding a dot ("fluid.viscosity_cP" = 1) is not the nested key.
       const bool plain = key.str().find_first_of(".[") == std::string_view::npos;
+      if (plain && path == "cells") {  // [[cells]]: an array of tables, each checked against cells.*
+        const auto* arr = node.as_array();
+        if (!arr || !arr->is_array_of_tables())
+          fail(node, path, "has the wrong type (" + kind_of(node) + "): expected an array of tables ([[cells]])");
+        for (std::size_t i = 0; i < arr->size(); ++i) {
+          for (const auto& [ckey, cnode] : *arr->get(i)->as_table()) {
+            const std::string cpath = "cells[" + std::to_string(i) + "]." + std::string(ckey.str());
+            if (!find_key(cpath))
+              throw InputError(where(&cnode) + ": unknown key '" + cpath + "'" +
+                               suggestion("cells." + std::string(ckey.str())));
+          }
+        }
+        continue;
+      }
       if (!plain) {
         throw InputError(where(&node) + ": unknown key '" + path + "' (a quoted key with '.' or '[' is never valid" +
                          " here; write the table and key unquoted)");
@@ -340,10 +384,13 @@ class Reader {
   std::string where_table(std::string_view table) const { return where(find(table)); }
 
  private:
-  static const KeySpec& spec(std::string_view path) {
+  // The schema entry, named by the path as written (cells[2].radius_um, not cells.radius_um).
+  static KeySpec spec(std::string_view path) {
     const KeySpec* k = find_key(path);
     if (!k) throw std::logic_error("scene_parser: key not in schema: " + std::string(path));
-    return *k;
+    KeySpec named = *k;
+    named.path = std::string(path);
+    return named;
   }
   static bool allowed(const KeySpec& k, const std::string& v) {
     return k.choices.empty() || std::find(k.choices.begin(), k.choices.end(), v) != k.choices.end();
@@ -390,6 +437,8 @@ void apply_override(toml::table& root, const std::string& text, const std::strin
     throw InputError(origin + ": malformed --set '" + text + "': expected KEY=VALUE, e.g. --set fluid.viscosity_cP=1.2");
   if (!find_key(key) && !is_known_table(key))
     throw InputError(origin + ": --set " + text + ": unknown key '" + key + "'" + suggestion(key));
+  if (key.rfind("cells", 0) == 0)
+    throw InputError(origin + ": --set " + text + ": [[cells]] entries cannot be set with --set; edit the scene file");
 
   const std::string source = "--set " + text;  // recorded as the node's source, for messages
   toml::table parsed;
@@ -530,6 +579,46 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.limits.max_mach = r.number("limits.max_mach", s.limits.max_mach);
   s.limits.min_nodes_across_channel =
       static_cast<int>(r.integer("limits.min_nodes_across_channel", s.limits.min_nodes_across_channel));
+
+  if (r.has("membrane")) {
+    MembraneSpec m;
+    m.law = r.text("membrane.law", m.law);
+    m.shear_modulus_dyn_cm = r.number("membrane.shear_modulus_dyn_cm", m.shear_modulus_dyn_cm);
+    m.bending_modulus_dyn_cm = r.number("membrane.bending_modulus_dyn_cm", m.bending_modulus_dyn_cm);
+    m.area_modulus_Pa = r.number("membrane.area_modulus_Pa", m.area_modulus_Pa);
+    m.skalak_c = r.number("membrane.skalak_c", m.skalak_c);
+    m.kernel = r.text("membrane.kernel", m.kernel);
+    if (m.law != "skalak" && r.has("membrane.skalak_c"))
+      r.fail(*r.find("membrane.skalak_c"), "membrane.skalak_c",
+             "is not allowed here: only membrane.law = \"skalak\" takes C (the law is \"" + m.law + "\")");
+    s.membrane = m;
+  }
+  if (const toml::node* cells = r.find("cells")) {
+    const std::size_t count = cells->as_array()->size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string p = "cells[" + std::to_string(i) + "].";
+      CellSpec c;
+      c.shape = r.text(p + "shape", c.shape);
+      const bool ellipse = c.shape == "ellipse";
+      const std::string size_key = ellipse ? "semi_axes_um" : "radius_um";
+      const std::string wrong_key = ellipse ? "radius_um" : "semi_axes_um";
+      if (!r.has(p + size_key))
+        throw InputError(r.where(cells->as_array()->get(i)) + ": missing key '" + p + size_key + "' (required for shape = \"" +
+                         c.shape + "\"; " + range_text(*find_key("cells." + size_key)) + ")");
+      if (r.has(p + wrong_key))
+        r.fail(*r.find(p + wrong_key), p + wrong_key,
+               "is not allowed with shape = \"" + c.shape + "\" (give " + size_key + ")");
+      if (!r.has(p + "center_um"))
+        throw InputError(r.where(cells->as_array()->get(i)) + ": missing key '" + p + "center_um' (required; µm)");
+      c.radius_um = r.number(p + "radius_um", c.radius_um);
+      c.semi_axes_um = r.vec2(p + "semi_axes_um", c.semi_axes_um);
+      c.center_um = r.vec2(p + "center_um", c.center_um);
+      c.angle_deg = r.number(p + "angle_deg", c.angle_deg);
+      c.scale = r.number(p + "scale", c.scale);
+      c.markers = r.integer(p + "markers", c.markers);
+      s.cells.push_back(c);
+    }
+  }
   return s;
 }
 

@@ -1,12 +1,17 @@
 #pragma once
 // The one module that converts physical units to lattice units (h = Δt = 1, ρ0 = 1)
 // and rejects impossible or unstable set-ups before anything runs.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
+#include "ib/kernel.hpp"
 #include "lattice/grid.hpp"
+#include "membrane/membrane_energy.hpp"
+#include "membrane/polygon.hpp"
+#include "membrane/stability.hpp"
 #include "scene/scene.hpp"
 
 namespace erythro::scene {
@@ -21,6 +26,28 @@ struct UnitScales {
   double kinematic_viscosity_m2_s() const { return length_m * length_m / time_s; }
   double pressure_Pa() const { return density_kg_m3 * velocity_m_s() * velocity_m_s(); }
 };
+
+// One cell placed on the lattice (lattice units: nodes at i + ½, walls at 0 and n).
+struct CellSetup {
+  membrane::Polygon shape;        // markers, counter-clockwise; also the stress-free rest shape
+  double equivalent_radius = 0.0; // √(A/π)
+  double min_edge = 0.0, max_edge = 0.0;  // marker spacing
+};
+
+// The membranes, present only when the scene declares [[cells]].
+struct MembraneSetup {
+  ib::KernelType kernel = ib::KernelType::cosine4;
+  membrane::MembraneModel model;  // lattice moduli
+  membrane::StabilityEstimate stability;
+  std::vector<CellSetup> cells;
+};
+
+// Fixed set-up rules for cells (docs/scenes.md "Checks done by units.cpp"), in h.
+inline constexpr double kMinCellRadius = 3.0;   // equivalent radius >= 3 h
+inline constexpr double kMaxMarkerSpacing = 1.0; // every edge <= h (no leaks between markers)
+inline constexpr double kMinMarkerSpacing = 0.3; // every edge >= 0.3 h (over-resolved markers stiffen)
+inline constexpr double kMinCellGap = 1.0;       // markers of two cells, or a marker and a wall, >= h apart
+inline constexpr double kAutoMarkerSpacing = 0.7; // cells.markers absent: perimeter / 0.7 h markers (>= 16)
 
 // Everything the simulation needs, in lattice units, plus derived numbers to show.
 struct LatticeSetup {
@@ -38,6 +65,7 @@ struct LatticeSetup {
   double mach = 0.0;                // expected_max_speed / c_s
   double reynolds = 0.0;            // expected_max_speed × L / ν (L: channel width or domain)
   double reynolds_length_m = 0.0;
+  std::optional<MembraneSetup> membrane;  // only when the scene has cells
 };
 
 // Converts and checks. Throws InputError naming the scene file, the key, its value

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fluid/fluid_lattice.hpp"
+#include "membrane/immersed_cells.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
 
@@ -18,6 +19,14 @@ struct DiagnosticsSample {
   double kinetic_energy = 0.0;  // ½ Σ ρ|u|²
   double max_speed = 0.0;       // max |u|
   double max_mach = 0.0;        // max |u| / c_s
+};
+
+// Per-cell shape diagnostics (scenes with [[cells]] only), sent right after each
+// DiagnosticsSample: A/A0 − 1 and the Taylor deformation D = (L − B)/(L + B) of the
+// ellipse with the same second area moments (simulation.cpp), one entry per cell.
+struct CellDiagnostics {
+  long step = 0;
+  std::vector<double> area_change, taylor_deformation;
 };
 
 enum class RunStatus { completed, steady_state, diverged };
@@ -37,8 +46,11 @@ class RunObserver {
   virtual ~RunObserver() = default;
   virtual void on_start(const scene::Scene&, const scene::LatticeSetup&) {}
   virtual void on_diagnostics(const DiagnosticsSample&) {}
+  virtual void on_cell_diagnostics(const CellDiagnostics&) {}
   // Fields of a healthy state (lattice units).
   virtual void on_fields(long /*step*/, const fluid::Moments&) {}
+  // The cells' markers, right after on_fields (only for scenes with [[cells]]).
+  virtual void on_cells(long /*step*/, const membrane::ImmersedCells&) {}
   virtual void on_progress(long /*step*/, long /*total_steps*/, double /*mlups*/) {}
   virtual void on_finish(const RunSummary&) {}
 };
@@ -57,8 +69,14 @@ class ObserverList : public RunObserver {
   void on_diagnostics(const DiagnosticsSample& d) override {
     for (auto* o : observers_) o->on_diagnostics(d);
   }
+  void on_cell_diagnostics(const CellDiagnostics& d) override {
+    for (auto* o : observers_) o->on_cell_diagnostics(d);
+  }
   void on_fields(long step, const fluid::Moments& m) override {
     for (auto* o : observers_) o->on_fields(step, m);
+  }
+  void on_cells(long step, const membrane::ImmersedCells& c) override {
+    for (auto* o : observers_) o->on_cells(step, c);
   }
   void on_progress(long step, long total, double mlups) override {
     for (auto* o : observers_) o->on_progress(step, total, mlups);

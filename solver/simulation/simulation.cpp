@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
+#include <stdexcept>
 
 #include "lattice/d2q9.hpp"
 
@@ -27,6 +29,12 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
   fluid_ = std::make_unique<fluid::FluidLattice>(setup_.grid, setup_.collision, setup_.boundaries);
   apply_initial_condition();
   apply_body_force(0);
+  if (setup_.membrane) {  // cells start at their stress-free rest shape
+    const scene::MembraneSetup& M = *setup_.membrane;
+    cells_ = std::make_unique<membrane::ImmersedCells>(M.kernel, *fluid_);
+    for (const scene::CellSetup& c : M.cells)
+      cells_->add_cell(c.shape, membrane::RestShape::from_polygon(c.shape), M.model);
+  }
 }
 
 void Simulation::apply_initial_condition() {
@@ -87,6 +95,33 @@ DiagnosticsSample diagnose(long step, const fluid::Moments& m) {
   return d;
 }
 
+double taylor_deformation(const membrane::Polygon& p) {
+  double cx = 0.0, cy = 0.0;
+  membrane::centroid(p, cx, cy);
+  // Second area moments about the centroid (Green's theorem over the polygon edges):
+  //   ∫x² = (1/12) Σ c (x_i² + x_i x_j + x_j²), ∫y² likewise,
+  //   ∫xy = (1/24) Σ c (x_i y_j + 2 x_i y_i + 2 x_j y_j + x_j y_i),  c = x_i y_j − x_j y_i.
+  double sxx = 0.0, syy = 0.0, sxy = 0.0;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    const double xi = p.x[i] - cx, yi = p.y[i] - cy, xj = p.x[j] - cx, yj = p.y[j] - cy;
+    const double c = xi * yj - xj * yi;
+    sxx += c * (xi * xi + xi * xj + xj * xj);
+    syy += c * (yi * yi + yi * yj + yj * yj);
+    sxy += c * (xi * yj + 2.0 * xi * yi + 2.0 * xj * yj + xj * yi);
+  }
+  sxx /= 12.0;
+  syy /= 12.0;
+  sxy /= 24.0;
+  // Eigenvalues of [[sxx, sxy], [sxy, syy]]; for an ellipse ∫x'² = π a³ b / 4, so a/b = √(λ1/λ2).
+  const double mean = 0.5 * (sxx + syy), half = std::hypot(0.5 * (sxx - syy), sxy);
+  const double l1 = mean + half, l2 = mean - half;
+  if (!(l2 > 0.0)) return std::numeric_limits<double>::quiet_NaN();
+  const double ratio = std::sqrt(l1 / l2);  // L / B
+  return (ratio - 1.0) / (ratio + 1.0);
+}
+
 std::string describe_divergence(long step, const HealthReport& r, const scene::LatticeSetup& setup) {
   std::ostringstream out;
   const double h_um = setup.scales.length_m * 1e6;
@@ -129,6 +164,20 @@ RunSummary Simulation::run(RunObserver& observer) {
   const auto start = clock::now();
   double mlups = 0.0;
 
+  // Fluid diagnostics plus, with cells, each cell's area change and Taylor deformation.
+  auto sample = [&](long step, const fluid::Moments& m) {
+    observer.on_diagnostics(diagnose(step, m));
+    if (!cells_) return;
+    CellDiagnostics d;
+    d.step = step;
+    for (int c = 0; c < cells_->cell_count(); ++c) {
+      const membrane::Polygon p = cells_->polygon(c);
+      d.area_change.push_back(membrane::signed_area(p) / cells_->rest(c).area - 1.0);
+      d.taylor_deformation.push_back(taylor_deformation(p));
+    }
+    observer.on_cell_diagnostics(d);
+  };
+
   // Observes the state after `step` steps; returns false when the monitor stops the run.
   auto observe = [&](long step, bool final_state) -> bool {
     const bool fields = final_state || due(step, out.fields_interval_steps) || step == 0;
@@ -145,8 +194,9 @@ RunSummary Simulation::run(RunObserver& observer) {
       summary.diagnosis = describe_divergence(step, health, setup_);
       return false;
     }
-    if (diagnostics) observer.on_diagnostics(diagnose(step, m));
+    if (diagnostics) sample(step, m);
     if (fields) observer.on_fields(step, m);
+    if (fields && cells_) observer.on_cells(step, *cells_);
     if (steady_check) {
       if (!previous_ux.empty()) {
         double umax = 0.0;
@@ -155,7 +205,8 @@ RunSummary Simulation::run(RunObserver& observer) {
         if (umax > 0.0 && change / umax < steady->tolerance) {
           summary.status = RunStatus::steady_state;
           if (!fields) observer.on_fields(step, m);
-          if (!diagnostics) observer.on_diagnostics(diagnose(step, m));
+          if (!fields && cells_) observer.on_cells(step, *cells_);
+          if (!diagnostics) sample(step, m);
           return false;
         }
       }
@@ -169,7 +220,21 @@ RunSummary Simulation::run(RunObserver& observer) {
   bool keep_going = observe(0, total == 0);
   while (keep_going && step < total) {
     apply_body_force(step);
-    fluid_->step();
+    if (cells_) {
+      // One immersed-boundary cycle per fluid step (immersed_cells.hpp): membrane forces,
+      // spreading (the body force adds to the field), fluid step, marker advection.
+      try {
+        cells_->advance(*fluid_);
+      } catch (const std::domain_error& e) {  // a marker velocity or position is not finite
+        ++step;
+        summary.status = RunStatus::diverged;
+        summary.diagnosis = "diverged at step " + std::to_string(step) + ": membrane markers: " + e.what() +
+                            "; lower the moduli or the time step (see erythro check's stability numbers)";
+        break;
+      }
+    } else {
+      fluid_->step();
+    }
     ++step;
     const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
     mlups = elapsed > 0.0 ? nodes * static_cast<double>(step) / elapsed * 1e-6 : 0.0;

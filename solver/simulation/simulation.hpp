@@ -1,10 +1,11 @@
 #pragma once
 // A simulation assembled from a scene: it owns the modules the scene declares
-// (today the fluid; later membranes, aggregation, species) and runs the time loop
+// (the fluid; immersed cells when the scene has [[cells]]) and runs the time loop
 // with the health monitor, the steady-state criterion and the output schedule.
 #include <memory>
 
 #include "fluid/fluid_lattice.hpp"
+#include "membrane/immersed_cells.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
 #include "simulation/run_observer.hpp"
@@ -22,6 +23,8 @@ class Simulation {
   const scene::Scene& scene() const { return scene_; }
   const scene::LatticeSetup& setup() const { return setup_; }
   fluid::FluidLattice& fluid() { return *fluid_; }
+  // The immersed cells, or nullptr when the scene declares none.
+  const membrane::ImmersedCells* cells() const { return cells_.get(); }
 
  private:
   void apply_initial_condition();
@@ -30,10 +33,15 @@ class Simulation {
   scene::Scene scene_;
   scene::LatticeSetup setup_;
   std::unique_ptr<fluid::FluidLattice> fluid_;
+  std::unique_ptr<membrane::ImmersedCells> cells_;
 };
 
 // Lattice diagnostics of given moments.
 DiagnosticsSample diagnose(long step, const fluid::Moments& m);
+
+// Taylor deformation D = (L − B)/(L + B) of a closed polygon: L, B are the semi-axes
+// of the ellipse with the same second area moments (L/B = √(λ_max/λ_min)).
+double taylor_deformation(const membrane::Polygon& p);
 
 // "step 1200: velocity_x = nan at node (12, 3) (x = 6.25 µm, y = 1.75 µm): ..."
 std::string describe_divergence(long step, const HealthReport& report, const scene::LatticeSetup& setup);

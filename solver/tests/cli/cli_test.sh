@@ -92,6 +92,30 @@ checks=$((checks + 1))
 if h5dump -a /metadata/status diverged/run.h5 2>/dev/null | grep -q '"diverged"' && h5ls diverged/run.h5/fields >/dev/null 2>&1; then
   echo "ok   diverged_file_valid"; else echo "FAIL diverged run.h5 lacks status or fields"; failures=$((failures + 1)); fi
 
+# Scenes with cells ([membrane], [[cells]]): one capsule runs end to end and run.h5
+# holds its marker positions; a second cell overlapping the first is refused (exit 2,
+# naming the key); a too-stiff membrane is refused with the stability estimate.
+CAPSULE="$SRC/scenes/capsule_shear.toml"
+expect capsule_check 0 'stability Π_T' -- "$ERYTHRO" check "$CAPSULE"
+expect capsule_run 0 'results: ' -- "$ERYTHRO" run "$CAPSULE" --out capsule --quiet
+expect capsule_positions 0 'cells ok' -- /usr/bin/python3 -c '
+import h5py, numpy as np
+with h5py.File("capsule/run.h5", "r") as f:
+    assert f["metadata"].attrs["coupling"] == "immersed boundary"
+    frames = sorted(f["cells"])
+    assert len(frames) >= 2, frames
+    for k in frames:
+        p = f["cells"][k]["positions"][:]
+        assert p.shape == (32, 2) and np.isfinite(p).all(), (k, p.shape)
+        assert list(f["cells"][k]["offsets"][:]) == [0, 32]
+    r0 = np.hypot(*(p - p.mean(0)).T)
+    assert r0.max() - r0.min() > 0.1, "capsule did not deform"
+print("cells ok", len(frames), "frames")'
+{ cat "$CAPSULE"; printf '\n[[cells]]\nshape = "circle"\nradius_um = 2.0\ncenter_um = [12.5, 5.0]\nmarkers = 32\n'; } > overlap.toml
+expect cells_overlap 2 "key 'cells\[1\]\.center_um'.*overlap cell 0" -- "$ERYTHRO" run overlap.toml --out overlap --quiet
+checks=$((checks + 1)); if [[ -e overlap ]]; then echo "FAIL cells_overlap: created output"; failures=$((failures+1)); else echo "ok   cells_overlap_no_output"; fi
+expect membrane_unstable 2 "membrane.shear_modulus_dyn_cm.*Π_T.*exceeds" -- "$ERYTHRO" check "$CAPSULE" --set membrane.shear_modulus_dyn_cm=1e3
+
 no_partials no_partial_files
 
 echo "$((checks - failures)) passed, $failures failed"

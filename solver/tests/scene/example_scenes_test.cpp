@@ -45,5 +45,14 @@ TEST(ExampleScenes, TaylorGreen) {
   EXPECT_FALSE(format_lattice_report(s, L).empty());
 }
 
+TEST(ExampleScenes, CapsuleShear) {
+  Scene s;
+  const LatticeSetup L = load("capsule_shear.toml", s);
+  ASSERT_TRUE(L.membrane.has_value());
+  EXPECT_EQ(L.membrane->cells.size(), 1u);
+  EXPECT_TRUE(L.membrane->stability.acceptable());
+  EXPECT_LE(static_cast<double>(L.grid.size()) * static_cast<double>(L.total_steps), max_node_updates);
+}
+
 }  // namespace
 }  // namespace erythro::scene

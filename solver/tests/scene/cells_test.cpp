@@ -1,0 +1,238 @@
+// [membrane] and [[cells]]: parsing, conversion of the moduli, placement of the
+// shapes, and every set-up rejection (overlap, wall, resolution, marker spacing,
+// explicit-membrane stability).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "common/error.hpp"
+#include "input_error_matchers.hpp"
+#include "membrane/polygon.hpp"
+#include "scene/scene_parser.hpp"
+#include "scene/units.hpp"
+
+namespace erythro::scene {
+namespace {
+
+using testing::error_of;
+
+// 20 µm × 10 µm channel, h = 0.5 µm (40 × 20 nodes), walls at bottom and top, τ = 1.
+// ν = 1 cP / 1000 kg/m³ = 1e-6 m²/s → Δt = ½ h² / (3ν) = 0.5 · 0.25e-12 / 3e-6 = 4.1667e-8 s.
+const std::string channel = R"(
+[domain]
+size_um = [20, 10]
+spacing_um = 0.5
+[time]
+tau = 1.0
+[fluid]
+density_kg_m3 = 1000
+viscosity_cP = 1.0
+[boundaries.bottom]
+type = "wall"
+[boundaries.top]
+type = "wall"
+[run]
+steps = 10
+)";
+
+const std::string membrane_table = R"(
+[membrane]
+law = "neo_hookean"
+shear_modulus_dyn_cm = 6e-3
+bending_modulus_dyn_cm = 2e-12
+area_modulus_Pa = 10.0
+kernel = "peskin4"
+)";
+
+std::string cell(const std::string& body) { return "\n[[cells]]\n" + body + "\n"; }
+const std::string circle_at_centre = cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 32");
+
+LatticeSetup derive(const std::string& text, const std::vector<std::string>& overrides = {}) {
+  return derive_lattice(parse_scene(text, "c.toml", overrides));
+}
+
+TEST(SceneCells, AbsentMeansFluidOnly) {
+  const Scene s = parse_scene(channel, "c.toml");
+  EXPECT_FALSE(s.membrane.has_value());
+  EXPECT_TRUE(s.cells.empty());
+  EXPECT_FALSE(derive_lattice(s).membrane.has_value());
+}
+
+TEST(SceneCells, ParsesEveryKey) {
+  const Scene s = parse_scene(channel + membrane_table +
+                                  cell("shape = \"ellipse\"\nsemi_axes_um = [3, 1.5]\ncenter_um = [6, 5]\n"
+                                       "angle_deg = 30\nscale = 1.1\nmarkers = 40") +
+                                  cell("shape = \"biconcave\"\nradius_um = 2.5\ncenter_um = [14, 5]\nmarkers = 48"),
+                              "c.toml");
+  ASSERT_TRUE(s.membrane.has_value());
+  EXPECT_EQ(s.membrane->law, "neo_hookean");
+  EXPECT_DOUBLE_EQ(s.membrane->shear_modulus_dyn_cm, 6e-3);
+  EXPECT_DOUBLE_EQ(s.membrane->bending_modulus_dyn_cm, 2e-12);
+  EXPECT_DOUBLE_EQ(s.membrane->area_modulus_Pa, 10.0);
+  EXPECT_EQ(s.membrane->kernel, "peskin4");
+  ASSERT_EQ(s.cells.size(), 2u);
+  EXPECT_EQ(s.cells[0].shape, "ellipse");
+  EXPECT_DOUBLE_EQ(s.cells[0].semi_axes_um[1], 1.5);
+  EXPECT_DOUBLE_EQ(s.cells[0].angle_deg, 30.0);
+  EXPECT_DOUBLE_EQ(s.cells[0].scale, 1.1);
+  EXPECT_EQ(s.cells[0].markers, 40);
+  EXPECT_EQ(s.cells[1].shape, "biconcave");
+  EXPECT_DOUBLE_EQ(s.cells[1].center_um[0], 14.0);
+}
+
+TEST(SceneCells, ModuliUseTheMembraneLayerConversion) {
+  const LatticeSetup L = derive(channel + membrane_table + circle_at_centre);
+  ASSERT_TRUE(L.membrane.has_value());
+  const double dt = 0.5 * 0.25e-12 / 3e-6, h = 0.5e-6, rho = 1000.0;
+  // E_s: 6e-3 dyn/cm = 6e-6 N/m → × Δt²/(ρ h³); E_B: 2e-12 dyn·cm = 2e-19 J → × Δt²/(ρ h⁵);
+  // k_A: 10 Pa → × Δt²/(ρ h²) (membrane_units.hpp).
+  EXPECT_NEAR(L.membrane->model.tension.modulus, 6e-6 * dt * dt / (rho * h * h * h), 1e-12 * 1e-4);
+  EXPECT_NEAR(L.membrane->model.bending / (2e-19 * dt * dt / (rho * std::pow(h, 5))), 1.0, 1e-12);
+  EXPECT_NEAR(L.membrane->model.area_modulus / (10.0 * dt * dt / (rho * h * h)), 1.0, 1e-12);
+  EXPECT_EQ(L.membrane->kernel, ib::KernelType::peskin4);
+  EXPECT_EQ(L.membrane->model.tension.type, membrane::TensionLawType::neo_hookean);
+}
+
+TEST(SceneCells, ShapesArePlacedRotatedAndScaled) {
+  const LatticeSetup L = derive(channel + membrane_table +
+                                cell("shape = \"ellipse\"\nsemi_axes_um = [3, 1.5]\ncenter_um = [6, 5]\n"
+                                     "angle_deg = 90\nscale = 1.2\nmarkers = 48") +
+                                cell("shape = \"biconcave\"\nradius_um = 3.0\ncenter_um = [14, 5]\nmarkers = 48"));
+  ASSERT_EQ(L.membrane->cells.size(), 2u);
+  const membrane::Polygon& e = L.membrane->cells[0].shape;
+  double cx = 0.0, cy = 0.0;
+  membrane::centroid(e, cx, cy);
+  EXPECT_NEAR(cx, 12.0, 1e-9);  // 6 µm / 0.5 µm
+  EXPECT_NEAR(cy, 10.0, 1e-9);
+  // Rotated by 90°: the long semi-axis 3 µm × 1.2 = 7.2 h lies along y.
+  double ymax = -1e9, xmax = -1e9;
+  for (std::size_t m = 0; m < e.size(); ++m) {
+    ymax = std::max(ymax, e.y[m] - cy);
+    xmax = std::max(xmax, e.x[m] - cx);
+  }
+  EXPECT_NEAR(ymax, 7.2, 0.05);
+  EXPECT_NEAR(xmax, 3.6, 0.05);
+  // Ellipse area π a b (polygon inscribed: slightly less).
+  EXPECT_NEAR(membrane::signed_area(e) / (std::numbers::pi * 7.2 * 3.6), 1.0, 0.01);
+  // Evans–Fung section: long axis 2a = 12 h along x.
+  const membrane::Polygon& b = L.membrane->cells[1].shape;
+  const auto [lo, hi] = std::minmax_element(b.x.begin(), b.x.end());
+  EXPECT_NEAR(*hi - *lo, 12.0, 0.05);
+  EXPECT_GT(membrane::signed_area(b), 0.0);  // counter-clockwise
+}
+
+// Without `markers`: perimeter / 0.7 h. Circle of radius 4 h: ⌈2π·4 / 0.7⌉ = ⌈35.9⌉ = 36;
+// radius 2 µm with scale 1.5 (6 h): ⌈2π·6 / 0.7⌉ = ⌈53.9⌉ = 54.
+TEST(SceneCells, MarkerCountIsAutomaticWhenAbsent) {
+  const LatticeSetup L = derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [5, 5]") +
+                                cell("shape = \"circle\"\nradius_um = 2.0\nscale = 1.5\ncenter_um = [14, 5]"));
+  EXPECT_EQ(L.membrane->cells[0].shape.size(), 36u);
+  EXPECT_EQ(L.membrane->cells[1].shape.size(), 54u);
+  EXPECT_LE(L.membrane->cells[0].max_edge, kMaxMarkerSpacing);
+  EXPECT_GE(L.membrane->cells[0].min_edge, kMinMarkerSpacing);
+}
+
+TEST(SceneCells, CheckReportShowsLatticeAndStabilityNumbers) {
+  const Scene s = parse_scene(channel + membrane_table + circle_at_centre, "c.toml");
+  const std::string report = format_lattice_report(s, derive_lattice(s));
+  EXPECT_CONTAINS(report, "stability Π_T");
+  EXPECT_CONTAINS(report, "stability Π_B");
+  EXPECT_CONTAINS(report, "cell 0 (circle)");
+  EXPECT_CONTAINS(report, "32 markers");
+}
+
+TEST(SceneCells, UnknownAndMistypedKeysAreErrors) {
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_mu = 2\ncenter_um = [10, 5]")); }),
+                  "unknown key 'cells[0].radius_mu' (did you mean 'cells.radius_um'?)");
+  EXPECT_CONTAINS(error_of([] { derive(channel + "[membrane]\nshear_modulus = 1\n"); }),
+                  "unknown key 'membrane.shear_modulus'");
+  EXPECT_CONTAINS(error_of([] { derive("cells = 3\n" + channel); }), "expected an array of tables");
+  EXPECT_CONTAINS(error_of([] { derive(channel + "[membrane]\nlaw = \"mooney\"\n"); }), "membrane.law");
+  EXPECT_CONTAINS(error_of([] { derive(channel + "[membrane]\nkernel = \"gauss\"\n"); }), "membrane.kernel");
+  EXPECT_CONTAINS(error_of([] { derive(channel + "[membrane]\nshear_modulus_dyn_cm = -1\n"); }),
+                  "membrane.shear_modulus_dyn_cm");
+  EXPECT_CONTAINS(error_of([] { derive(channel + "[membrane]\nskalak_c = 2\n"); }), "membrane.skalak_c");
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"square\"\nradius_um = 2\ncenter_um = [10, 5]")); }),
+                  "cells[0].shape");
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2\ncenter_um = [10, 5]\nmarkers = 4.5")); }),
+                  "cells[0].markers");
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\ncenter_um = [10, 5]")); }),
+                  "missing key 'cells[0].radius_um'");
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"ellipse\"\nradius_um = 2\nsemi_axes_um = [2, 1]\ncenter_um = [10, 5]")); }),
+                  "cells[0].radius_um");
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2")); }),
+                  "missing key 'cells[0].center_um'");
+  EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells.radius_um=3"}); }),
+                  "cannot be set with --set");
+}
+
+TEST(SceneCells, RejectsOverlappingCells) {
+  const std::string msg = error_of([] {
+    derive(channel + circle_at_centre + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [13, 5]\nmarkers = 32"));
+  });
+  EXPECT_CONTAINS(msg, "key 'cells[1].center_um' = [13, 5]");
+  EXPECT_CONTAINS(msg, "overlap cell 0");
+  // A small cell wholly inside a larger one.
+  EXPECT_CONTAINS(error_of([] {
+                    derive(channel + cell("shape = \"circle\"\nradius_um = 4.0\ncenter_um = [10, 5]\nmarkers = 64") +
+                           cell("shape = \"circle\"\nradius_um = 1.6\ncenter_um = [10, 5]\nmarkers = 24"));
+                  }),
+                  "one lies inside the other");
+  // Across the periodic x boundary: centres 0.5 µm and 19.5 µm are 1 µm apart.
+  EXPECT_CONTAINS(error_of([] {
+                    derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [0.5, 5]\nmarkers = 32") +
+                           cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [19.5, 5]\nmarkers = 32"));
+                  }),
+                  "overlap cell 0");
+  // 2 h of clearance is accepted.
+  EXPECT_NO_THROW(derive(channel + circle_at_centre +
+                         cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [15.5, 5]\nmarkers = 32")));
+}
+
+TEST(SceneCells, RejectsCellsOnAWallOrOutside) {
+  const std::string msg = error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 2.2]\nmarkers = 32")); });
+  EXPECT_CONTAINS(msg, "key 'cells[0].center_um' = [10, 2.2]");
+  EXPECT_CONTAINS(msg, "bottom/top wall");
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [25, 5]\nmarkers = 32")); }),
+                  "outside the domain");
+}
+
+TEST(SceneCells, RejectsCoarseCellsAndBadMarkerSpacing) {
+  // radius 1.25 µm = 2.5 h < 3 h.
+  const std::string coarse = error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 1.25\ncenter_um = [10, 5]\nmarkers = 16")); });
+  EXPECT_CONTAINS(coarse, "resolution too coarse");
+  EXPECT_CONTAINS(coarse, "cells[0].radius_um = 1.25");
+  // 16 markers on a circle of radius 4 h: spacing 2·4·sin(π/16) = 1.56 h > 1 h.
+  const std::string few = error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 16")); });
+  EXPECT_CONTAINS(few, "key 'cells[0].markers' = 16 is too few");
+  EXPECT_CONTAINS(few, "use markers >= 25");
+  // 128 markers: spacing 0.196 h < 0.3 h.
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 128")); }),
+                  "key 'cells[0].markers' = 128 is too many");
+}
+
+TEST(SceneCells, RejectsAMembraneBeyondTheStabilityLimit) {
+  // E_s = 1e3 dyn/cm = 1 N/m: E_s,lat = 1 · (4.1667e-8)² / (1000 · 0.125e-18) = 13.9, and the
+  // neo-Hookean stiffness dT/dλ(1) = 3 E_s gives Π_T = 41.7, far above the cosine4 limit 1.205.
+  const std::string msg = error_of([] {
+    derive(channel + "[membrane]\nshear_modulus_dyn_cm = 1e3\n" + circle_at_centre);
+  });
+  EXPECT_CONTAINS(msg, "key 'membrane.shear_modulus_dyn_cm' = 1000 dyn/cm");
+  EXPECT_CONTAINS(msg, "Π_T");
+  EXPECT_CONTAINS(msg, "exceeds 1.205");  // cosine4: 2.41 / safety 2 (stability.cpp), τ = 1
+  EXPECT_CONTAINS(msg, "time.tau <=");
+  const std::string bend = error_of([] {
+    derive(channel + "[membrane]\nbending_modulus_dyn_cm = 1e-3\n" + circle_at_centre);
+  });
+  EXPECT_CONTAINS(bend, "key 'membrane.bending_modulus_dyn_cm'");
+  EXPECT_CONTAINS(bend, "Π_B");
+  const std::string area = error_of([] { derive(channel + "[membrane]\narea_modulus_Pa = 1e9\n" + circle_at_centre); });
+  EXPECT_CONTAINS(area, "key 'membrane.area_modulus_Pa'");
+  // The same membrane with nothing to carry it is not checked (no cells: nothing allocated).
+  EXPECT_NO_THROW(derive(channel + "[membrane]\nshear_modulus_dyn_cm = 1e3\n"));
+}
+
+}  // namespace
+}  // namespace erythro::scene

@@ -1,0 +1,73 @@
+#pragma once
+// One run of the red-blood-cell-in-shear set-up (validation.rbc_shear): a 2D
+// Evans–Fung biconcave cell (model.md §3, thesis eq 29) between two walls moving
+// at ±U (simple shear γ̇ = 2U/H), periodic in x, one fluid (viscosity ratio 1).
+// Membrane: neo-Hookean tension, bending about the biconcave rest curvature, area
+// penalty; the rest shape is the initial biconcave polygon (no prestress).
+// Physical inputs are turned into the dimensionless groups the 2D Stokes problem
+// depends on (Ca, E_B*, k_A a/E_S, H/a, L/a); the lattice Reynolds number is a
+// separate choice (rbc_run.cpp).
+#include <string>
+#include <vector>
+
+#include "ib/kernel.hpp"
+
+namespace erythro::vv {
+
+struct RbcConfig {
+  ib::KernelType kernel = ib::KernelType::cosine4;
+  // Physical (SI) inputs, parameters.md.
+  double a_m = 3.91e-6;          // Evans–Fung equivalent radius
+  double h_m = 0.25e-6;          // lattice spacing
+  double mu_Pa_s = 1.2e-3;       // plasma viscosity (1.2 cP), also inside (ratio 1)
+  double shear_rate = 100.0;     // γ̇ [1/s]
+  double Es_N_m = 6e-6;          // E_S = 6e-3 dyn/cm
+  double Eb_J = 3.6e-19;         // E_B = 3.6e-12 dyn·cm (thesis)
+  double area_modulus = 100.0;   // k_A in units of E_S/a
+  // Lattice choices.
+  double tau = 1.0;              // BGK (ν = (τ − ½)/3)
+  double reynolds = 0.05;        // lattice particle Reynolds number γ̇a²/ν
+  double height = 8.0;           // H/a (wall to wall) = 4 cell diameters
+  double length = 8.0;           // L_x/a (periodic)
+  double marker_spacing = 0.5;   // rest marker spacing in h
+  double strain = 20.0;          // γ̇t to run
+  std::vector<double> snapshot_strains = {0, 2, 5, 10, 15, 20};
+};
+
+struct ShapeSnapshot {
+  double strain = 0;
+  std::vector<double> x_um, y_um;  // closed polygon relative to its centroid
+};
+
+struct RbcResult {
+  bool diverged = false;
+  long steps = 0;
+  double strain = 0;
+  int markers = 0;
+  int nx = 0, ny = 0;
+  double a_lat = 0, gamma_lat = 0, Es_lat = 0, Eb_lat = 0, kA_lat = 0;
+  double capillary = 0;          // Ca = μγ̇a/E_S
+  double bending_reduced = 0;    // E_B* = E_B/(a² E_S)
+  double reynolds_physical = 0;  // γ̇a²ρ/μ of the physical cell
+  double stability_factor = 0;   // membrane::StabilityEstimate::max_dt_factor
+  double max_area_change = 0;    // max over every step of |A/A0 − 1|
+  double max_edge_strain = 0;    // max over every step and edge of |ℓ/ℓ0 − 1|
+  double body_rotation_deg = 0;  // change of the unwrapped inclination θ over the run
+  double marker_rotation_deg = 0;// mean over markers of the unwrapped angle change about the centroid
+  double marker0_rotation_deg = 0; // same for marker 0 alone
+  double theta_min = 0, theta_max = 0;  // range of unwrapped θ after strain 2 (final θ if shorter)
+  double D_mean = 0, theta_mean = 0;    // means over the last 2 strain units
+  double centre_drift = 0;       // |y_c − H/2| / a at the end
+  double wall_time_s = 0;
+  std::vector<double> strain_h, D_h, theta_h, area_h, estrain_h, psi_h;  // every 0.05 strain units
+  std::vector<ShapeSnapshot> snapshots;
+};
+
+RbcResult run_rbc(const RbcConfig& c);
+
+// "tumbling" if the long axis turns by ≥ 90° (it passes the normal to the flow);
+// "tank-treading" if it does not and the membrane turns round it by ≥ 90°;
+// otherwise "undetermined".
+std::string classify(const RbcResult& r);
+
+}  // namespace erythro::vv
