@@ -50,6 +50,20 @@ void shape_moments(const std::vector<double>& x, const std::vector<double>& y, d
   theta_deg = 0.5 * std::atan2(2.0 * Ixy, Ixx - Iyy) * 180.0 / std::numbers::pi;
 }
 
+fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau) {
+  const double U = 0.5 * gamma * ny;
+  fluid::BoundaryConfig bc;
+  bc.bottom = {fluid::SideType::moving_wall, -U, 0.0};
+  bc.top = {fluid::SideType::moving_wall, U, 0.0};
+  fluid::FluidLattice lat(Grid{nx, ny}, fluid::CollisionConfig{fluid::CollisionModel::bgk, tau, 3.0 / 16.0}, bc);
+  const std::size_t N = static_cast<std::size_t>(nx) * ny;
+  std::vector<double> rho(N, 1.0), ux(N, 0.0), uy(N, 0.0);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) ux[static_cast<std::size_t>(j) * nx + i] = gamma * (j + 0.5 - 0.5 * ny);
+  lat.initialize(rho, ux, uy);
+  return lat;
+}
+
 CapsuleResult run_capsule(const CapsuleConfig& c) {
   using namespace membrane;
   const auto t_start = Clock::now();
@@ -57,17 +71,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c) {
   const int ny = static_cast<int>(std::lround(c.height * c.radius));
   const double nu = (c.tau - 0.5) / 3.0;
   const double gamma = c.reynolds * nu / (c.radius * c.radius);  // Re = γ̇a²/ν
-  const double U = 0.5 * gamma * ny;                              // walls at y = 0 and ny move at ∓U
-  fluid::BoundaryConfig bc;
-  bc.bottom = {fluid::SideType::moving_wall, -U, 0.0};
-  bc.top = {fluid::SideType::moving_wall, U, 0.0};
-  fluid::FluidLattice lat(Grid{nx, ny}, fluid::CollisionConfig{fluid::CollisionModel::bgk, c.tau, 3.0 / 16.0}, bc);
-  // Start from the undisturbed shear u = γ̇(y − H/2) (node y at j + ½).
-  const std::size_t N = static_cast<std::size_t>(nx) * ny;
-  std::vector<double> rho(N, 1.0), ux(N, 0.0), uy(N, 0.0);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) ux[static_cast<std::size_t>(j) * nx + i] = gamma * (j + 0.5 - 0.5 * ny);
-  lat.initialize(rho, ux, uy);
+  fluid::FluidLattice lat = make_shear_lattice(nx, ny, gamma, c.tau);
 
   CapsuleResult r;
   r.shear_rate = gamma;
@@ -88,6 +92,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c) {
   ib::Transfer spreader(c.kernel, ib::Domain::from(lat.grid(), lat.boundaries()));
   lat.enable_force_field();
 
+  const std::size_t N = lat.grid().size();
   std::vector<double> mrho(N), mux(N), muy(N);
   const double steps_per_strain = 1.0 / gamma;
   const long sample_every = std::max(1L, std::lround(0.1 * steps_per_strain));

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "fluid/fluid_lattice.hpp"
+
 #include "ib/kernel.hpp"
 
 namespace erythro::vv {
@@ -44,6 +46,10 @@ struct CapsuleResult {
 };
 
 CapsuleResult run_capsule(const CapsuleConfig& c);
+
+// Simple shear between walls at y = 0 and ny moving at ∓U = ∓γ̇ ny/2 (BGK, τ), started
+// from the undisturbed profile u = γ̇(y − H/2) with node y at j + ½ (lattice units).
+fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau);
 
 // Taylor deformation and inclination (degrees) of a closed polygon from its
 // second area moments: D = (√I1 − √I2)/(√I1 + √I2) (exact L/B of an ellipse),

@@ -47,16 +47,7 @@ RbcResult run_rbc(const RbcConfig& c) {
   r.ny = static_cast<int>(std::lround(c.height * a));
   const int nx = r.nx, ny = r.ny;
   const double gamma = r.gamma_lat;
-  const double U = 0.5 * gamma * ny;
-  fluid::BoundaryConfig bc;
-  bc.bottom = {fluid::SideType::moving_wall, -U, 0.0};
-  bc.top = {fluid::SideType::moving_wall, U, 0.0};
-  fluid::FluidLattice lat(Grid{nx, ny}, fluid::CollisionConfig{fluid::CollisionModel::bgk, c.tau, 3.0 / 16.0}, bc);
-  const std::size_t N = static_cast<std::size_t>(nx) * ny;
-  std::vector<double> rho(N, 1.0), ux(N, 0.0), uy(N, 0.0);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) ux[static_cast<std::size_t>(j) * nx + i] = gamma * (j + 0.5 - 0.5 * ny);
-  lat.initialize(rho, ux, uy);  // undisturbed shear u = γ̇(y − H/2)
+  fluid::FluidLattice lat = make_shear_lattice(nx, ny, gamma, c.tau);  // undisturbed shear u = γ̇(y − H/2)
 
   // Biconcave cell, long axis along the flow (tilted 0.01 rad), centred slightly off the lattice symmetry.
   const double perimeter_over_a = 19.271 / 3.91;  // parameters.md
