@@ -22,6 +22,7 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <span>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
@@ -30,7 +31,6 @@
 #include "fluid/fluid_lattice.hpp"
 #include "fluid/stream_collide.hpp"
 #include "io/result_record.hpp"
-#include "lattice/d2q9.hpp"
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -191,9 +191,8 @@ fluid::BoundaryConfig boundaries(bool channel) {
 // u_x(y) of a decaying shear wave, 0.01 sin(2π (y+½)/n): a valid flow for both set-ups.
 double shear_wave(int y, int n) { return 0.01 * std::sin(2.0 * std::numbers::pi * (y + 0.5) / n); }
 
-StepResult measure_lattice(const StepConfig& c, int repeats, double sample_seconds) {
-  const auto start = Clock::now();
-  omp_set_num_threads(c.threads);
+// A lattice of the benchmark set-up holding the decaying shear wave (equilibrium).
+fluid::FluidLattice shear_wave_lattice(const StepConfig& c) {
   fluid::FluidLattice lat(Grid{c.n, c.n}, {c.model, kTau, 3.0 / 16.0}, boundaries(c.channel));
   const std::size_t N = lat.grid().size();
   std::vector<double> rho(N, 1.0), ux(N), uy(N, 0.0);
@@ -201,33 +200,34 @@ StepResult measure_lattice(const StepConfig& c, int repeats, double sample_secon
     for (int x = 0; x < c.n; ++x) ux[lat.grid().index(x, y)] = shear_wave(y, c.n);
   }
   lat.initialize(rho, ux, uy);
-  StepResult r = time_steps([&] { lat.step(); }, N, repeats, sample_seconds);
+  return lat;
+}
+
+StepResult measure_lattice(const StepConfig& c, int repeats, double sample_seconds) {
+  const auto start = Clock::now();
+  omp_set_num_threads(c.threads);
+  fluid::FluidLattice lat = shear_wave_lattice(c);
+  StepResult r = time_steps([&] { lat.step(); }, lat.grid().size(), repeats, sample_seconds);
   if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
   r.wall_time_s = seconds_since(start);
   return r;
 }
 
-// The kernel alone with its store mode forced (periodic BGK), on 64-byte aligned lattices.
-StepResult measure_kernel(int n, int threads, fluid::detail::StoreMode mode, int repeats, double sample_seconds) {
+// The kernel alone with its store mode forced, on the lattice's own 64-byte aligned
+// populations and a second lattice of the same alignment (fluid_lattice.hpp).
+StepResult measure_kernel(const StepConfig& c, fluid::detail::StoreMode mode, int repeats, double sample_seconds) {
   const auto start = Clock::now();
-  omp_set_num_threads(threads);
-  const Grid g{n, n};
-  const std::size_t N = g.size();
-  AlignedArray a = aligned_array(d2q9::Q * N), b = aligned_array(d2q9::Q * N);
-  for (int i = 0; i < d2q9::Q; ++i) {
-    for (int y = 0; y < n; ++y) {
-      for (int x = 0; x < n; ++x) {
-        a[i * N + g.index(x, y)] = d2q9::equilibrium_deviation(i, 1.0, shear_wave(y, n), 0.0);
-        b[i * N + g.index(x, y)] = 0.0;
-      }
-    }
-  }
+  omp_set_num_threads(c.threads);
+  fluid::FluidLattice lat = shear_wave_lattice(c);
+  const std::span<double> f = lat.populations();
+  std::vector<double, fluid::detail::CacheLineAllocator<double>> other(f.size(), 0.0);
   fluid::detail::KernelArgs k;
-  k.grid = g;
-  k.collision = {fluid::CollisionModel::bgk, kTau, 3.0 / 16.0};
+  k.grid = lat.grid();
+  k.collision = lat.collision();
+  k.boundaries = lat.boundaries();
   k.stores = mode;
-  double* src = a.get();
-  double* dst = b.get();
+  double* src = f.data();
+  double* dst = other.data();
   StepResult r = time_steps(
       [&] {
         k.src = src;
@@ -235,7 +235,7 @@ StepResult measure_kernel(int n, int threads, fluid::detail::StoreMode mode, int
         fluid::detail::stream_collide(k);
         std::swap(src, dst);
       },
-      N, repeats, sample_seconds);
+      lat.grid().size(), repeats, sample_seconds);
   r.wall_time_s = seconds_since(start);
   return r;
 }
@@ -426,9 +426,9 @@ int run_bench(BenchOptions o) {
     std::printf("\nablation: kernel store mode (periodic BGK, 1 thread)\n");
     const std::size_t t1 = static_cast<std::size_t>(std::find(o.threads.begin(), o.threads.end(), 1) - o.threads.begin());
     if (t1 < o.threads.size()) {
+      const StepConfig c{n_ablation, fluid::CollisionModel::bgk, false, 1};
       for (auto mode : {fluid::detail::StoreMode::cached, fluid::detail::StoreMode::streaming}) {
-        const StepConfig c{n_ablation, fluid::CollisionModel::bgk, false, 1};
-        const StepResult r = measure_kernel(n_ablation, 1, mode, o.repeats, o.sample_seconds);
+        const StepResult r = measure_kernel(c, mode, o.repeats, o.sample_seconds);
         report("kernel, store mode forced", store_name(Grid{n_ablation, n_ablation}, mode), c, t1, r);
       }
     }

@@ -19,17 +19,6 @@ class OutputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// The health monitor found a non-finite or out-of-range quantity.
-class DivergenceError : public std::runtime_error {
- public:
-  DivergenceError(std::string diagnosis, long step)
-      : std::runtime_error(std::move(diagnosis)), step_(step) {}
-  long step() const { return step_; }
-
- private:
-  long step_;
-};
-
 namespace exit_code {
 inline constexpr int ok = 0;
 inline constexpr int runtime_failure = 1;  // unexpected internal error

@@ -10,6 +10,7 @@ struct HealthReport {
   long node_x = -1, node_y = -1;
   double value = 0.0;
   double limit = 0.0;  // the bound that was violated (NaN for non-finite)
+  double max_speed = 0.0;  // healthy scan: max |u| over all nodes (lattice units)
 };
 
 }  // namespace erythro

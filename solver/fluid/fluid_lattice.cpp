@@ -1,5 +1,6 @@
 #include "fluid/fluid_lattice.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -155,6 +156,7 @@ HealthReport check_health(const Grid& grid, const Moments& m, double max_mach) {
       if (!(m.rho[n] > 0.0)) { fail("density", m.rho[n], 0.0); break; }
       const double speed = std::hypot(m.ux[n], m.uy[n]);
       if (speed > max_speed) { fail("mach", speed / std::sqrt(d2q9::cs2), max_mach); break; }
+      report.max_speed = std::max(report.max_speed, speed);
     }
   }
   return report;

@@ -186,7 +186,7 @@ RunSummary Simulation::run(RunObserver& observer) {
     const bool steady_check = steady && due(step, steady->check_interval_steps) && step > 0;
     if (!(fields || diagnostics || monitor || steady_check)) return true;
 
-    const fluid::Moments m = fluid_->moments();
+    fluid::Moments m = fluid_->moments();
     // Health first: nothing unhealthy is ever written.
     const HealthReport health = fluid::check_health(setup_.grid, m, scene_.monitor.max_mach);
     if (!health.healthy) {
@@ -199,8 +199,7 @@ RunSummary Simulation::run(RunObserver& observer) {
     if (fields && cells_) observer.on_cells(step, *cells_);
     if (steady_check) {
       if (!previous_ux.empty()) {
-        double umax = 0.0;
-        for (std::size_t n = 0; n < m.ux.size(); ++n) umax = std::max(umax, std::hypot(m.ux[n], m.uy[n]));
+        const double umax = health.max_speed;  // the health scan's max |u|, no second pass
         const double change = std::max(max_abs_difference(m.ux, previous_ux), max_abs_difference(m.uy, previous_uy));
         if (umax > 0.0 && change / umax < steady->tolerance) {
           summary.status = RunStatus::steady_state;
@@ -210,8 +209,9 @@ RunSummary Simulation::run(RunObserver& observer) {
           return false;
         }
       }
-      previous_ux = m.ux;
-      previous_uy = m.uy;
+      // Last use of m: keep its velocity for the next check without copying it.
+      previous_ux = std::move(m.ux);
+      previous_uy = std::move(m.uy);
     }
     return true;
   };

@@ -2,6 +2,7 @@
 // to the force (Guo), equilibrium is a fixed point, and fluid-lattice plumbing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "fluid/collide_node.hpp"
@@ -102,4 +103,25 @@ TEST(FluidLattice, ForceFieldEqualToUniformForceGivesIdenticalResult) {
   }
   const auto pa = a.populations(), pt = t.populations();
   for (std::size_t k = 0; k < pa.size(); ++k) ASSERT_EQ(pa[k], pt[k]);
+}
+
+// The healthy scan reports max |u| over all nodes (the steady-state check reuses it);
+// a node above the Mach limit is reported as unhealthy instead.
+TEST(FluidLattice, HealthScanReportsMaxSpeed) {
+  const Grid g{4, 3};
+  Moments m;
+  m.rho.assign(g.size(), 1.0);
+  m.ux.assign(g.size(), 0.01);
+  m.uy.assign(g.size(), 0.0);
+  m.ux[g.index(2, 1)] = 0.03;
+  m.uy[g.index(2, 1)] = 0.04;
+  const HealthReport ok = check_health(g, m, 0.3);
+  ASSERT_TRUE(ok.healthy);
+  EXPECT_EQ(ok.max_speed, std::hypot(0.03, 0.04));
+  m.ux[g.index(1, 2)] = 0.5;  // |u|/c_s ≈ 0.87 > 0.3
+  const HealthReport bad = check_health(g, m, 0.3);
+  EXPECT_FALSE(bad.healthy);
+  EXPECT_EQ(bad.quantity, "mach");
+  EXPECT_EQ(bad.node_x, 1);
+  EXPECT_EQ(bad.node_y, 2);
 }
