@@ -1,13 +1,14 @@
 #include "channel_flows.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "common/case_support.hpp"
 
 namespace erythro::vv {
 
 long steps_to_steady_state(int N, double nu, double residual) {
-  const double pi = 3.14159265358979323846;
+  const double pi = std::numbers::pi;
   return static_cast<long>(std::ceil(std::log(1.0 / residual) * N * N / (nu * pi * pi)));
 }
 

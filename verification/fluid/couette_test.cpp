@@ -49,4 +49,5 @@ TEST(Couette, ExactToRoundOff) {
       << worst;
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();
+  EXPECT_TRUE(record.passed());
 }

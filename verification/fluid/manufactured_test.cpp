@@ -172,6 +172,7 @@ void run_study(const std::string& case_name, const std::vector<int>& resolutions
         p_series, "steady state: no initial-layer sound wave survives (it decays like the transient), so the "
                   "pressure carries only O(h^2) truncation and compressibility errors; 0.15 as for the velocity")))
         << p_series.name << " order " << p_series.observed_order;
+    EXPECT_TRUE(record.add_metric(vv::asymptotic_metric(p_series))) << p_series.name;
   }
   EXPECT_TRUE(record.add_metric({"steady-state residual", "max over runs of (remaining transient) / (velocity error)",
                                  "", worst_transient, kTransientFraction, 0.0, io::Comparison::at_most,

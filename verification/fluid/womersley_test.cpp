@@ -257,6 +257,7 @@ TEST(Womersley, SecondOrderAtEveryPhase) {
            "", phase_series[m].observed_order, 1.8, 0.0, io::Comparison::at_least,
            "issue 3 requirement: second order at every phase; 1.8 allows the O(h^4) remainder at N = 16"}))
           << phase_series[m].name << " order " << phase_series[m].observed_order;
+      EXPECT_TRUE(record.add_metric(vv::asymptotic_metric(phase_series[m]))) << phase_series[m].name;
     }
     EXPECT_TRUE(record.add_metric(
         {"start-up transient " + c.label,
