@@ -102,12 +102,10 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     }
     for (int b = 0; b < nb; ++b) bucket_start_[b + 1] += bucket_start_[b];
     order_.resize(static_cast<std::size_t>(bucket_start_[nb]));
-    {
-      std::vector<int> next(bucket_start_.begin(), bucket_start_.end() - 1);
-      for (std::size_t m = 0; m < M; ++m) {
-        const int b = bucket_of(j0_[m]);
-        if (b >= 0 && b < nb) order_[static_cast<std::size_t>(next[b]++)] = static_cast<int>(m);
-      }
+    next_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
+    for (std::size_t m = 0; m < M; ++m) {
+      const int b = bucket_of(j0_[m]);
+      if (b >= 0 && b < nb) order_[static_cast<std::size_t>(next_[b]++)] = static_cast<int>(m);
     }
     // 3. Gather per row: row y receives support row a of markers whose first row is y − a.
     const bool threads = d.grid.worth_threading() && M >= 64;

@@ -45,7 +45,7 @@ class Transfer {
   KernelType kernel_;
   Domain domain_;
   // Scratch reused across calls: per-marker support origin and weights, buckets.
-  std::vector<int> i0_, j0_, bucket_start_, order_;
+  std::vector<int> i0_, j0_, bucket_start_, order_, next_;  // scratch reused across calls
   std::vector<double> wx_, wy_;
 };
 

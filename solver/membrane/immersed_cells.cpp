@@ -1,8 +1,11 @@
 #include "membrane/immersed_cells.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
+
+#include "lattice/d2q9.hpp"
 
 namespace erythro::membrane {
 
@@ -45,6 +48,10 @@ void ImmersedCells::spread_forces(fluid::FluidLattice& lattice) {
   lattice.enable_force_field();
   std::fill(lattice.force_x().begin(), lattice.force_x().end(), 0.0);
   std::fill(lattice.force_y().begin(), lattice.force_y().end(), 0.0);
+  add_spread_forces(lattice);
+}
+
+void ImmersedCells::add_spread_forces(fluid::FluidLattice& lattice) {
   transfer_.spread(x_, y_, fx_, fy_, lattice.force_x(), lattice.force_y());
 }
 
@@ -57,13 +64,65 @@ void ImmersedCells::advance(fluid::FluidLattice& lattice) {
   compute_forces();
   spread_forces(lattice);
   lattice.step();
-  const std::size_t N = lattice.grid().size();
-  rho_.resize(N);
-  grid_ux_.resize(N);
-  grid_uy_.resize(N);
-  lattice.compute_moments(rho_, grid_ux_, grid_uy_);  // force field still that of this step
+  support_velocity(lattice);  // force field still that of this step
   move_markers(grid_ux_, grid_uy_);
   wrap_periodic();
+}
+
+void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
+  const ib::Domain& d = transfer_.domain();
+  const std::size_t N = d.grid.size();
+  grid_ux_.resize(N);
+  grid_uy_.resize(N);
+  const int W = ib::width(transfer_.kernel());
+  if (x_.size() * static_cast<std::size_t>(W * W) >= N) {  // dense markers: the whole grid is cheaper
+    rho_.resize(N);
+    lattice.compute_moments(rho_, grid_ux_, grid_uy_);
+    return;
+  }
+  // FluidLattice::compute_moments node by node (same operations in the same order, so the
+  // same bits): ρ = 1 + Σ f̃_i, u = (Σ c_i f̃_i − F/2)/ρ, F = uniform force + force field.
+  const double* f = lattice.populations().data();
+  const std::array<double, 2> F0 = lattice.uniform_force();  // the one step() just applied
+  const bool field = lattice.has_force_field();
+  const double* fx = field ? lattice.force_x().data() : nullptr;
+  const double* fy = field ? lattice.force_y().data() : nullptr;
+  auto velocity_at = [&](std::size_t n) {
+    double dr = 0.0, jx = 0.0, jy = 0.0;
+    for (int i = 0; i < d2q9::Q; ++i) {
+      const double fi = f[i * N + n];
+      dr += fi;
+      jx += d2q9::cx[i] * fi;
+      jy += d2q9::cy[i] * fi;
+    }
+    double Fx = F0[0], Fy = F0[1];
+    if (field) {
+      Fx += fx[n];
+      Fy += fy[n];
+    }
+    const double r = 1.0 + dr;
+    grid_ux_[n] = (jx - 0.5 * Fx) / r;
+    grid_uy_[n] = (jy - 0.5 * Fy) / r;
+  };
+  auto wrap = [](int i, int n) { const int r = i % n; return r < 0 ? r + n : r; };
+  // Only the nodes Transfer::interpolate reads (ib/transfer.cpp): the W×W support of each
+  // marker, wrapped across periodic sides, clipped at walls. A non-finite marker is left
+  // to interpolate(), which reports it.
+  for (std::size_t m = 0; m < x_.size(); ++m) {
+    if (!std::isfinite(x_[m]) || !std::isfinite(y_[m])) continue;
+    const int i0 = ib::support_start(x_[m], W), j0 = ib::support_start(y_[m], W);
+    for (int a = 0; a < W; ++a) {
+      int j = j0 + a;
+      if (d.periodic_y) j = wrap(j, d.grid.ny);
+      else if (j < 0 || j >= d.grid.ny) continue;
+      for (int b = 0; b < W; ++b) {
+        int i = i0 + b;
+        if (d.periodic_x) i = wrap(i, d.grid.nx);
+        else if (i < 0 || i >= d.grid.nx) continue;
+        velocity_at(d.grid.index(i, j));
+      }
+    }
+  }
 }
 
 void ImmersedCells::wrap_periodic() {

@@ -54,8 +54,19 @@ class ImmersedCells {
   void compute_forces();
   // Step 2: zeroes the lattice force field, then spreads the marker forces into it.
   void spread_forces(fluid::FluidLattice& lattice);
+  // Step 2 without the zeroing: ADDS the spread marker forces to the lattice force
+  // field (which must be enabled). spread_forces() = zero the field + this.
+  void add_spread_forces(fluid::FluidLattice& lattice);
   // Steps 4–5 from the velocity of the last fluid step.
   void move_markers(std::span<const double> ux, std::span<const double> uy);
+  // Velocity of the last fluid step (as FluidLattice::compute_moments, bit for bit) into
+  // support_ux/uy() at the markers' kernel-support nodes only (other entries are stale),
+  // or on the whole grid when the supports would cover it anyway. Step 4 reads only
+  // those nodes; advance() = forces, spread, step, this, move_markers(support_ux/uy).
+  // Call right after lattice.step(), before its forces change (as compute_moments).
+  void support_velocity(fluid::FluidLattice& lattice);
+  std::span<const double> support_ux() const { return grid_ux_; }
+  std::span<const double> support_uy() const { return grid_uy_; }
   // Steps 1–5 for one fluid step.
   void advance(fluid::FluidLattice& lattice);
   // Shifts every cell whose marker 0 left [0, n) on a periodic axis back by ±n

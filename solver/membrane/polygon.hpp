@@ -16,6 +16,10 @@ double signed_area(const Polygon& p);
 double perimeter(const Polygon& p);
 // Area centroid (exact for the polygon).
 void centroid(const Polygon& p, double& cx, double& cy);
+// Taylor deformation D = (l1 − l2)/(l1 + l2) and orientation θ (degrees, of the major
+// axis from +x) from the eigenvalues l1² ≥ l2² of the polygon's second area-moment
+// tensor about its centroid (an ellipse with semi-axes L ≥ B gives l1/l2 = L/B).
+void taylor_deformation(const Polygon& p, double& D, double& theta_deg);
 
 // Reverses the marker order (keeping marker 0 first) if the polygon is clockwise.
 void make_counter_clockwise(Polygon& p);

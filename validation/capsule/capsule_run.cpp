@@ -7,8 +7,6 @@
 #include <stdexcept>
 
 #include "fluid/fluid_lattice.hpp"
-#include "ib/domain.hpp"
-#include "ib/transfer.hpp"
 #include "membrane/immersed_cells.hpp"
 #include "membrane/shapes.hpp"
 
@@ -18,37 +16,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 }  // namespace
-
-void shape_moments(const std::vector<double>& x, const std::vector<double>& y, double& D, double& theta_deg) {
-  const std::size_t n = x.size();
-  // Work relative to the marker mean to avoid cancellation, then shift to the centroid.
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) { mx += x[i]; my += y[i]; }
-  mx /= static_cast<double>(n);
-  my /= static_cast<double>(n);
-  // Polygon area moments (Green's theorem, c_i = x_i y_{i+1} − x_{i+1} y_i):
-  //  A = ½Σc, ∫x dA = Σ(x_i + x_{i+1})c/6, ∫x² dA = Σ(x_i² + x_i x_{i+1} + x_{i+1}²)c/12,
-  //  ∫xy dA = Σ(x_i y_{i+1} + 2x_i y_i + 2x_{i+1} y_{i+1} + x_{i+1} y_i)c/24.
-  double A = 0, Sx = 0, Sy = 0, Sxx = 0, Syy = 0, Sxy = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j = (i + 1) % n;
-    const double xi = x[i] - mx, yi = y[i] - my, xj = x[j] - mx, yj = y[j] - my;
-    const double c = xi * yj - xj * yi;
-    A += 0.5 * c;
-    Sx += (xi + xj) * c / 6.0;
-    Sy += (yi + yj) * c / 6.0;
-    Sxx += (xi * xi + xi * xj + xj * xj) * c / 12.0;
-    Syy += (yi * yi + yi * yj + yj * yj) * c / 12.0;
-    Sxy += (xi * yj + 2.0 * xi * yi + 2.0 * xj * yj + xj * yi) * c / 24.0;
-  }
-  const double cx = Sx / A, cy = Sy / A;
-  const double Ixx = Sxx - A * cx * cx, Iyy = Syy - A * cy * cy, Ixy = Sxy - A * cx * cy;
-  // Eigenvalues of the moment tensor; an ellipse with semi-axes L, B has I1/I2 = L²/B².
-  const double mean = 0.5 * (Ixx + Iyy), dev = std::hypot(0.5 * (Ixx - Iyy), Ixy);
-  const double l1 = std::sqrt(mean + dev), l2 = std::sqrt(std::max(mean - dev, 0.0));
-  D = (l1 - l2) / (l1 + l2);
-  theta_deg = 0.5 * std::atan2(2.0 * Ixy, Ixx - Iyy) * 180.0 / std::numbers::pi;
-}
 
 fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau) {
   const double U = 0.5 * gamma * ny;
@@ -86,14 +53,11 @@ CapsuleResult run_capsule(const CapsuleConfig& c) {
   const MembraneModel model{{TensionLawType::neo_hookean, r.modulus}, 0.0, 0.0};
   cells.add_cell(shape, rest, model);
   const double A0 = signed_area(shape);
-  // The IB cycle of ImmersedCells::advance, step by step so each part can be timed;
-  // spreading uses its own Transfer (same kernel and domain, same arithmetic) so that
-  // zeroing the force field (grid work) and spreading (marker work) are timed apart.
-  ib::Transfer spreader(c.kernel, ib::Domain::from(lat.grid(), lat.boundaries()));
+  // The IB cycle of ImmersedCells::advance, called piece by piece so each part can be
+  // timed; zeroing the force field (grid work) and spreading (marker work) are timed
+  // apart, as spread_forces() = zero + add_spread_forces().
   lat.enable_force_field();
 
-  const std::size_t N = lat.grid().size();
-  std::vector<double> mrho(N), mux(N), muy(N);
   const double steps_per_strain = 1.0 / gamma;
   const long sample_every = std::max(1L, std::lround(0.1 * steps_per_strain));
   const long max_steps = std::lround(c.max_strain * steps_per_strain);
@@ -109,17 +73,17 @@ CapsuleResult run_capsule(const CapsuleConfig& c) {
     std::fill(lat.force_y().begin(), lat.force_y().end(), 0.0);
     r.t_zero += since(t0);
     t0 = Clock::now();
-    spreader.spread(cells.marker_x(), cells.marker_y(), cells.marker_fx(), cells.marker_fy(), lat.force_x(), lat.force_y());
+    cells.add_spread_forces(lat);
     r.t_spread += since(t0);
     t0 = Clock::now();
     lat.step();
     r.t_fluid += since(t0);
     t0 = Clock::now();
-    lat.compute_moments(mrho, mux, muy);
+    cells.support_velocity(lat);
     r.t_moments += since(t0);
     t0 = Clock::now();
     try {
-      cells.move_markers(mux, muy);
+      cells.move_markers(cells.support_ux(), cells.support_uy());
     } catch (const std::domain_error&) {
       r.diverged = true;
       break;
@@ -130,7 +94,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c) {
     if (s % sample_every != 0) continue;
     const Polygon p = cells.polygon(0);
     double D, th;
-    shape_moments(p.x, p.y, D, th);
+    taylor_deformation(p, D, th);
     double cx, cy;
     centroid(p, cx, cy);
     for (std::size_t m = 0; m < p.size(); ++m) {

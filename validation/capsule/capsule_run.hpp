@@ -51,9 +51,4 @@ CapsuleResult run_capsule(const CapsuleConfig& c);
 // from the undisturbed profile u = γ̇(y − H/2) with node y at j + ½ (lattice units).
 fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau);
 
-// Taylor deformation and inclination (degrees) of a closed polygon from its
-// second area moments: D = (√I1 − √I2)/(√I1 + √I2) (exact L/B of an ellipse),
-// θ = ½ atan2(2 I_xy, I_xx − I_yy).
-void shape_moments(const std::vector<double>& x, const std::vector<double>& y, double& D, double& theta_deg);
-
 }  // namespace erythro::vv

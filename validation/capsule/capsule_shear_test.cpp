@@ -296,9 +296,9 @@ TEST(CapsuleShear, FullStudy) {
   }
   record.set_parameter("cost_grid_work_per_node_step_ns",
                        "zeroing the force field " + fmt("%.2f", 1e9 * book.t_zero / book.node_steps) +
-                           ", full-grid moments for interpolation " + fmt("%.2f", 1e9 * book.t_moments / book.node_steps));
+                           ", support-node velocity for interpolation " + fmt("%.2f", 1e9 * book.t_moments / book.node_steps));
   record.set_parameter("cost_overhead_over_fluid_step",
-                       fmt("%.3f", book.t_ib / book.t_fluid) + " (whole IB cycle); full-grid moments " +
+                       fmt("%.3f", book.t_ib / book.t_fluid) + " (whole IB cycle); support-node velocity " +
                            fmt("%.3f", book.t_moments / book.t_fluid) + ", zeroing the force field " +
                            fmt("%.3f", book.t_zero / book.t_fluid) + ", marker work (forces, spread, interpolate) " +
                            fmt("%.3f", (book.t_forces + book.t_spread + book.t_move) / book.t_fluid));

@@ -6,7 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "capsule_run.hpp"  // shape_moments: D and θ from the polygon's area moments
+#include "capsule_run.hpp"  // make_shear_lattice: the undisturbed shear flow
 #include "fluid/fluid_lattice.hpp"
 #include "membrane/immersed_cells.hpp"
 #include "membrane/shapes.hpp"
@@ -111,7 +111,7 @@ RbcResult run_rbc(const RbcConfig& c) {
     if (s % sample_every != 0 && s != steps) continue;
     const double strain = static_cast<double>(s) * gamma;
     double D, th;
-    shape_moments(p.x, p.y, D, th);
+    taylor_deformation(p, D, th);
     double cx, cy;
     centroid(p, cx, cy);
     if (s == 0) theta_unwrapped = th;

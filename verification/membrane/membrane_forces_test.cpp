@@ -72,6 +72,7 @@ TEST(MembraneForces, GradientRestAndInvariance) {
   for (TensionLawType law : {TensionLawType::neo_hookean, TensionLawType::skalak, TensionLawType::hookean}) {
     const MembraneModel model = model_for(law);
     for (const ShapeCase& sc : shapes()) {
+      const vv::Stopwatch run_clock;
       const RestShape rest = RestShape::from_polygon(sc.rest);
       const std::size_t n = rest.size();
       // Rest shape, placed and rotated: zero force up to round-off.
@@ -119,7 +120,7 @@ TEST(MembraneForces, GradientRestAndInvariance) {
       record.add_run({{"law", std::string(to_string(law))}, {"shape", std::string(sc.name)},
                       {"markers", double(n)}, {"energy_tension", E.tension}, {"energy_bending", E.bending},
                       {"energy_area", E.area}, {"max_force", fscale}, {"fd_rel_error", fd_err},
-                      {"net_force_rel", net}, {"net_torque_rel", torque}, {"wall_time_s", 0.0}});
+                      {"net_force_rel", net}, {"net_torque_rel", torque}, {"wall_time_s", run_clock.seconds()}});
     }
   }
   EXPECT_TRUE(record.add_metric({"fd_gradient_error", "max |F - F_fd| / max|F| over laws, shapes, markers", "",

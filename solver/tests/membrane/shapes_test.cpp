@@ -78,3 +78,16 @@ TEST(Shapes, TransformScalesRotatesAndPlaces) {
   EXPECT_NEAR(q.x[0], 10.0, 1e-12);  // (3, 0) → scaled (6, 0) → rotated (0, 6) → placed
   EXPECT_NEAR(q.y[0], 26.0, 1e-12);
 }
+
+TEST(Shapes, TaylorDeformationOfEllipseAndCircle) {
+  // Ellipse L = 10, B = 5: D = (L − B)/(L + B) = 1/3; the inscribed 400-gon's second moments
+  // differ from the ellipse's by O((2π/400)²) ≈ 2.5e-4 relative, so 1e-3 on D. Its symmetry
+  // about both axes fixes θ to the rotation (0.3 rad) up to round-off, far from the origin.
+  double D, theta;
+  taylor_deformation(transformed(ellipse(400, 10.0, 5.0), 1.0, 0.3, 1000.0, 2000.0), D, theta);
+  EXPECT_NEAR(D, 1.0 / 3.0, 1e-3);
+  EXPECT_NEAR(theta, 0.3 * 180.0 / std::numbers::pi, 1e-6);
+  // A regular polygon has an isotropic moment tensor: D = 0 up to round-off.
+  taylor_deformation(transformed(circle(64, 8.0), 1.0, 0.0, 500.0, 500.0), D, theta);
+  EXPECT_LT(D, 1e-10);
+}
