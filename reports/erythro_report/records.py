@@ -124,20 +124,19 @@ def read_record(path):
         raise RecordError(f"{path}: cannot read result record: {exc}") from exc
 
 
+def _attrs(g, texts=(), floats=()):
+    """Keyword arguments: each name in `texts` read as text, each in `floats` as float."""
+    values = {name: attr_text(g, name) for name in texts}
+    values.update({name: attr_float(g, name) for name in floats})
+    return values
+
+
 def _read_root(f, path):
     return Record(
         path=path,
-        case=attr_text(f, "case"),
-        family=attr_text(f, "family"),
-        requirement=attr_text(f, "requirement"),
-        reference=attr_text(f, "reference"),
-        verdict=attr_text(f, "verdict"),
-        git_revision=attr_text(f, "git_revision"),
-        compiler=attr_text(f, "compiler"),
-        compile_flags=attr_text(f, "compile_flags"),
-        created_utc=attr_text(f, "created_utc"),
-        wall_time_s=attr_float(f, "wall_time_s"),
-        schema_version=attr_text(f, "schema_version"),
+        **_attrs(f, texts=("case", "family", "requirement", "reference", "verdict", "git_revision",
+                           "compiler", "compile_flags", "created_utc", "schema_version"),
+                 floats=("wall_time_s",)),
         parameters=_read_parameters(f),
         metrics=[_read_metric(n, g) for n, g in _subgroups(f, "metrics")],
         runs=_read_runs(f, path),
@@ -169,14 +168,8 @@ def _read_parameters(f):
 def _read_metric(name, g):
     return Metric(
         name=name,
-        description=attr_text(g, "description"),
-        unit=attr_text(g, "unit"),
-        value=attr_float(g, "value"),
-        expected=attr_float(g, "expected"),
-        tolerance=attr_float(g, "tolerance"),
-        comparison=attr_text(g, "comparison"),
-        tolerance_reason=attr_text(g, "tolerance_reason"),
-        verdict=attr_text(g, "verdict"),
+        **_attrs(g, texts=("description", "unit", "comparison", "tolerance_reason", "verdict"),
+                 floats=("value", "expected", "tolerance")),
     )
 
 
@@ -188,7 +181,7 @@ def _read_runs(f, path):
     if "columns" in group.attrs:
         columns = to_text_list(group.attrs["columns"])
         if len(columns) == 1 and "," in columns[0]:
-            # The C++ writer stores the order as one comma-separated string.
+            # Records written before schema 1 stored the order as one comma-separated string.
             columns = [c for c in columns[0].split(",") if c]
     else:
         columns = sorted(datasets)
@@ -204,15 +197,12 @@ def _read_convergence(name, g):
         asymptotic = bool(attr_float(g, "asymptotic", default=0.0))
     return Convergence(
         name=name,
-        norm=attr_text(g, "norm"),
         h=read_floats(g, "h"),
         error=read_floats(g, "error"),
         local_orders=read_floats(g, "local_orders"),
-        formal_order=attr_float(g, "formal_order"),
-        observed_order=attr_float(g, "observed_order"),
-        order_tolerance=attr_float(g, "order_tolerance"),
         asymptotic=asymptotic,
-        asymptotic_rule=attr_text(g, "asymptotic_rule"),
+        **_attrs(g, texts=("norm", "asymptotic_rule"),
+                 floats=("formal_order", "observed_order", "order_tolerance")),
     )
 
 
@@ -226,6 +216,5 @@ def _read_series(name, g):
     y_reference = read_floats(g, "y_reference") if "y_reference" in g else None
     if y_reference is not None and y_reference.size == 0:
         y_reference = None
-    return Series(name=name, title=attr_text(g, "title"), xlabel=attr_text(g, "xlabel"),
-                  ylabel=attr_text(g, "ylabel"), x=read_floats(g, "x"),
-                  y=read_floats(g, "y"), y_reference=y_reference)
+    return Series(name=name, x=read_floats(g, "x"), y=read_floats(g, "y"), y_reference=y_reference,
+                  **_attrs(g, texts=("title", "xlabel", "ylabel")))

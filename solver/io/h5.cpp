@@ -71,13 +71,22 @@ Handle open_group(hid_t parent, const std::string& name) {
 bool exists(hid_t parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
 
 namespace {
-void write_scalar_attr(hid_t obj, const std::string& name, hid_t type, const void* value) {
+// Replaces attribute `name` of obj with `value` (of HDF5 type `type`, shape `space`).
+void write_attr_in(hid_t obj, const std::string& name, hid_t type, const Handle& space, const void* value) {
   if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
-  Handle space(check(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose);
   Handle attr(check(H5Acreate2(obj, name.c_str(), type, space.id(), H5P_DEFAULT, H5P_DEFAULT),
                     "cannot create attribute '" + name + "' on " + object_name(obj)),
               H5Aclose);
   check_status(H5Awrite(attr.id(), type, value), "cannot write attribute '" + name + "'");
+}
+
+void write_scalar_attr(hid_t obj, const std::string& name, hid_t type, const void* value) {
+  write_attr_in(obj, name, type, Handle(check(H5Screate(H5S_SCALAR), "dataspace"), H5Sclose), value);
+}
+
+Handle open_attr(hid_t obj, const std::string& name) {
+  return {check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "no attribute '" + name + "' on " + object_name(obj)),
+          H5Aclose};
 }
 
 Handle string_type() {
@@ -103,26 +112,33 @@ void write_attr(hid_t obj, const std::string& name, const std::string& value) {
 }
 
 void write_attr(hid_t obj, const std::string& name, const std::vector<double>& values) {
-  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
   const hsize_t n = values.size();
-  Handle space(check(H5Screate_simple(1, &n, nullptr), "dataspace"), H5Sclose);
-  Handle attr(check(H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space.id(), H5P_DEFAULT, H5P_DEFAULT),
-                    "cannot create attribute '" + name + "'"),
-              H5Aclose);
-  check_status(H5Awrite(attr.id(), H5T_NATIVE_DOUBLE, values.data()), "cannot write attribute '" + name + "'");
+  write_attr_in(obj, name, H5T_NATIVE_DOUBLE, Handle(check(H5Screate_simple(1, &n, nullptr), "dataspace"), H5Sclose),
+                values.data());
+}
+
+void write_attr(hid_t obj, const std::string& name, const std::vector<std::string>& values) {
+  Handle type = string_type();
+  std::vector<const char*> texts;
+  for (const auto& v : values) texts.push_back(v.c_str());
+  const hsize_t n = values.size();
+  write_attr_in(obj, name, type.id(), Handle(check(H5Screate_simple(1, &n, nullptr), "dataspace"), H5Sclose),
+                texts.data());
+}
+
+void write_attrs(hid_t obj, std::initializer_list<std::pair<const char*, AttrValue>> attrs) {
+  for (const auto& [name, value] : attrs) std::visit([&](const auto& v) { write_attr(obj, name, v); }, value);
 }
 
 double read_attr_double(hid_t obj, const std::string& name) {
-  Handle attr(check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "no attribute '" + name + "' on " + object_name(obj)),
-              H5Aclose);
+  Handle attr = open_attr(obj, name);
   double value = 0.0;
   check_status(H5Aread(attr.id(), H5T_NATIVE_DOUBLE, &value), "cannot read attribute '" + name + "'");
   return value;
 }
 
 std::string read_attr_string(hid_t obj, const std::string& name) {
-  Handle attr(check(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "no attribute '" + name + "' on " + object_name(obj)),
-              H5Aclose);
+  Handle attr = open_attr(obj, name);
   Handle type = string_type();
   char* text = nullptr;
   check_status(H5Aread(attr.id(), type.id(), &text), "cannot read attribute '" + name + "'");
@@ -148,7 +164,7 @@ void write_dataset(hid_t parent, const std::string& name, const std::vector<std:
   const hsize_t n = data.size();
   Handle space(check(H5Screate_simple(1, &n, nullptr), "dataspace"), H5Sclose);
   Handle set(check(H5Dcreate2(parent, name.c_str(), type.id(), space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                   "cannot create dataset '" + name + "'"),
+                   "cannot create dataset '" + name + "' in " + object_name(parent)),
              H5Dclose);
   std::vector<const char*> pointers;
   for (const auto& s : data) pointers.push_back(s.c_str());

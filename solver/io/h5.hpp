@@ -3,7 +3,10 @@
 // Every failure throws OutputError naming the file and the object.
 #include <hdf5.h>
 
+#include <initializer_list>
 #include <string>
+#include <utility>
+#include <variant>
 #include <vector>
 
 namespace erythro::io::h5 {
@@ -38,6 +41,10 @@ void write_attr(hid_t obj, const std::string& name, double value);
 void write_attr(hid_t obj, const std::string& name, long value);
 void write_attr(hid_t obj, const std::string& name, const std::string& value);
 void write_attr(hid_t obj, const std::string& name, const std::vector<double>& values);
+void write_attr(hid_t obj, const std::string& name, const std::vector<std::string>& values);
+// Several scalar attributes at once: write_attrs(g, {{"value", 1.0}, {"unit", "m"}}).
+using AttrValue = std::variant<double, long, std::string>;
+void write_attrs(hid_t obj, std::initializer_list<std::pair<const char*, AttrValue>> attrs);
 double read_attr_double(hid_t obj, const std::string& name);
 std::string read_attr_string(hid_t obj, const std::string& name);
 

@@ -67,11 +67,7 @@ std::string utc_now() {
 }
 
 void write_value_attr(hid_t obj, const std::string& key, const Value& value) {
-  if (std::holds_alternative<double>(value)) {
-    h5::write_attr(obj, key, std::get<double>(value));
-  } else {
-    h5::write_attr(obj, key, std::get<std::string>(value));
-  }
+  std::visit([&](const auto& v) { h5::write_attr(obj, key, v); }, value);
 }
 
 // HDF5 object names may not contain '/' or be '.'.
@@ -91,9 +87,9 @@ void write_runs(hid_t root, const std::vector<std::map<std::string, Value>>& run
       if (seen.insert(key).second) columns.push_back(key);
     }
   }
-  std::string column_list;
+  std::vector<std::string> names;  // of the datasets, in column order
   for (const auto& column : columns) {
-    column_list += (column_list.empty() ? "" : ",") + column;
+    names.push_back(safe_name(column));
     bool numeric = true;
     for (const auto& row : runs) {
       auto it = row.find(column);
@@ -105,7 +101,7 @@ void write_runs(hid_t root, const std::vector<std::map<std::string, Value>>& run
         auto it = row.find(column);
         data.push_back(it == row.end() ? std::nan("") : std::get<double>(it->second));
       }
-      h5::write_dataset(group.id(), safe_name(column), data);
+      h5::write_dataset(group.id(), names.back(), data);
     } else {
       std::vector<std::string> data;
       for (const auto& row : runs) {
@@ -118,10 +114,10 @@ void write_runs(hid_t root, const std::vector<std::map<std::string, Value>>& run
           data.push_back(std::get<std::string>(it->second));
         }
       }
-      h5::write_dataset(group.id(), safe_name(column), data);
+      h5::write_dataset(group.id(), names.back(), data);
     }
   }
-  h5::write_attr(group.id(), "columns", column_list);
+  h5::write_attr(group.id(), "columns", names);
 }
 
 }  // namespace
@@ -131,17 +127,17 @@ void ResultRecord::write(const std::string& path) const {
   {
     h5::Handle file = h5::create_file(tmp);
     const hid_t root = file.id();
-    h5::write_attr(root, "schema_version", 1L);
-    h5::write_attr(root, "case", case_name_);
-    h5::write_attr(root, "family", family_);
-    h5::write_attr(root, "requirement", requirement_);
-    h5::write_attr(root, "reference", reference_);
-    h5::write_attr(root, "verdict", std::string(passed() ? "pass" : "fail"));
-    h5::write_attr(root, "git_revision", build_info::git_revision());
-    h5::write_attr(root, "compiler", build_info::compiler());
-    h5::write_attr(root, "compile_flags", build_info::compile_flags());
-    h5::write_attr(root, "created_utc", utc_now());
-    h5::write_attr(root, "wall_time_s", wall_time_s_);
+    h5::write_attrs(root, {{"schema_version", 1L},
+                           {"case", case_name_},
+                           {"family", family_},
+                           {"requirement", requirement_},
+                           {"reference", reference_},
+                           {"verdict", passed() ? "pass" : "fail"},
+                           {"git_revision", build_info::git_revision()},
+                           {"compiler", build_info::compiler()},
+                           {"compile_flags", build_info::compile_flags()},
+                           {"created_utc", utc_now()},
+                           {"wall_time_s", wall_time_s_}});
 
     h5::Handle params = h5::create_group(root, "parameters");
     for (const auto& [key, value] : parameters_) write_value_attr(params.id(), key, value);
@@ -149,14 +145,14 @@ void ResultRecord::write(const std::string& path) const {
     h5::Handle metrics = h5::create_group(root, "metrics");
     for (const auto& m : metrics_) {
       h5::Handle g = h5::create_group(metrics.id(), safe_name(m.name));
-      h5::write_attr(g.id(), "value", m.value);
-      h5::write_attr(g.id(), "expected", m.expected);
-      h5::write_attr(g.id(), "tolerance", m.tolerance);
-      h5::write_attr(g.id(), "comparison", to_string(m.comparison));
-      h5::write_attr(g.id(), "tolerance_reason", m.tolerance_reason);
-      h5::write_attr(g.id(), "description", m.description);
-      h5::write_attr(g.id(), "unit", m.unit);
-      h5::write_attr(g.id(), "verdict", std::string(m.passed() ? "pass" : "fail"));
+      h5::write_attrs(g.id(), {{"value", m.value},
+                               {"expected", m.expected},
+                               {"tolerance", m.tolerance},
+                               {"comparison", to_string(m.comparison)},
+                               {"tolerance_reason", m.tolerance_reason},
+                               {"description", m.description},
+                               {"unit", m.unit},
+                               {"verdict", m.passed() ? "pass" : "fail"}});
     }
 
     write_runs(root, runs_);
@@ -167,12 +163,12 @@ void ResultRecord::write(const std::string& path) const {
       h5::write_dataset(g.id(), "h", s.h);
       h5::write_dataset(g.id(), "error", s.error);
       h5::write_dataset(g.id(), "local_orders", s.local_orders);
-      h5::write_attr(g.id(), "norm", s.norm);
-      h5::write_attr(g.id(), "formal_order", s.formal_order);
-      h5::write_attr(g.id(), "observed_order", s.observed_order);
-      h5::write_attr(g.id(), "order_tolerance", s.order_tolerance);
-      h5::write_attr(g.id(), "asymptotic", s.asymptotic ? 1L : 0L);
-      h5::write_attr(g.id(), "asymptotic_rule", s.asymptotic_rule);
+      h5::write_attrs(g.id(), {{"norm", s.norm},
+                               {"formal_order", s.formal_order},
+                               {"observed_order", s.observed_order},
+                               {"order_tolerance", s.order_tolerance},
+                               {"asymptotic", s.asymptotic ? 1L : 0L},
+                               {"asymptotic_rule", s.asymptotic_rule}});
     }
 
     h5::Handle speed = h5::create_group(root, "speed_error");
@@ -189,9 +185,7 @@ void ResultRecord::write(const std::string& path) const {
       h5::write_dataset(g.id(), "x", s.x);
       h5::write_dataset(g.id(), "y", s.y);
       if (!s.y_reference.empty()) h5::write_dataset(g.id(), "y_reference", s.y_reference);
-      h5::write_attr(g.id(), "title", s.title);
-      h5::write_attr(g.id(), "xlabel", s.xlabel);
-      h5::write_attr(g.id(), "ylabel", s.ylabel);
+      h5::write_attrs(g.id(), {{"title", s.title}, {"xlabel", s.xlabel}, {"ylabel", s.ylabel}});
     }
   }
   commit_temporary(path);

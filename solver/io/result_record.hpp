@@ -10,7 +10,7 @@
 //   /metrics/<name>   attrs value, expected, tolerance, comparison, tolerance_reason,
 //                     description, unit, verdict
 //   /runs/<column>    one dataset per column (float64 or string), one row per run;
-//                     attr `columns` lists them in order
+//                     attr `columns`: string array of the dataset names, in order
 //   /convergence/<s>  datasets h, error, local_orders; attrs norm, formal_order,
 //                     observed_order, order_tolerance, asymptotic (0|1), asymptotic_rule
 //   /speed_error/<s>  datasets wall_time_s, error, label

@@ -46,37 +46,37 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
   setup_ = setup;
   const hid_t root = file_.id();
   h5::Handle meta = h5::create_group(root, "metadata");
-  h5::write_attr(meta.id(), "erythro_version", build_info::version());
-  h5::write_attr(meta.id(), "git_revision", build_info::git_revision());
-  h5::write_attr(meta.id(), "compiler", build_info::compiler());
-  h5::write_attr(meta.id(), "compile_flags", build_info::compile_flags());
-  h5::write_attr(meta.id(), "threads", static_cast<long>(omp_get_max_threads()));
-  h5::write_attr(meta.id(), "scene_path", scene.source_path);
-  h5::write_attr(meta.id(), "scene_text", scene.source_text);
-  h5::write_attr(meta.id(), "scene_name", scene.name);
-  h5::write_attr(meta.id(), "status", std::string("running"));
-  h5::write_attr(meta.id(), "spacing_um", setup.scales.length_m * 1e6);
-  h5::write_attr(meta.id(), "time_step_s", setup.scales.time_s);
-  h5::write_attr(meta.id(), "reference_density_kg_m3", setup.scales.density_kg_m3);
-  h5::write_attr(meta.id(), "tau", setup.collision.tau);
-  h5::write_attr(meta.id(), "collision", std::string(fluid::to_string(setup.collision.model)));
-  h5::write_attr(meta.id(), "trt_magic", setup.collision.trt_magic);
-  h5::write_attr(meta.id(), "lattice_viscosity", setup.viscosity);
-  h5::write_attr(meta.id(), "expected_mach", setup.mach);
-  h5::write_attr(meta.id(), "reynolds", setup.reynolds);
-  h5::write_attr(meta.id(), "total_steps", setup.total_steps);
-  h5::write_attr(meta.id(), "coupling", std::string(setup.membrane ? "immersed boundary" : "fluid only"));
+  h5::write_attrs(meta.id(), {{"erythro_version", build_info::version()},
+                              {"git_revision", build_info::git_revision()},
+                              {"compiler", build_info::compiler()},
+                              {"compile_flags", build_info::compile_flags()},
+                              {"threads", static_cast<long>(omp_get_max_threads())},
+                              {"scene_path", scene.source_path},
+                              {"scene_text", scene.source_text},
+                              {"scene_name", scene.name},
+                              {"status", "running"},
+                              {"spacing_um", setup.scales.length_m * 1e6},
+                              {"time_step_s", setup.scales.time_s},
+                              {"reference_density_kg_m3", setup.scales.density_kg_m3},
+                              {"tau", setup.collision.tau},
+                              {"collision", std::string(fluid::to_string(setup.collision.model))},
+                              {"trt_magic", setup.collision.trt_magic},
+                              {"lattice_viscosity", setup.viscosity},
+                              {"expected_mach", setup.mach},
+                              {"reynolds", setup.reynolds},
+                              {"total_steps", setup.total_steps},
+                              {"coupling", setup.membrane ? "immersed boundary" : "fluid only"}});
   if (setup.membrane) {
-    h5::write_attr(meta.id(), "cell_count", static_cast<long>(setup.membrane->cells.size()));
-    h5::write_attr(meta.id(), "membrane_kernel", std::string(ib::to_string(setup.membrane->kernel)));
-    h5::write_attr(meta.id(), "membrane_law", std::string(membrane::to_string(setup.membrane->model.tension.type)));
+    h5::write_attrs(meta.id(), {{"cell_count", static_cast<long>(setup.membrane->cells.size())},
+                                {"membrane_kernel", std::string(ib::to_string(setup.membrane->kernel))},
+                                {"membrane_law", std::string(membrane::to_string(setup.membrane->model.tension.type))}});
   }
 
   h5::Handle grid = h5::create_group(root, "grid");
   const double h_um = setup.scales.length_m * 1e6;
-  h5::write_attr(grid.id(), "nx", static_cast<long>(setup.grid.nx));
-  h5::write_attr(grid.id(), "ny", static_cast<long>(setup.grid.ny));
-  h5::write_attr(grid.id(), "spacing_um", h_um);
+  h5::write_attrs(grid.id(), {{"nx", static_cast<long>(setup.grid.nx)},
+                              {"ny", static_cast<long>(setup.grid.ny)},
+                              {"spacing_um", h_um}});
   h5::write_attr(grid.id(), "origin_um", std::vector<double>{0.5 * h_um, 0.5 * h_um});
 
   diagnostics_group_ = h5::create_group(root, "diagnostics");
@@ -128,8 +128,7 @@ void RunWriter::on_fields(long step, const fluid::Moments& m) {
   const std::string name = frame_group_name(step);
   h5::Handle frame = h5::create_group(fields_group_.id(), name);
   const double time_s = static_cast<double>(step) * s.time_s;
-  h5::write_attr(frame.id(), "step", step);
-  h5::write_attr(frame.id(), "time_s", time_s);
+  h5::write_attrs(frame.id(), {{"step", step}, {"time_s", time_s}});
   const std::vector<hsize_t> shape{static_cast<hsize_t>(g.ny), static_cast<hsize_t>(g.nx)};
   if (write_density_) {
     std::vector<double> rho(m.rho.size());
@@ -155,9 +154,9 @@ void RunWriter::on_cells(long step, const membrane::ImmersedCells& cells) {
   const auto& s = setup_.scales;
   const double to_um = s.length_m * 1e6;
   h5::Handle frame = h5::create_group(cells_group_.id(), frame_group_name(step));
-  h5::write_attr(frame.id(), "step", step);
-  h5::write_attr(frame.id(), "time_s", static_cast<double>(step) * s.time_s);
-  h5::write_attr(frame.id(), "cells", static_cast<long>(cells.cell_count()));
+  h5::write_attrs(frame.id(), {{"step", step},
+                               {"time_s", static_cast<double>(step) * s.time_s},
+                               {"cells", static_cast<long>(cells.cell_count())}});
   const std::size_t M = cells.marker_count();
   std::vector<double> xy(2 * M), offsets;
   for (int c = 0; c < cells.cell_count(); ++c) {
@@ -176,11 +175,11 @@ void RunWriter::on_cells(long step, const membrane::ImmersedCells& cells) {
 
 void RunWriter::on_finish(const sim::RunSummary& summary) {
   h5::Handle meta = h5::open_group(file_.id(), "metadata");
-  h5::write_attr(meta.id(), "status", sim::to_string(summary.status));
-  h5::write_attr(meta.id(), "diagnosis", summary.diagnosis);
-  h5::write_attr(meta.id(), "steps", summary.steps);
-  h5::write_attr(meta.id(), "wall_time_s", summary.wall_time_s);
-  h5::write_attr(meta.id(), "mlups", summary.mlups);
+  h5::write_attrs(meta.id(), {{"status", sim::to_string(summary.status)},
+                              {"diagnosis", summary.diagnosis},
+                              {"steps", summary.steps},
+                              {"wall_time_s", summary.wall_time_s},
+                              {"mlups", summary.mlups}});
   meta.reset();
   close_and_commit();
 }

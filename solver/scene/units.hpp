@@ -62,6 +62,8 @@ struct LatticeSetup {
   long total_steps = 0;
   double viscosity = 0.0;           // lattice kinematic viscosity ν = (τ − ½)/3
   double expected_max_speed = 0.0;  // lattice, estimated from walls, force, initial state
+  std::string speed_source;         // the scene key that sets expected_max_speed ("" if at rest)
+  bool speed_is_estimate = false;   // force along a periodic direction: no steady state, bounded guess
   double mach = 0.0;                // expected_max_speed / c_s
   double reynolds = 0.0;            // expected_max_speed × L / ν (L: channel width or domain)
   double reynolds_length_m = 0.0;

@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "input_error_matchers.hpp"
+#include "scene_fixtures.hpp"
 #include "membrane/polygon.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
@@ -16,26 +17,13 @@
 namespace erythro::scene {
 namespace {
 
+using testing::channel_scene;
+using testing::derive;
 using testing::error_of;
 
 // 20 µm × 10 µm channel, h = 0.5 µm (40 × 20 nodes), walls at bottom and top, τ = 1.
 // ν = 1 cP / 1000 kg/m³ = 1e-6 m²/s → Δt = ½ h² / (3ν) = 0.5 · 0.25e-12 / 3e-6 = 4.1667e-8 s.
-const std::string channel = R"(
-[domain]
-size_um = [20, 10]
-spacing_um = 0.5
-[time]
-tau = 1.0
-[fluid]
-density_kg_m3 = 1000
-viscosity_cP = 1.0
-[boundaries.bottom]
-type = "wall"
-[boundaries.top]
-type = "wall"
-[run]
-steps = 10
-)";
+const std::string channel = channel_scene("20, 10", "0.5", "1.0", "10");
 
 const std::string membrane_table = R"(
 [membrane]
@@ -49,9 +37,6 @@ kernel = "peskin4"
 std::string cell(const std::string& body) { return "\n[[cells]]\n" + body + "\n"; }
 const std::string circle_at_centre = cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 32");
 
-LatticeSetup derive(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return derive_lattice(parse_scene(text, "c.toml", overrides));
-}
 
 TEST(SceneCells, AbsentMeansFluidOnly) {
   const Scene s = parse_scene(channel, "c.toml");

@@ -11,34 +11,20 @@
 
 #include "common/error.hpp"
 #include "input_error_matchers.hpp"
+#include "scene_fixtures.hpp"
 #include "scene/scene_parser.hpp"
 
 namespace erythro::scene {
 namespace {
 
+using testing::channel_scene;
+using testing::derive;
 using testing::error_of;
 
-// A 10 µm × 10 µm channel: periodic in x, walls at bottom and top.
-const std::string channel = R"(
-[domain]
-size_um = [10, 10]
-spacing_um = 1.0
-[time]
-tau = 0.8
-[fluid]
-density_kg_m3 = 1000
-viscosity_cP = 1.0
-[boundaries.bottom]
-type = "wall"
-[boundaries.top]
-type = "wall"
-[run]
-steps = 1000
-)";
+// A 10 µm × 10 µm channel: periodic in x, walls at bottom and top; and the same box periodic on all sides.
+const std::string channel = channel_scene("10, 10", "1.0", "0.8", "1000");
+const std::string periodic = channel_scene("10, 10", "1.0", "0.8", "1000", /*walls=*/false);
 
-LatticeSetup derive(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  return derive_lattice(parse_scene(text, "u.toml", overrides));
-}
 std::string derive_error(const std::string& text, const std::vector<std::string>& overrides = {}) {
   return error_of([&] { derive(text, overrides); });
 }
@@ -79,9 +65,6 @@ TEST(Units, VelocityForceAndFrequencyConversion) {
 }
 
 TEST(Units, InitialVelocityAndStepsFromDuration) {
-  std::string periodic = channel;
-  for (const char* side : {"[boundaries.bottom]\ntype = \"wall\"\n", "[boundaries.top]\ntype = \"wall\"\n"})
-    periodic.erase(periodic.find(side), std::string(side).size());
   const LatticeSetup s = derive(periodic, {"initial.type=uniform", "initial.velocity_um_s=[-500, 200]"});
   EXPECT_DOUBLE_EQ(s.initial_velocity[0], -5e-5);
   EXPECT_DOUBLE_EQ(s.initial_velocity[1], 2e-5);
@@ -95,9 +78,6 @@ TEST(Units, InitialVelocityAndStepsFromDuration) {
 }
 
 TEST(Units, TaylorGreenSpeedInANonSquareBox) {
-  std::string periodic = channel;
-  for (const char* side : {"[boundaries.bottom]\ntype = \"wall\"\n", "[boundaries.top]\ntype = \"wall\"\n"})
-    periodic.erase(periodic.find(side), std::string(side).size());
   const std::vector<std::string> tg{"initial.type=taylor_green", "initial.velocity_um_s=[1000, 0]"};
   // v = U (kx/ky) sin cos, kx/ky = ny/nx: the peak speed is U max(1, ny/nx).
   std::vector<std::string> wide = tg, tall = tg;
@@ -122,9 +102,6 @@ TEST(Units, PoiseuilleSpeedMachAndReynolds) {
 }
 
 TEST(Units, ForceInPeriodicBoxIsAnEstimate) {
-  std::string periodic = channel;
-  for (const char* side : {"[boundaries.bottom]\ntype = \"wall\"\n", "[boundaries.top]\ntype = \"wall\"\n"})
-    periodic.erase(periodic.find(side), std::string(side).size());
   const std::vector<std::string> force{"body_force.density_N_m3=[1e4, 0]"};
   const LatticeSetup s = derive(periodic, force);
   EXPECT_DOUBLE_EQ(s.expected_max_speed, 1.25e-5);  // Poiseuille with H = domain size
@@ -135,7 +112,7 @@ TEST(Units, ForceInPeriodicBoxIsAnEstimate) {
 
 TEST(Units, TauMarginRejection) {
   const std::string m = derive_error(channel, {"time.tau=0.502"});
-  EXPECT_CONTAINS(m, "u.toml: key 'time.tau' = 0.502 is out of range: must be >= 0.505");
+  EXPECT_CONTAINS(m, "test.toml: key 'time.tau' = 0.502 is out of range: must be >= 0.505");
   EXPECT_CONTAINS(m, "limits.min_tau_margin");
 
   std::string by_step = channel;

@@ -1,0 +1,177 @@
+// [membrane] and [[cells]] → lattice units, and the cell set-up checks (units_detail.hpp).
+// Moduli: membrane/membrane_units.hpp; stability numbers: membrane/stability.hpp.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "membrane/membrane_units.hpp"
+#include "membrane/shapes.hpp"
+#include "scene/units_detail.hpp"
+
+namespace erythro::scene::detail {
+namespace {
+
+// Shortest distance between two markers along axis a, using the nearest periodic image.
+double axis_gap(double d, int n, bool periodic) {
+  if (periodic) d -= n * std::round(d / n);
+  return d;
+}
+
+// Even-odd rule: is (px, py) inside polygon p?
+bool inside(const membrane::Polygon& p, double px, double py) {
+  bool in = false;
+  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
+    if ((p.y[i] > py) != (p.y[j] > py) &&
+        px < (p.x[j] - p.x[i]) * (py - p.y[i]) / (p.y[j] - p.y[i]) + p.x[i])
+      in = !in;
+  }
+  return in;
+}
+
+std::string cell_key(std::size_t i, const char* key) { return "cells[" + std::to_string(i) + "]." + key; }
+
+}  // namespace
+
+MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L) {
+  const MembraneSpec spec = s.membrane.value_or(MembraneSpec{});
+  MembraneSetup M;
+  if (!ib::parse_kernel(spec.kernel, M.kernel))
+    reject(s, "membrane.kernel = \"" + spec.kernel + "\" is not one of \"cosine4\", \"peskin4\", \"roma3\", \"linear2\"");
+  membrane::TensionLawType law{};
+  if (!membrane::parse_tension_law(spec.law, law))
+    reject(s, "membrane.law = \"" + spec.law + "\" is not one of \"neo_hookean\", \"skalak\", \"hookean\"");
+  // SI, then the layer's own conversion (membrane_units.hpp): E_s [N/m], E_B [J], k_A [Pa].
+  const membrane::LatticeScales ms{L.scales.length_m, L.scales.time_s, L.scales.density_kg_m3};
+  M.model.tension.type = law;
+  M.model.tension.modulus = membrane::tension_to_lattice(spec.shear_modulus_dyn_cm * membrane::kDynPerCm, ms);
+  M.model.tension.skalak_c = spec.skalak_c;
+  M.model.bending = membrane::bending_to_lattice(spec.bending_modulus_dyn_cm * membrane::kDynCm, ms);
+  M.model.area_modulus = membrane::pressure_to_lattice(spec.area_modulus_Pa, ms);
+
+  const double h_um = s.domain.spacing_um;
+  const int n[2] = {L.grid.nx, L.grid.ny};
+  const bool periodic[2] = {!wall_bounded(s, 0), !wall_bounded(s, 1)};
+  for (std::size_t i = 0; i < s.cells.size(); ++i) {
+    const CellSpec& c = s.cells[i];
+    if (c.markers != 0 && c.markers < 8)
+      reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(c.markers) + " must be >= 8");
+    std::string size_key = cell_key(i, "radius_um"), size_shown = num(c.radius_um) + " µm";
+    const auto make = [&](int count) {
+      if (c.shape == "circle") return membrane::circle(count, c.radius_um / h_um);
+      if (c.shape == "ellipse") return membrane::ellipse(count, c.semi_axes_um[0] / h_um, c.semi_axes_um[1] / h_um);
+      if (c.shape == "biconcave") return membrane::biconcave(count, c.radius_um / h_um);
+      reject(s, "key '" + cell_key(i, "shape") + "' = \"" + c.shape + "\" is not one of \"circle\", \"ellipse\", \"biconcave\"");
+    };
+    if (c.shape == "ellipse") {
+      size_key = cell_key(i, "semi_axes_um");
+      size_shown = vec(c.semi_axes_um) + " µm";
+    }
+    // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16.
+    const int m = c.markers != 0 ? static_cast<int>(c.markers)
+                                 : std::max(16, static_cast<int>(std::ceil(membrane::perimeter(make(512)) * c.scale /
+                                                                            kAutoMarkerSpacing)));
+    const membrane::Polygon base = make(m);
+    CellSetup cell;
+    cell.shape = membrane::transformed(base, c.scale, c.angle_deg * std::numbers::pi / 180.0, c.center_um[0] / h_um,
+                                       c.center_um[1] / h_um);
+    membrane::make_counter_clockwise(cell.shape);
+    cell.equivalent_radius = std::sqrt(std::abs(membrane::signed_area(cell.shape)) / std::numbers::pi);
+    cell.min_edge = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 0; e < cell.shape.size(); ++e) {
+      const std::size_t f = (e + 1) % cell.shape.size();
+      const double len = std::hypot(cell.shape.x[f] - cell.shape.x[e], cell.shape.y[f] - cell.shape.y[e]);
+      cell.min_edge = std::min(cell.min_edge, len);
+      cell.max_edge = std::max(cell.max_edge, len);
+    }
+    if (cell.equivalent_radius < kMinCellRadius)
+      reject(s, "resolution too coarse: cell " + std::to_string(i) + " has " + size_key + " = " + size_shown +
+                    " (× scale " + num(c.scale) + "), an equivalent radius √(A/π) of " + num(cell.equivalent_radius) +
+                    " h, below " + num(kMinCellRadius) + " h: enlarge the cell or make domain.spacing_um <= " +
+                    num(h_um * cell.equivalent_radius / kMinCellRadius) + " µm");
+    if (cell.max_edge > kMaxMarkerSpacing)
+      reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too few: markers are up to " +
+                    num(cell.max_edge) + " h apart, more than " + num(kMaxMarkerSpacing) +
+                    " h (fluid leaks between markers): use markers >= " +
+                    std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / kMaxMarkerSpacing))));
+    if (cell.min_edge < kMinMarkerSpacing)
+      reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too many: markers are as close as " +
+                    num(cell.min_edge) + " h, less than " + num(kMinMarkerSpacing) +
+                    " h (over-resolved membrane, stiff and noisy): use markers <= " +
+                    std::to_string(static_cast<long>(std::floor(m * cell.min_edge / kMinMarkerSpacing))));
+    const double centre[2] = {c.center_um[0] / h_um, c.center_um[1] / h_um};
+    for (int a = 0; a < 2; ++a)
+      if (!(centre[a] >= 0.0 && centre[a] < n[a]))
+        reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm lies outside the domain " +
+                      vec(s.domain.size_um) + " µm");
+    for (int a = 0; a < 2; ++a) {
+      if (periodic[a]) continue;
+      const auto& coords = a == 0 ? cell.shape.x : cell.shape.y;
+      const auto [lo, hi] = std::minmax_element(coords.begin(), coords.end());
+      const double gap = std::min(*lo, n[a] - *hi);
+      if (gap < kMinCellGap)
+        reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm places cell " +
+                      std::to_string(i) + " " + num(gap) + " h from the " +
+                      (a == 0 ? "left/right" : "bottom/top") + " wall, closer than " + num(kMinCellGap) +
+                      " h (overlaps the wall): move it inward or shrink it");
+    }
+    for (std::size_t j = 0; j < M.cells.size(); ++j) {
+      const membrane::Polygon& o = M.cells[j].shape;
+      double closest = std::numeric_limits<double>::infinity();
+      for (std::size_t p = 0; p < cell.shape.size(); ++p)
+        for (std::size_t q = 0; q < o.size(); ++q)
+          closest = std::min(closest, std::hypot(axis_gap(cell.shape.x[p] - o.x[q], n[0], periodic[0]),
+                                                 axis_gap(cell.shape.y[p] - o.y[q], n[1], periodic[1])));
+      const bool nested = inside(o, cell.shape.x[0], cell.shape.y[0]) || inside(cell.shape, o.x[0], o.y[0]);
+      if (nested || closest < kMinCellGap)
+        reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm makes cell " +
+                      std::to_string(i) + " overlap cell " + std::to_string(j) + " (" + cell_key(j, "center_um") +
+                      " = " + vec(s.cells[j].center_um) + " µm): " +
+                      (nested ? std::string("one lies inside the other")
+                              : "their markers are " + num(closest) + " h apart, closer than " + num(kMinCellGap) + " h") +
+                      "; move them apart");
+    }
+    M.cells.push_back(std::move(cell));
+  }
+
+  // Explicit-update stability (membrane/stability.hpp): Π = modulus Δt²/(ρ0 h^k) < limit.
+  membrane::StabilityInput in;
+  in.kernel = M.kernel;
+  in.model = M.model;
+  in.viscosity = L.viscosity;
+  in.density = 1.0;
+  in.max_stretch = 1.0;  // cells start at their rest shape
+  M.stability = membrane::estimate_stability(in);
+  if (!M.stability.acceptable()) {
+    const auto& e = M.stability;
+    struct Term {
+      const char* key;
+      std::string shown;
+      const char* number;
+      double value, limit;
+    };
+    const Term terms[] = {
+        {"membrane.shear_modulus_dyn_cm", num(spec.shear_modulus_dyn_cm) + " dyn/cm", "Π_T = (dT/dλ) Δt²/(ρ0 h³)",
+         e.tension_number, e.tension_limit},
+        {"membrane.bending_modulus_dyn_cm", num(spec.bending_modulus_dyn_cm) + " dyn·cm", "Π_B = E_B Δt²/(ρ0 h⁵)",
+         e.bending_number, e.bending_limit},
+        {"membrane.area_modulus_Pa", num(spec.area_modulus_Pa) + " Pa", "Π_A = k_A Δt²/(ρ0 h²)", e.area_number,
+         e.area_limit}};
+    const Term* worst = &terms[0];
+    for (const Term& t : terms)
+      if (t.value / t.limit > worst->value / worst->limit) worst = &t;
+    const double factor = std::sqrt(worst->limit / worst->value);
+    reject(s, "key '" + std::string(worst->key) + "' = " + worst->shown +
+                  " is outside the membrane's stability limit: " + worst->number + " = " + num(worst->value) +
+                  " exceeds " + num(worst->limit) + " (explicit immersed-boundary update, " +
+                  std::string(ib::to_string(M.kernel)) + " kernel, membrane::estimate_stability, " +
+                  "docs/verification-ib-membrane.md); lower " + worst->key + " by a factor " +
+                  num(1.0 / (factor * factor)) + ", or shrink the time step by a factor " + num(1.0 / factor) + " (" +
+                  (s.time.tau ? "time.tau <= " + num(0.5 + (L.collision.tau - 0.5) * factor)
+                              : "time.step_s <= " + num(L.scales.time_s * factor) + " s") +
+                  ") or refine domain.spacing_um");
+  }
+  return M;
+}
+
+}  // namespace erythro::scene::detail

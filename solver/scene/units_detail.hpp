@@ -1,0 +1,39 @@
+#pragma once
+// Shared by units.cpp and cell_checks.cpp (private to scene/): number formatting
+// for messages, the rejection of a set-up, and the cell set-up.
+#include <array>
+#include <cstdio>
+#include <string>
+
+#include "common/error.hpp"
+#include "scene/scene.hpp"
+#include "scene/units.hpp"
+
+namespace erythro::scene::detail {
+
+inline std::string num(double v) {
+  char buf[48];
+  std::snprintf(buf, sizeof(buf), "%.6g", v);
+  return buf;
+}
+inline std::string vec(const std::array<double, 2>& v) {
+  std::string out(1, '[');  // built by appending: GCC 12 -Wrestrict misfires on "lit" + string&&
+  return out.append(num(v[0])).append(", ").append(num(v[1])).append("]");
+}
+inline std::string origin(const Scene& s) { return s.source_path.empty() ? "scene" : s.source_path; }
+
+[[noreturn]] inline void reject(const Scene& s, const std::string& what) { throw InputError(origin(s) + ": " + what); }
+
+inline bool is_wall(const SideSpec& side) { return side.type != "periodic"; }
+// Axis 0 (x) is bounded by the left/right sides, axis 1 (y) by bottom/top.
+inline bool wall_bounded(const Scene& s, int axis) {
+  return axis == 0 ? is_wall(s.boundaries.left) : is_wall(s.boundaries.bottom);
+}
+
+// [membrane] and [[cells]] → lattice moduli, placed marker polygons and the stability
+// estimate. Rules (docs/scenes.md): equivalent radius >= kMinCellRadius h, marker
+// spacing in [kMinMarkerSpacing, kMaxMarkerSpacing] h, markers >= kMinCellGap h from
+// another cell's markers and from a wall, stability numbers below their limits.
+MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L);
+
+}  // namespace erythro::scene::detail
