@@ -8,7 +8,7 @@ PACKAGES=(
   libeigen3-dev libhdf5-dev hdf5-tools
   libtomlplusplus-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3 python3-numpy python3-matplotlib python3-h5py python3-sympy
+  python3 python3-numpy python3-scipy python3-matplotlib python3-h5py python3-sympy
 )
 
 missing=()
