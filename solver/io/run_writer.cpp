@@ -17,6 +17,7 @@ constexpr const char* kH5Name = "run.h5";
 constexpr const char* kXdmfName = "run.xdmf";
 const char* const kSeriesNames[] = {"step", "time_s", "total_mass_kg_per_m", "kinetic_energy_J_per_m",
                                     "max_speed_um_s", "max_mach"};
+constexpr std::size_t kClockSeries = 2;  // step, time_s: also in a still-medium (no fluid) run
 
 std::string frame_group_name(long step) {
   char name[32];
@@ -65,11 +66,33 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
                               {"expected_mach", setup.mach},
                               {"reynolds", setup.reynolds},
                               {"total_steps", setup.total_steps},
-                              {"coupling", setup.membrane ? "immersed boundary" : "fluid only"}});
+                              {"coupling", !setup.has_fluid ? "no fluid"
+                                           : setup.membrane ? "immersed boundary"
+                                                            : "fluid only"}});
+  if (const auto& T = setup.transport) {
+    std::string names;
+    for (const auto& sp : T->species) names += (names.empty() ? "" : ",") + sp.name;
+    h5::write_attrs(meta.id(), {{"transport_coupling", T->coupling},
+                                {"transport_time_step_s", T->time_step_s},
+                                {"fluid_steps_per_transport_step", T->fluid_steps_per_step},
+                                {"species", names},
+                                {"hemoglobin_species", T->hemoglobin_species >= 0
+                                                           ? T->species[static_cast<std::size_t>(T->hemoglobin_species)].name
+                                                           : std::string("")}});
+  }
   if (setup.membrane) {
     h5::write_attrs(meta.id(), {{"cell_count", static_cast<long>(setup.membrane->cells.size())},
                                 {"membrane_kernel", std::string(ib::to_string(setup.membrane->kernel))},
-                                {"membrane_law", std::string(membrane::to_string(setup.membrane->model.tension.type))}});
+                                {"membrane_law", std::string(membrane::to_string(setup.membrane->model.tension.type))},
+                                {"interior_method", std::string(interior::to_string(setup.membrane->indicator))},
+                                {"interior_lattice_viscosity", setup.membrane->interior_viscosity},
+                                {"index_update_interval", setup.membrane->index_update_interval},
+                                {"aggregation", setup.membrane->aggregation ? "morse" : "none"}});
+    if (const auto& a = setup.membrane->aggregation)
+      h5::write_attrs(meta.id(), {{"morse_De_lattice", a->De},
+                                  {"morse_r0_lattice", a->r0},
+                                  {"morse_beta_lattice", a->beta},
+                                  {"morse_cutoff_lattice", a->cutoff}});
   }
 
   h5::Handle grid = h5::create_group(root, "grid");
@@ -80,24 +103,39 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
   h5::write_attr(grid.id(), "origin_um", std::vector<double>{0.5 * h_um, 0.5 * h_um});
 
   diagnostics_group_ = h5::create_group(root, "diagnostics");
-  for (const char* name : kSeriesNames) {
-    series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), name));
-  }
+  const std::size_t fluid_series = setup.has_fluid ? std::size(kSeriesNames) : kClockSeries;
+  for (std::size_t k = 0; k < fluid_series; ++k)
+    series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), kSeriesNames[k]));
   const std::size_t cell_count = setup.membrane ? setup.membrane->cells.size() : 0;
-  for (std::size_t c = 0; c < cell_count; ++c) {
+  const std::size_t moving_cells = setup.has_fluid ? cell_count : 0;  // fixed shapes have no shape series
+  for (std::size_t c = 0; c < moving_cells; ++c) {
     for (const char* what : {"_area_change", "_taylor_deformation"})
       series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(),
                                                                "cell_" + std::to_string(c) + what));
+  }
+  if (const auto& T = setup.transport) {
+    transport_series_base_ = series_.size();
+    for (const auto& sp : T->species) {
+      series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), sp.name + "_mean_uM"));
+      series_.push_back(
+          std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), sp.name + "_mass_balance_residual"));
+    }
+    if (T->hemoglobin)
+      for (std::size_t c = 0; c < cell_count; ++c)
+        series_.push_back(
+            std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), "cell_" + std::to_string(c) + "_saturation"));
   }
   fields_group_ = h5::create_group(root, "fields");
   if (setup.membrane) cells_group_ = h5::create_group(root, "cells");
 
   const auto& f = scene.output.fields;
-  write_density_ = std::find(f.begin(), f.end(), "density") != f.end();
-  write_velocity_ = std::find(f.begin(), f.end(), "velocity") != f.end();
+  write_density_ = setup.has_fluid && std::find(f.begin(), f.end(), "density") != f.end();
+  write_velocity_ = setup.has_fluid && std::find(f.begin(), f.end(), "velocity") != f.end();
   xdmf_grid_ = {setup.grid.nx, setup.grid.ny, h_um, 0.5 * h_um, 0.5 * h_um, {}, {}};
   if (write_density_) xdmf_grid_.scalar_fields.push_back("density");
   if (write_velocity_) xdmf_grid_.vector_fields.push_back("velocity");
+  if (setup.transport)
+    for (const auto& sp : setup.transport->species) xdmf_grid_.scalar_fields.push_back(sp.name);
   H5Fflush(root, H5F_SCOPE_GLOBAL);
 }
 
@@ -111,11 +149,44 @@ void RunWriter::on_diagnostics(const sim::DiagnosticsSample& d) {
                            d.kinetic_energy * energy_scale,
                            d.max_speed * s.velocity_m_s() * 1e6,
                            d.max_mach};
-  for (std::size_t k = 0; k < std::size(values); ++k) series_[k]->append(values[k]);
+  const std::size_t count = setup_.has_fluid ? std::size(values) : kClockSeries;
+  for (std::size_t k = 0; k < count; ++k) series_[k]->append(values[k]);
+}
+
+void RunWriter::on_transport_diagnostics(const sim::TransportDiagnostics& d) {
+  std::size_t k = transport_series_base_;
+  for (std::size_t i = 0; i < d.mean_concentration.size(); ++i) {
+    series_[k++]->append(d.mean_concentration[i]);
+    series_[k++]->append(d.residual[i]);
+  }
+  for (double S : d.saturation)
+    if (k < series_.size()) series_[k++]->append(S);
+}
+
+h5::Handle RunWriter::frame_group(long step) {
+  const std::string name = frame_group_name(step);
+  if (h5::exists(fields_group_.id(), name)) return h5::open_group(fields_group_.id(), name);
+  h5::Handle frame = h5::create_group(fields_group_.id(), name);
+  const double time_s = static_cast<double>(step) * setup_.scales.time_s;
+  h5::write_attrs(frame.id(), {{"step", step}, {"time_s", time_s}});
+  frames_.push_back({step, time_s, "/fields/" + name});
+  return frame;
+}
+
+void RunWriter::on_transport_fields(long step, const sim::TransportFields& f) {
+  h5::Handle frame = frame_group(step);
+  const Grid& g = setup_.grid;
+  const std::vector<hsize_t> shape{static_cast<hsize_t>(g.ny), static_cast<hsize_t>(g.nx)};
+  for (std::size_t i = 0; i < f.names.size(); ++i)
+    h5::write_dataset(frame.id(), f.names[i], std::vector<double>(f.concentration[i].begin(), f.concentration[i].end()),
+                      shape);
+  frame.reset();
+  H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
+  write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
 }
 
 void RunWriter::on_cell_diagnostics(const sim::CellDiagnostics& d) {
-  const std::size_t base = std::size(kSeriesNames);  // cell series follow the fluid ones, 2 per cell
+  const std::size_t base = std::size(kSeriesNames);  // cell series follow the fluid ones, 2 per cell (fluid runs only)
   for (std::size_t c = 0; base + 2 * c + 1 < series_.size() && c < d.area_change.size(); ++c) {
     series_[base + 2 * c]->append(d.area_change[c]);
     series_[base + 2 * c + 1]->append(d.taylor_deformation[c]);
@@ -125,10 +196,7 @@ void RunWriter::on_cell_diagnostics(const sim::CellDiagnostics& d) {
 void RunWriter::on_fields(long step, const fluid::Moments& m) {
   const auto& s = setup_.scales;
   const Grid& g = setup_.grid;
-  const std::string name = frame_group_name(step);
-  h5::Handle frame = h5::create_group(fields_group_.id(), name);
-  const double time_s = static_cast<double>(step) * s.time_s;
-  h5::write_attrs(frame.id(), {{"step", step}, {"time_s", time_s}});
+  h5::Handle frame = frame_group(step);
   const std::vector<hsize_t> shape{static_cast<hsize_t>(g.ny), static_cast<hsize_t>(g.nx)};
   if (write_density_) {
     std::vector<double> rho(m.rho.size());
@@ -144,7 +212,7 @@ void RunWriter::on_fields(long step, const fluid::Moments& m) {
     }
     h5::write_dataset(frame.id(), "velocity", u, {shape[0], shape[1], 2});
   }
-  frames_.push_back({step, time_s, "/fields/" + name});
+  frame.reset();
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
   write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
 }

@@ -14,7 +14,11 @@
 //                     max_speed_um_s, max_mach (1-D, one entry per sample); with cells
 //                     also cell_<c>_area_change (A/A0 − 1) and cell_<c>_taylor_deformation
 //                     ((L − B)/(L + B)) for each cell c = 0, 1, ...
-//   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 2); attrs step, time_s
+//                     with [transport]: <species>_mean_uM, <species>_mass_balance_residual,
+//                     and with [hemoglobin] cell_<c>_saturation; a still-medium run (no
+//                     fluid) has only step, time_s and these
+//   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 2), and one
+//                     concentration [µM] (ny, nx) per species, named as the species; attrs step, time_s
 //   /cells/<step>/    only for scenes with [[cells]], at every field output:
 //                     positions [µm] (markers of all cells, 2): (x, y) from the domain's
 //                     lower-left corner, unwrapped across periodic sides; cell c owns rows
@@ -41,6 +45,8 @@ class RunWriter : public sim::RunObserver {
   void on_cell_diagnostics(const sim::CellDiagnostics& sample) override;
   void on_fields(long step, const fluid::Moments& moments) override;
   void on_cells(long step, const membrane::ImmersedCells& cells) override;
+  void on_transport_diagnostics(const sim::TransportDiagnostics& sample) override;
+  void on_transport_fields(long step, const sim::TransportFields& fields) override;
   void on_finish(const sim::RunSummary& summary) override;
 
   // Closes the file with status "aborted: <reason>" and moves it into place.
@@ -51,6 +57,7 @@ class RunWriter : public sim::RunObserver {
 
  private:
   void close_and_commit();
+  h5::Handle frame_group(long step);  // /fields/<step>, created (and listed for XDMF) once
 
   std::string out_dir_;
   scene::LatticeSetup setup_;
@@ -60,6 +67,7 @@ class RunWriter : public sim::RunObserver {
   std::vector<XdmfFrame> frames_;
   XdmfGrid xdmf_grid_;
   bool write_density_ = true, write_velocity_ = true;
+  std::size_t transport_series_base_ = 0;  // index of the first transport series in series_
   bool committed_ = false;
 };
 

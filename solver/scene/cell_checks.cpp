@@ -4,7 +4,9 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
+#include "aggregation/morse_units.hpp"
 #include "membrane/membrane_units.hpp"
 #include "membrane/shapes.hpp"
 #include "scene/units_detail.hpp"
@@ -33,7 +35,7 @@ std::string cell_key(std::size_t i, const char* key) { return "cells[" + std::to
 
 }  // namespace
 
-MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L) {
+MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechanics) {
   const MembraneSpec spec = s.membrane.value_or(MembraneSpec{});
   MembraneSetup M;
   if (!ib::parse_kernel(spec.kernel, M.kernel))
@@ -48,6 +50,23 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L) {
   M.model.tension.skalak_c = spec.skalak_c;
   M.model.bending = membrane::bending_to_lattice(spec.bending_modulus_dyn_cm * membrane::kDynCm, ms);
   M.model.area_modulus = membrane::pressure_to_lattice(spec.area_modulus_Pa, ms);
+
+  // Interior viscosity (eq 27): ν_in/ν_ex = μ_in/μ_ex (one density inside and out).
+  M.interior_viscosity = L.viscosity;
+  if (spec.interior_viscosity_cP) {
+    M.interior_viscosity = L.viscosity * *spec.interior_viscosity_cP / s.fluid.viscosity_cP;
+    try {
+      M.indicator = interior::parse_method(spec.interior_method);
+    } catch (const std::invalid_argument& e) {
+      reject(s, std::string("membrane.interior_method: ") + e.what());
+    }
+    M.index_update_interval = spec.index_update_interval;
+  }
+  M.interior_tau = 0.5 + 3.0 * M.interior_viscosity;
+  if (mechanics && M.interior_tau < 0.5 + s.limits.min_tau_margin)
+    reject(s, "membrane.interior_viscosity_cP = " + num(spec.interior_viscosity_cP.value_or(0.0)) +
+                  " cP gives an interior relaxation time tau = " + num(M.interior_tau) + ", below the limit " +
+                  num(0.5 + s.limits.min_tau_margin) + " (limits.min_tau_margin): raise it or raise time.tau");
 
   const double h_um = s.domain.spacing_um;
   const int n[2] = {L.grid.nx, L.grid.ny};
@@ -133,6 +152,33 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L) {
     }
     M.cells.push_back(std::move(cell));
   }
+
+  if (s.aggregation) {
+    if (!mechanics)
+      reject(s, "[aggregation] moves cells, but transport.coupling = \"none\" builds no fluid: remove [aggregation]");
+    const AggregationSpec& a = *s.aggregation;
+    aggregation::MorsePhysical p;
+    p.r0_m = a.zero_force_distance_um * 1e-6;
+    p.beta_per_m = a.decay_per_um * 1e6;
+    p.cutoff_m = a.cutoff_um * 1e-6;
+    try {
+      // The thesis's D_e is a surface energy: the pair density whose flat contact has that
+      // adhesion energy (aggregation/morse_units.hpp); or the pair density directly.
+      p.De_Pa = a.pair_density_Pa ? *a.pair_density_Pa
+                                  : aggregation::pair_density_for(*a.surface_energy_uJ_um2 * aggregation::kMicroJoulePerMicron2,
+                                                                  aggregation::MorseParameters{1.0, p.r0_m, p.beta_per_m, p.cutoff_m});
+      M.aggregation = aggregation::to_lattice(p, ms);
+      M.aggregation_flat_gap = aggregation::flat_contact(*M.aggregation).gap;
+    } catch (const std::invalid_argument& e) {
+      reject(s, std::string("[aggregation]: ") + e.what());
+    }
+    for (int axis = 0; axis < 2; ++axis)
+      if (periodic[axis] && M.aggregation->cutoff >= 0.5 * n[axis])
+        reject(s, "aggregation.cutoff_um = " + num(a.cutoff_um) + " µm is not below half the periodic domain (" +
+                      num(0.5 * n[axis] * h_um) + " µm): the minimum-image separation would be ambiguous");
+  }
+
+  if (!mechanics) return M;  // fixed shapes in a still medium: no membrane update to keep stable
 
   // Explicit-update stability (membrane/stability.hpp): Π = modulus Δt²/(ρ0 h^k) < limit.
   membrane::StabilityInput in;

@@ -78,7 +78,6 @@ struct OutputSpec {
 };
 
 // [membrane]: one membrane model shared by every cell (thesis §II.3, model.md §3).
-// Interior viscosity = exterior (plasma) for now.
 struct MembraneSpec {
   std::string law = "neo_hookean";     // "neo_hookean" | "skalak" | "hookean" (tension_law.hpp)
   double shear_modulus_dyn_cm = 6e-3;  // E_s [dyn/cm] (RBC ≈ 6e-3 dyn/cm = 6 µN/m)
@@ -86,6 +85,11 @@ struct MembraneSpec {
   double area_modulus_Pa = 0.0;        // k_A [Pa] (area penalty ½k_A(A−A0)²/A0, per depth)
   double skalak_c = 1.0;               // Skalak's C (law = "skalak" only)
   std::string kernel = "cosine4";      // "cosine4" | "peskin4" | "roma3" | "linear2"
+  // Interior (cytoplasm) viscosity by the index field (thesis §II.4, eqs 26–27). Absent:
+  // the interior has the fluid's viscosity and no index field is built.
+  std::optional<double> interior_viscosity_cP;  // RBC cytoplasm ≈ 6.0 cP (parameters.md)
+  std::string interior_method = "flood_fill";   // "flood_fill" | "ray_casting" | "band_only" | "indexless"
+  long index_update_interval = 1;               // rebuild the index field every k steps
 };
 
 // [[cells]]: one entry per cell. Positions in µm from the domain's lower-left corner.
@@ -98,6 +102,56 @@ struct CellSpec {
   double scale = 1.0;                      // multiplies the size
   long markers = 0;                        // marker count (equally spaced in arc length);
                                            // 0: automatic, spacing ≈ 0.7 h (units.cpp)
+};
+
+// [aggregation]: Morse aggregation between the membranes of different cells (model.md
+// §4; docs/verification-aggregation.md). The strength is given as exactly one of the
+// thesis's surface energy (the flat-contact adhesion energy the pair density is fitted
+// to) or the 2D pair density itself.
+struct AggregationSpec {
+  std::optional<double> surface_energy_uJ_um2;  // thesis D_e: 1.3e-7 (ch. IV), Zhang et al. 5.2e-8
+  std::optional<double> pair_density_Pa;        // D_e of the 2D pair model (J/m³)
+  double zero_force_distance_um = 0.49;         // r0 (Zhang et al. 2008; parameters.md)
+  double decay_per_um = 3.84;                   // β (parameters.md, R)
+  double cutoff_um = 1.5;                       // r_c > r0
+};
+
+// [transport]: how the NO/O2 transport is coupled to the flow (docs/architecture.md
+// "Time steps and coupling"). Each module keeps its own time step.
+struct TransportSpec {
+  // "none": no flow, no fluid is built (still medium); the run counts transport steps.
+  // "subcycle": the fluid (and cells) advance every fluid step; the transport advances
+  //   every `fluid_steps_per_step` fluid steps, Δt_T = that × Δt_F, with the fluid's velocity.
+  std::string coupling = "none";
+  std::optional<double> time_step_s;  // Δt_T [s]: required with "none", derived with "subcycle"
+  long fluid_steps_per_step = 0;      // "subcycle" only (required there)
+  std::string stencil = "d2q5";       // "d2q5" | "d2q9"
+};
+
+// [[species]]: one transported species (NO, O2, ...). Side kinds: "periodic",
+// "fixed_concentration" (value in µM), "fixed_flux" (inward, value in µM·µm/s),
+// "zero_flux". A side defaults to periodic where [boundaries] is periodic, else zero_flux.
+struct SpeciesSpec {
+  std::string name;                               // required, unique
+  double diffusivity_um2_s = 0.0;                 // required, > 0 (outside cells)
+  std::optional<double> cell_diffusivity_um2_s;   // inside cells (default: the same)
+  double initial_uM = 0.0;
+  std::optional<double> cell_initial_uM;          // inside cells (default: initial_uM)
+  std::array<std::string, 4> side{"", "", "", ""};  // left, right, bottom, top ("" = default)
+  std::array<double, 4> side_value{0.0, 0.0, 0.0, 0.0};
+};
+
+// [hemoglobin]: Hb–O2 kinetics inside every cell, cell-averaged saturation
+// (docs/transport.md §4.2; parameters.md "Haemoglobin and O2 release").
+struct HemoglobinSpec {
+  std::string species = "O2";         // the [[species]] entry that is O2
+  double k_off_per_s = 44.0;          // Eggleton et al. 2000
+  double heme_uM = 20.3e3;            // 20.3 mM
+  double solubility_uM_per_torr = 1.3;
+  double p50_torr = 26.8;
+  double hill_n = 2.7;
+  double rate_modifier = 1.0;         // M ≥ 1 in the rate's denominator (calibrated)
+  std::optional<double> initial_saturation;  // default: Hill at the cells' initial PO2
 };
 
 struct LimitsSpec {
@@ -123,6 +177,10 @@ struct Scene {
   LimitsSpec limits;
   std::optional<MembraneSpec> membrane;  // [membrane]; defaults apply when cells exist without it
   std::vector<CellSpec> cells;           // [[cells]]; empty: a fluid-only scene
+  std::optional<AggregationSpec> aggregation;  // [aggregation] (needs cells and a fluid)
+  std::optional<TransportSpec> transport;  // [transport]; absent: no transport
+  std::vector<SpeciesSpec> species;        // [[species]] (needs [transport])
+  std::optional<HemoglobinSpec> hemoglobin;  // [hemoglobin] (needs cells and an O2 species)
 };
 
 }  // namespace erythro::scene

@@ -63,6 +63,9 @@ std::string kind_of(const toml::node& n) {
   }
 }
 
+class Reader;
+void read_transport(const Reader& r, Scene& s);
+
 class Reader {
  public:
   Reader(const toml::table& root, std::string origin) : root_(root), origin_(std::move(origin)) {}
@@ -98,16 +101,16 @@ class Reader {
       const std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
       // A quoted key holding a dot ("fluid.viscosity_cP" = 1) is not the nested key.
       const bool plain = key.str().find_first_of(".[") == std::string_view::npos;
-      if (plain && path == "cells") {  // [[cells]]: an array of tables, each checked against cells.*
+      if (plain && (path == "cells" || path == "species")) {  // [[cells]], [[species]]: arrays of tables
         const auto* arr = node.as_array();
         if (!arr || !arr->is_array_of_tables())
-          fail(node, path, "has the wrong type (" + kind_of(node) + "): expected an array of tables ([[cells]])");
+          fail(node, path, "has the wrong type (" + kind_of(node) + "): expected an array of tables ([[" + path + "]])");
         for (std::size_t i = 0; i < arr->size(); ++i) {
           for (const auto& [ckey, cnode] : *arr->get(i)->as_table()) {
-            const std::string cpath = "cells[" + std::to_string(i) + "]." + std::string(ckey.str());
+            const std::string cpath = path + "[" + std::to_string(i) + "]." + std::string(ckey.str());
             if (!find_key(cpath))
               throw InputError(where(&cnode) + ": unknown key '" + cpath + "'" +
-                               suggestion("cells." + std::string(ckey.str())));
+                               suggestion(path + "." + std::string(ckey.str())));
           }
         }
         continue;
@@ -319,10 +322,18 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.domain.size_um = r.vec2("domain.size_um", {});
   s.domain.spacing_um = r.number("domain.spacing_um", 0.0);
 
-  if (exactly_one(r, "time", "step_s", "tau", "step_s in s, > 0; or tau, > 0.5") == 0)
-    s.time.step_s = r.number("time.step_s", 0.0);
-  else
-    s.time.tau = r.number("time.tau", 0.0);
+  // A still-medium transport scene builds no fluid and has no [time] (units.cpp says so
+  // if one is given); every other scene gives exactly one fluid time key.
+  const bool still_medium = r.has("transport") && r.text("transport.coupling", "none") == "none";
+  if (!still_medium) {
+    if (exactly_one(r, "time", "step_s", "tau", "step_s in s, > 0; or tau, > 0.5") == 0)
+      s.time.step_s = r.number("time.step_s", 0.0);
+    else
+      s.time.tau = r.number("time.tau", 0.0);
+  } else {
+    if (r.has("time.step_s")) s.time.step_s = r.number("time.step_s", 0.0);
+    if (r.has("time.tau")) s.time.tau = r.number("time.tau", 0.0);
+  }
 
   s.fluid.density_kg_m3 = r.number("fluid.density_kg_m3", s.fluid.density_kg_m3);
   s.fluid.viscosity_cP = r.number("fluid.viscosity_cP", s.fluid.viscosity_cP);
@@ -385,6 +396,13 @@ Scene read_scene(const Reader& r, const std::string& origin) {
     m.area_modulus_Pa = r.number("membrane.area_modulus_Pa", m.area_modulus_Pa);
     m.skalak_c = r.number("membrane.skalak_c", m.skalak_c);
     m.kernel = r.text("membrane.kernel", m.kernel);
+    if (r.has("membrane.interior_viscosity_cP"))
+      m.interior_viscosity_cP = r.number("membrane.interior_viscosity_cP", 0.0);
+    m.interior_method = r.text("membrane.interior_method", m.interior_method);
+    m.index_update_interval = r.integer("membrane.index_update_interval", m.index_update_interval);
+    for (const char* key : {"membrane.interior_method", "membrane.index_update_interval"})
+      if (!m.interior_viscosity_cP && r.has(key))
+        r.fail(*r.find(key), key, "needs membrane.interior_viscosity_cP (without it the interior has the fluid's viscosity)");
     if (m.law != "skalak" && r.has("membrane.skalak_c"))
       r.fail(*r.find("membrane.skalak_c"), "membrane.skalak_c",
              "is not allowed here: only membrane.law = \"skalak\" takes C (the law is \"" + m.law + "\")");
@@ -416,7 +434,93 @@ Scene read_scene(const Reader& r, const std::string& origin) {
       s.cells.push_back(c);
     }
   }
+  if (r.has("aggregation")) {
+    AggregationSpec a;
+    if (exactly_one(r, "aggregation", "surface_energy_uJ_um2", "pair_density_Pa",
+                    "surface_energy_uJ_um2: the thesis's D_e, µJ/µm²; or pair_density_Pa: the 2D pair density") == 0)
+      a.surface_energy_uJ_um2 = r.number("aggregation.surface_energy_uJ_um2", 0.0);
+    else
+      a.pair_density_Pa = r.number("aggregation.pair_density_Pa", 0.0);
+    a.zero_force_distance_um = r.number("aggregation.zero_force_distance_um", a.zero_force_distance_um);
+    a.decay_per_um = r.number("aggregation.decay_per_um", a.decay_per_um);
+    a.cutoff_um = r.number("aggregation.cutoff_um", a.cutoff_um);
+    if (a.cutoff_um <= a.zero_force_distance_um)
+      throw InputError(r.where_table("aggregation") + ": aggregation.cutoff_um = " + format_number(a.cutoff_um) +
+                       " µm must exceed aggregation.zero_force_distance_um = " +
+                       format_number(a.zero_force_distance_um) + " µm (the potential is cut beyond r_c)");
+    s.aggregation = a;
+  }
+  read_transport(r, s);
   return s;
+}
+
+// [transport], [[species]], [hemoglobin] (scene.hpp; docs/scenes.md).
+void read_transport(const Reader& r, Scene& s) {
+  if (r.has("transport")) {
+    TransportSpec t;
+    t.coupling = r.text("transport.coupling", t.coupling);
+    if (r.has("transport.time_step_s")) t.time_step_s = r.number("transport.time_step_s", 0.0);
+    t.fluid_steps_per_step = r.integer("transport.fluid_steps_per_step", t.fluid_steps_per_step);
+    t.stencil = r.text("transport.stencil", t.stencil);
+    s.transport = t;
+  }
+  if (const toml::node* species = r.find("species")) {
+    if (!s.transport)
+      throw InputError(r.where(species) + ": [[species]] needs a [transport] table (transport.coupling, time step)");
+    const std::size_t count = species->as_array()->size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string p = "species[" + std::to_string(i) + "].";
+      for (const char* required : {"name", "diffusivity_um2_s"})
+        if (!r.has(p + required))
+          throw InputError(r.where(species->as_array()->get(i)) + ": missing key '" + p + required + "' (required; " +
+                           range_text(*find_key(std::string("species.") + required)) + ")");
+      SpeciesSpec sp;
+      sp.name = r.text(p + "name", sp.name);
+      for (const SpeciesSpec& other : s.species)
+        if (other.name == sp.name) r.fail(*r.find(p + "name"), p + "name", "is used by two [[species]] entries");
+      sp.diffusivity_um2_s = r.number(p + "diffusivity_um2_s", 0.0);
+      if (r.has(p + "cell_diffusivity_um2_s")) sp.cell_diffusivity_um2_s = r.number(p + "cell_diffusivity_um2_s", 0.0);
+      sp.initial_uM = r.number(p + "initial_uM", sp.initial_uM);
+      if (r.has(p + "cell_initial_uM")) sp.cell_initial_uM = r.number(p + "cell_initial_uM", 0.0);
+      const char* sides[] = {"left", "right", "bottom", "top"};
+      for (int k = 0; k < 4; ++k) {
+        sp.side[k] = r.text(p + sides[k], "");
+        sp.side_value[k] = r.number(p + sides[k] + "_value", 0.0);
+        const bool valued = sp.side[k] == "fixed_concentration" || sp.side[k] == "fixed_flux";
+        if (!valued && r.has(p + sides[k] + "_value"))
+          r.fail(*r.find(p + sides[k] + "_value"), p + sides[k] + "_value",
+                 "is not allowed here: only a fixed_concentration or fixed_flux side takes a value");
+        if (valued && !r.has(p + sides[k] + "_value"))
+          r.fail(*r.find(p + sides[k]), p + sides[k],
+                 "needs " + p + sides[k] + "_value (µM for fixed_concentration, µM·µm/s inward for fixed_flux)");
+      }
+      s.species.push_back(sp);
+    }
+  }
+  if (s.transport && s.species.empty())
+    throw InputError(r.where_table("transport") + ": [transport] needs at least one [[species]] entry");
+  if (r.has("hemoglobin")) {
+    if (!s.transport)
+      throw InputError(r.where_table("hemoglobin") + ": [hemoglobin] needs [transport] and an O2 [[species]] entry");
+    HemoglobinSpec hb;
+    hb.species = r.text("hemoglobin.species", hb.species);
+    hb.k_off_per_s = r.number("hemoglobin.k_off_per_s", hb.k_off_per_s);
+    hb.heme_uM = r.number("hemoglobin.heme_uM", hb.heme_uM);
+    hb.solubility_uM_per_torr = r.number("hemoglobin.solubility_uM_per_torr", hb.solubility_uM_per_torr);
+    hb.p50_torr = r.number("hemoglobin.p50_torr", hb.p50_torr);
+    hb.hill_n = r.number("hemoglobin.hill_n", hb.hill_n);
+    hb.rate_modifier = r.number("hemoglobin.rate_modifier", hb.rate_modifier);
+    if (r.has("hemoglobin.initial_saturation"))
+      hb.initial_saturation = r.number("hemoglobin.initial_saturation", 0.0);
+    const bool known = std::any_of(s.species.begin(), s.species.end(),
+                                   [&](const SpeciesSpec& sp) { return sp.name == hb.species; });
+    if (!known)
+      throw InputError(r.where_table("hemoglobin") + ": hemoglobin.species = \"" + hb.species +
+                       "\" names no [[species]] entry");
+    if (s.cells.empty())
+      throw InputError(r.where_table("hemoglobin") + ": [hemoglobin] acts inside cells: the scene has no [[cells]]");
+    s.hemoglobin = hb;
+  }
 }
 
 }  // namespace

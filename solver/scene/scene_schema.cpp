@@ -12,7 +12,7 @@ const std::vector<std::string>& known_tables() {
   static const std::vector<std::string> tables = {
       "scene", "domain", "time", "fluid", "boundaries", "boundaries.left", "boundaries.right",
       "boundaries.bottom", "boundaries.top", "body_force", "initial", "run", "run.steady_state",
-      "monitor", "output", "limits", "membrane"};
+      "monitor", "output", "limits", "membrane", "aggregation", "transport", "hemoglobin"};
   return tables;
 }
 
@@ -56,6 +56,9 @@ const std::vector<KeySpec>& known_keys() {
         {"membrane.area_modulus_Pa", Kind::number, "Pa", non_negative, {}},
         {"membrane.skalak_c", Kind::number, "", non_negative, {}},
         {"membrane.kernel", Kind::string, "", any, {"cosine4", "peskin4", "roma3", "linear2"}},
+        {"membrane.interior_viscosity_cP", Kind::number, "cP", positive, {}},
+        {"membrane.interior_method", Kind::string, "", any, {"flood_fill", "ray_casting", "band_only", "indexless"}},
+        {"membrane.index_update_interval", Kind::integer, "steps", Bound{1.0, false, 1e9, false}, {}},
         // [[cells]] entries: the schema path drops the index (cells[2].radius_um → cells.radius_um).
         {"cells.shape", Kind::string, "", any, {"circle", "ellipse", "biconcave"}},
         {"cells.radius_um", Kind::number, "µm", positive, {}},
@@ -64,7 +67,34 @@ const std::vector<KeySpec>& known_keys() {
         {"cells.angle_deg", Kind::number, "degrees", any, {}},
         {"cells.scale", Kind::number, "", positive, {}},
         {"cells.markers", Kind::integer, "markers", Bound{8.0, false, 1e6, false}, {}},
+        {"aggregation.surface_energy_uJ_um2", Kind::number, "µJ/µm²", positive, {}},
+        {"aggregation.pair_density_Pa", Kind::number, "Pa", positive, {}},
+        {"aggregation.zero_force_distance_um", Kind::number, "µm", positive, {}},
+        {"aggregation.decay_per_um", Kind::number, "1/µm", positive, {}},
+        {"aggregation.cutoff_um", Kind::number, "µm", positive, {}},
+        {"transport.coupling", Kind::string, "", any, {"none", "subcycle"}},
+        {"transport.time_step_s", Kind::number, "s", positive, {}},
+        {"transport.fluid_steps_per_step", Kind::integer, "steps", Bound{1.0, false, 1e9, false}, {}},
+        {"transport.stencil", Kind::string, "", any, {"d2q5", "d2q9"}},
+        {"species.name", Kind::string, "", any, {}},
+        {"species.diffusivity_um2_s", Kind::number, "µm²/s", positive, {}},
+        {"species.cell_diffusivity_um2_s", Kind::number, "µm²/s", positive, {}},
+        {"species.initial_uM", Kind::number, "µM", non_negative, {}},
+        {"species.cell_initial_uM", Kind::number, "µM", non_negative, {}},
+        {"hemoglobin.species", Kind::string, "", any, {}},
+        {"hemoglobin.k_off_per_s", Kind::number, "1/s", positive, {}},
+        {"hemoglobin.heme_uM", Kind::number, "µM", positive, {}},
+        {"hemoglobin.solubility_uM_per_torr", Kind::number, "µM/Torr", positive, {}},
+        {"hemoglobin.p50_torr", Kind::number, "Torr", positive, {}},
+        {"hemoglobin.hill_n", Kind::number, "", positive, {}},
+        {"hemoglobin.rate_modifier", Kind::number, "", Bound{1.0, false}, {}},
+        {"hemoglobin.initial_saturation", Kind::number, "", Bound{0.0, false, 1.0, false}, {}},
     };
+    for (const char* side : {"left", "right", "bottom", "top"}) {
+      const std::string p = std::string("species.") + side;
+      k.push_back({p, Kind::string, "", any, {"periodic", "fixed_concentration", "fixed_flux", "zero_flux"}});
+      k.push_back({p + "_value", Kind::number, "µM or µM·µm/s", any, {}});
+    }
     for (const char* side : {"left", "right", "bottom", "top"}) {
       const std::string p = std::string("boundaries.") + side + ".";
       k.push_back({p + "type", Kind::string, "", any, {"periodic", "wall", "moving_wall"}});

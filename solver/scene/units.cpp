@@ -125,9 +125,71 @@ SpeedSource fastest(const std::vector<SpeedSource>& sources) {
 }
 
 
+// The run's length in steps of `dt`: run.steps, or ⌈duration / Δt⌉ (a ratio within
+// 1e-9 of a whole number is that number).
+long run_steps(const Scene& s, double dt) {
+  if (s.run.steps.has_value() == s.run.duration_s.has_value())
+    reject(s, "give exactly one of run.steps or run.duration_s");
+  long steps = 0;
+  if (s.run.steps) {
+    steps = *s.run.steps;
+  } else {
+    const double x = *s.run.duration_s / dt;
+    if (!(x <= 1e12))
+      reject(s, "run.duration_s = " + num(*s.run.duration_s) + " s is " + num(x) + " steps of Δt = " + num(dt) +
+                    " s; at most 1e12 steps are supported");
+    const double r = std::round(x);
+    steps = std::max(1L, static_cast<long>(std::abs(x - r) <= 1e-9 * x ? r : std::ceil(x)));
+  }
+  if (steps < 1) reject(s, "run.steps = " + std::to_string(steps) + " must be >= 1");
+  return steps;
+}
+
+// transport.coupling = "none": a still medium. No fluid is built: the run's clock is
+// the transport step, cells are fixed shapes, and every flow key is refused rather
+// than silently ignored.
+LatticeSetup derive_still_medium(const Scene& s) {
+  LatticeSetup L;
+  L.grid = make_grid(s);
+  L.has_fluid = false;
+  if (!s.transport->time_step_s)
+    reject(s, "transport.coupling = \"none\" needs transport.time_step_s (s): with no flow the transport's step is "
+              "the run's clock (e.g. 1e-5 s at h = 0.2 µm, thesis ch. V)");
+  if (s.time.tau || s.time.step_s)
+    reject(s, "[time] sets the fluid's step, but transport.coupling = \"none\" builds no fluid: remove [time] "
+              "(the clock is transport.time_step_s)");
+  if (s.body_force) reject(s, "[body_force] needs a fluid, but transport.coupling = \"none\" builds none");
+  if (s.run.steady_state)
+    reject(s, "[run.steady_state] watches the fluid, but transport.coupling = \"none\" builds none: give run.steps or "
+              "run.duration_s");
+  if (s.initial.type != "rest")
+    reject(s, "initial.type = \"" + s.initial.type + "\" needs a fluid, but transport.coupling = \"none\" builds none");
+  if (s.membrane && s.membrane->interior_viscosity_cP)
+    reject(s, "membrane.interior_viscosity_cP needs a fluid, but transport.coupling = \"none\" builds none");
+  const double h = s.domain.spacing_um * 1e-6;
+  const double dt = *s.transport->time_step_s;
+  L.scales = UnitScales{h, dt, s.fluid.density_kg_m3};
+  for (const auto& [side, name] : {std::pair{&s.boundaries.left, "left"}, std::pair{&s.boundaries.right, "right"},
+                                   std::pair{&s.boundaries.bottom, "bottom"}, std::pair{&s.boundaries.top, "top"}}) {
+    if (side->type == "moving_wall")
+      reject(s, std::string("boundaries.") + name + ".type = \"moving_wall\" needs a fluid, but transport.coupling = "
+                "\"none\" builds none (use \"wall\")");
+  }
+  L.boundaries.left = make_side(s, s.boundaries.left, "left", 0.0);
+  L.boundaries.right = make_side(s, s.boundaries.right, "right", 0.0);
+  L.boundaries.bottom = make_side(s, s.boundaries.bottom, "bottom", 0.0);
+  L.boundaries.top = make_side(s, s.boundaries.top, "top", 0.0);
+  if (const std::string why = L.boundaries.inconsistency(); !why.empty()) reject(s, "boundaries: " + why);
+  L.total_steps = run_steps(s, dt);
+  if (!s.cells.empty()) L.membrane = derive_membrane(s, L, /*mechanics=*/false);
+  L.transport = derive_transport(s, L);
+  return L;
+}
+
 }  // namespace
 
 LatticeSetup derive_lattice(const Scene& s) {
+  if (s.transport && s.transport->coupling == "none") return derive_still_medium(s);
   LatticeSetup L;
   L.grid = make_grid(s);
 
@@ -204,20 +266,8 @@ LatticeSetup derive_lattice(const Scene& s) {
     L.force_phase = s.body_force->phase_rad;
   }
 
-  // --- run length: steps, or ⌈duration / Δt⌉ (a ratio within 1e-9 of a whole number is that number)
-  if (s.run.steps.has_value() == s.run.duration_s.has_value())
-    reject(s, "give exactly one of run.steps or run.duration_s");
-  if (s.run.steps) {
-    L.total_steps = *s.run.steps;
-  } else {
-    const double x = *s.run.duration_s / dt;
-    if (!(x <= 1e12))
-      reject(s, "run.duration_s = " + num(*s.run.duration_s) + " s is " + num(x) + " steps of Δt = " + num(dt) +
-                    " s; at most 1e12 steps are supported");
-    const double r = std::round(x);
-    L.total_steps = std::max(1L, static_cast<long>(std::abs(x - r) <= 1e-9 * x ? r : std::ceil(x)));
-  }
-  if (L.total_steps < 1) reject(s, "run.steps = " + std::to_string(L.total_steps) + " must be >= 1");
+  // --- run length in fluid steps
+  L.total_steps = run_steps(s, dt);
 
   // --- expected speed, Mach and Reynolds numbers
   const SpeedSource top = fastest(speed_sources(s, L));
@@ -246,6 +296,7 @@ LatticeSetup derive_lattice(const Scene& s) {
   L.reynolds = top.speed * length / L.viscosity;
   L.reynolds_length_m = length * h;
   if (!s.cells.empty()) L.membrane = derive_membrane(s, L);
+  if (s.transport) L.transport = derive_transport(s, L);
   return L;
 }
 
@@ -260,6 +311,12 @@ std::string pad(const std::string& text, std::size_t width) {
 
 }  // namespace
 
+namespace {
+// The transport's rows of the report, and the rows as an aligned table.
+void append_transport_rows(const Scene& s, const LatticeSetup& L, std::vector<std::array<std::string, 3>>& rows);
+std::string format_rows(const Scene& s, const LatticeSetup& L, const std::vector<std::array<std::string, 3>>& rows);
+}  // namespace
+
 std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
   const UnitScales& u = L.scales;
   const double um = 1e6;
@@ -269,7 +326,19 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
       {"spacing h", "1", num(u.length_m * um) + " µm"},
       {"time step Δt", "1", num(u.time_s) + " s"},
       {"nodes", std::to_string(L.grid.nx) + " × " + std::to_string(L.grid.ny),
-       vec(s.domain.size_um) + " µm"},
+       vec(s.domain.size_um) + " µm"}};
+  if (!L.has_fluid) {
+    rows.push_back({"fluid", "none", "transport.coupling = \"none\": still medium"});
+    rows.push_back({"steps", std::to_string(L.total_steps),
+                    num(static_cast<double>(L.total_steps) * u.time_s) + " s simulated"});
+    for (std::size_t i = 0; i < s.cells.size() && L.membrane; ++i)
+      rows.push_back({"cell " + std::to_string(i) + " (" + s.cells[i].shape + ")",
+                      std::to_string(L.membrane->cells[i].shape.size()) + " markers, fixed",
+                      "R_eq = " + num(L.membrane->cells[i].equivalent_radius * u.length_m * um) + " µm"});
+    append_transport_rows(s, L, rows);
+    return format_rows(s, L, rows);
+  }
+  const std::vector<std::array<std::string, 3>> fluid_rows = {
       {"relaxation time τ (tau)", num(L.collision.tau), "limit >= " + num(0.5 + s.limits.min_tau_margin)},
       {"viscosity ν", num(L.viscosity),
        num(L.viscosity * u.kinematic_viscosity_m2_s()) + " m²/s (" + num(s.fluid.viscosity_cP) + " cP, " +
@@ -282,6 +351,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
       {"steps", std::to_string(L.total_steps),
        num(static_cast<double>(L.total_steps) * u.time_s) + " s simulated"},
   };
+  rows.insert(rows.end(), fluid_rows.begin(), fluid_rows.end());
   if (s.body_force)
     rows.push_back({"body force", vec(L.body_force), vec(s.body_force->density_N_m3) + " N/m³"});
   if (L.collision.model == fluid::CollisionModel::trt)
@@ -309,13 +379,22 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
     const membrane::StabilityEstimate& e = M->stability;
     rows.push_back({"membrane", std::string(membrane::to_string(M->model.tension.type)) + ", " +
                                     std::string(ib::to_string(M->kernel)),
-                    "interior viscosity = exterior"});
+                    M->indicator == interior::Method::indexless
+                        ? std::string("interior viscosity = exterior")
+                        : "interior " + num(spec.interior_viscosity_cP.value_or(0.0)) + " cP by " +
+                              std::string(interior::to_string(M->indicator)) + " every " +
+                              std::to_string(M->index_update_interval) + " step(s)"});
+    if (M->indicator != interior::Method::indexless)
+      rows.push_back({"interior τ", num(M->interior_tau), "limit >= " + num(0.5 + s.limits.min_tau_margin)});
     rows.push_back({"shear modulus E_s", num(M->model.tension.modulus),
                     num(spec.shear_modulus_dyn_cm) + " dyn/cm"});
     rows.push_back({"bending modulus E_B", num(M->model.bending),
                     num(spec.bending_modulus_dyn_cm) + " dyn·cm"});
     rows.push_back({"area modulus k_A", num(M->model.area_modulus),
                     num(spec.area_modulus_Pa) + " Pa"});
+    if (const auto& a = M->aggregation)
+      rows.push_back({"aggregation (Morse)", "D_e " + num(a->De) + ", r0 " + num(a->r0) + ", r_c " + num(a->cutoff),
+                      "flat-contact gap " + num(M->aggregation_flat_gap * u.length_m * um) + " µm"});
     rows.push_back({"stability Π_T", num(e.tension_number), "limit " + num(e.tension_limit)});
     rows.push_back({"stability Π_B", num(e.bending_number), "limit " + num(e.bending_limit)});
     rows.push_back({"stability Π_A", num(e.area_number), "limit " + num(e.area_limit)});
@@ -330,7 +409,36 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
                           num(c.min_edge) + "–" + num(c.max_edge) + " h"});
     }
   }
+  append_transport_rows(s, L, rows);
+  return format_rows(s, L, rows);
+}
 
+namespace {
+
+void append_transport_rows(const Scene& s, const LatticeSetup& L, std::vector<std::array<std::string, 3>>& rows) {
+  const auto& T = L.transport;
+  if (!T) return;
+  rows.push_back({"transport", T->coupling + (T->stencil == transport::Stencil::d2q9 ? ", d2q9" : ", d2q5"),
+                  "Δt_T = " + num(T->time_step_s) + " s" +
+                      (T->fluid_steps_per_step > 0 ? " (" + std::to_string(T->fluid_steps_per_step) + " fluid steps)"
+                                                   : "")});
+  for (std::size_t i = 0; i < T->species.size(); ++i) {
+    const SpeciesSetup& sp = T->species[i];
+    rows.push_back({"species " + sp.name + " D", num(sp.diffusivity) + " (τ " + num(0.5 + 3.0 * sp.diffusivity) + ")",
+                    num(s.species[i].diffusivity_um2_s) + " µm²/s, initial " + num(sp.initial) + " µM"});
+    if (sp.cell_diffusivity != sp.diffusivity || sp.cell_initial != sp.initial)
+      rows.push_back({"species " + sp.name + " in cells", num(sp.cell_diffusivity) + " (τ " +
+                                                             num(0.5 + 3.0 * sp.cell_diffusivity) + ")",
+                      num(s.species[i].cell_diffusivity_um2_s.value_or(s.species[i].diffusivity_um2_s)) +
+                          " µm²/s, initial " + num(sp.cell_initial) + " µM"});
+  }
+  if (T->hemoglobin)
+    rows.push_back({"hemoglobin", T->species[static_cast<std::size_t>(T->hemoglobin_species)].name,
+                    "k_off " + num(T->hemoglobin->k_off) + " 1/s, M = " + num(T->hemoglobin->M) + ", heme " +
+                        num(T->hemoglobin->C_heme) + " µM"});
+}
+
+std::string format_rows(const Scene& s, const LatticeSetup& L, const std::vector<std::array<std::string, 3>>& rows) {
   std::ostringstream os;
   os << "scene '" << s.name << "' (" << origin(s) << ")\n";
   for (const auto& r : rows) {
@@ -344,5 +452,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
   if (L.membrane && !L.membrane->stability.warning.empty()) os << "  warning: " << L.membrane->stability.warning << "\n";
   return os.str();
 }
+
+}  // namespace
 
 }  // namespace erythro::scene

@@ -8,11 +8,15 @@
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
 #include "ib/kernel.hpp"
+#include "aggregation/morse.hpp"
+#include "interior/index_field.hpp"
 #include "lattice/grid.hpp"
 #include "membrane/membrane_energy.hpp"
 #include "membrane/polygon.hpp"
 #include "membrane/stability.hpp"
 #include "scene/scene.hpp"
+#include "transport/hb_kinetics.hpp"
+#include "transport/transport_lattice.hpp"
 
 namespace erythro::scene {
 
@@ -40,6 +44,15 @@ struct MembraneSetup {
   membrane::MembraneModel model;  // lattice moduli
   membrane::StabilityEstimate stability;
   std::vector<CellSetup> cells;
+  // Interior viscosity (thesis eq 27): with `indicator` = indexless nothing is built and
+  // the interior keeps the fluid's viscosity.
+  interior::Method indicator = interior::Method::indexless;
+  double interior_viscosity = 0.0;  // lattice ν_in (= exterior ν when no interior viscosity is set)
+  double interior_tau = 0.0;        // ½ + 3ν_in
+  long index_update_interval = 1;
+  // Morse aggregation between cells (lattice units), only with [aggregation].
+  std::optional<aggregation::MorseParameters> aggregation;
+  double aggregation_flat_gap = 0.0;  // flat-contact equilibrium gap d* (h), shown by `check`
 };
 
 // Fixed set-up rules for cells (docs/scenes.md "Checks done by units.cpp"), in h.
@@ -48,6 +61,30 @@ inline constexpr double kMaxMarkerSpacing = 1.0; // every edge <= h (no leaks be
 inline constexpr double kMinMarkerSpacing = 0.3; // every edge >= 0.3 h (over-resolved markers stiffen)
 inline constexpr double kMinCellGap = 1.0;       // markers of two cells, or a marker and a wall, >= h apart
 inline constexpr double kAutoMarkerSpacing = 0.7; // cells.markers absent: perimeter / 0.7 h markers (>= 16)
+
+// One transported species in transport lattice units (h, Δt_T; concentrations in µM).
+struct SpeciesSetup {
+  std::string name;
+  double diffusivity = 0.0, cell_diffusivity = 0.0;  // D Δt_T / h², outside / inside cells
+  double initial = 0.0, cell_initial = 0.0;          // µM
+  transport::TransportBoundaries boundaries;
+};
+
+// [transport]: the transport's own time step and its coupling to the flow
+// (docs/architecture.md "Time steps and coupling").
+struct TransportSetup {
+  std::string coupling = "none";   // "none" | "subcycle"
+  transport::Stencil stencil = transport::Stencil::d2q5;
+  double time_step_s = 0.0;        // Δt_T
+  long fluid_steps_per_step = 0;   // subcycle: Δt_T = this × Δt_F
+  double velocity_scale = 0.0;     // u_T = velocity_scale × u_F (lattice units) = Δt_T/Δt_F
+  std::vector<SpeciesSetup> species;
+  // Hb–O2 kinetics in every cell (physical units: k_off in 1/s, µM, Torr), for species
+  // `hemoglobin_species`; the update takes Δt_T in seconds.
+  std::optional<transport::HbParameters> hemoglobin;
+  int hemoglobin_species = -1;
+  std::optional<double> initial_saturation;
+};
 
 // Everything the simulation needs, in lattice units, plus derived numbers to show.
 struct LatticeSetup {
@@ -68,6 +105,10 @@ struct LatticeSetup {
   double reynolds = 0.0;            // expected_max_speed × L / ν (L: channel width or domain)
   double reynolds_length_m = 0.0;
   std::optional<MembraneSetup> membrane;  // only when the scene has cells
+  // false for a still-medium transport scene (transport.coupling = "none"): no fluid is
+  // built, scales.time_s is the transport step and total_steps counts transport steps.
+  bool has_fluid = true;
+  std::optional<TransportSetup> transport;  // only when the scene has [transport]
 };
 
 // Converts and checks. Throws InputError naming the scene file, the key, its value

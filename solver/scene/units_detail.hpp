@@ -34,6 +34,11 @@ inline bool wall_bounded(const Scene& s, int axis) {
 // estimate. Rules (docs/scenes.md): equivalent radius >= kMinCellRadius h, marker
 // spacing in [kMinMarkerSpacing, kMaxMarkerSpacing] h, markers >= kMinCellGap h from
 // another cell's markers and from a wall, stability numbers below their limits.
-MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L);
+// `mechanics` = false (no flow, cells are fixed shapes): placement and geometry checks only.
+MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechanics = true);
+
+// [transport], [[species]], [hemoglobin] → TransportSetup (transport_setup.cpp). L has its
+// grid, scales (the fluid's, or the transport's own without fluid) and boundaries set.
+TransportSetup derive_transport(const Scene& s, const LatticeSetup& L);
 
 }  // namespace erythro::scene::detail

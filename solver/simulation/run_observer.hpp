@@ -2,6 +2,7 @@
 // What a running simulation tells the outside world. The I/O layer (HDF5 writer)
 // and the command's progress display implement this interface; the simulation
 // never includes anything from the layers above it.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,21 @@ struct CellDiagnostics {
   std::vector<double> area_change, taylor_deformation;
 };
 
+// Transport diagnostics (scenes with [transport]), sent with each DiagnosticsSample:
+// per species the mean concentration (µM) and the last step's relative mass-balance
+// residual; per cell the HbO2 saturation (with [hemoglobin]).
+struct TransportDiagnostics {
+  long step = 0;
+  std::vector<double> mean_concentration, residual;
+  std::vector<double> saturation;
+};
+
+// Concentration fields of the species (µM), by name, for a field output.
+struct TransportFields {
+  std::vector<std::string> names;
+  std::vector<std::span<const double>> concentration;
+};
+
 enum class RunStatus { completed, steady_state, diverged };
 std::string to_string(RunStatus status);
 
@@ -51,6 +67,9 @@ class RunObserver {
   virtual void on_fields(long /*step*/, const fluid::Moments&) {}
   // The cells' markers, right after on_fields (only for scenes with [[cells]]).
   virtual void on_cells(long /*step*/, const membrane::ImmersedCells&) {}
+  virtual void on_transport_diagnostics(const TransportDiagnostics&) {}
+  // Species concentrations at a field output (after on_fields when there is a fluid).
+  virtual void on_transport_fields(long /*step*/, const TransportFields&) {}
   virtual void on_progress(long /*step*/, long /*total_steps*/, double /*mlups*/) {}
   virtual void on_finish(const RunSummary&) {}
 };
@@ -77,6 +96,12 @@ class ObserverList : public RunObserver {
   }
   void on_cells(long step, const membrane::ImmersedCells& c) override {
     for (auto* o : observers_) o->on_cells(step, c);
+  }
+  void on_transport_diagnostics(const TransportDiagnostics& d) override {
+    for (auto* o : observers_) o->on_transport_diagnostics(d);
+  }
+  void on_transport_fields(long step, const TransportFields& f) override {
+    for (auto* o : observers_) o->on_transport_fields(step, f);
   }
   void on_progress(long step, long total, double mlups) override {
     for (auto* o : observers_) o->on_progress(step, total, mlups);

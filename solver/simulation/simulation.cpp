@@ -25,15 +25,23 @@ std::string to_string(RunStatus status) {
 
 Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
     : scene_(std::move(scene)), setup_(std::move(setup)) {
-  // Only the modules the scene declares are built; a fluid-only scene has nothing else.
-  fluid_ = std::make_unique<fluid::FluidLattice>(setup_.grid, setup_.collision, setup_.boundaries);
-  apply_initial_condition();
-  apply_body_force(0);
-  if (setup_.membrane) {  // cells start at their stress-free rest shape
-    const scene::MembraneSetup& M = *setup_.membrane;
-    cells_ = std::make_unique<membrane::ImmersedCells>(M.kernel, *fluid_);
-    for (const scene::CellSetup& c : M.cells)
-      cells_->add_cell(c.shape, membrane::RestShape::from_polygon(c.shape), M.model);
+  // Only the modules the scene declares are built; a fluid-only scene has nothing else,
+  // a still-medium transport scene has no fluid.
+  if (setup_.has_fluid) {
+    fluid_ = std::make_unique<fluid::FluidLattice>(setup_.grid, setup_.collision, setup_.boundaries);
+    apply_initial_condition();
+    apply_body_force(0);
+    if (setup_.membrane)  // cells start at their stress-free rest shape
+      cells_ = std::make_unique<CellPhysics>(*setup_.membrane, setup_.viscosity, *fluid_);
+  } else if (setup_.membrane) {
+    for (const scene::CellSetup& c : setup_.membrane->cells) fixed_cells_.push_back(c.shape);
+  }
+  if (setup_.transport) {
+    std::vector<membrane::Polygon> shapes = fixed_cells_;
+    if (cells_)
+      for (int c = 0; c < cells_->cells().cell_count(); ++c) shapes.push_back(cells_->cells().polygon(c));
+    transport_ = std::make_unique<TransportPhysics>(*setup_.transport,
+                                                    ib::Domain::from(setup_.grid, setup_.boundaries), shapes);
   }
 }
 
@@ -139,6 +147,17 @@ std::string describe_divergence(long step, const HealthReport& r, const scene::L
   return out.str();
 }
 
+std::string describe_transport_divergence(long step, const HealthReport& r, const scene::LatticeSetup& setup) {
+  std::ostringstream out;
+  const double h_um = setup.scales.length_m * 1e6;
+  out << "diverged at step " << step << ": " << r.quantity << " = " << r.value << " at node (" << r.node_x << ", "
+      << r.node_y << ") [x = " << (static_cast<double>(r.node_x) + 0.5) * h_um
+      << " um, y = " << (static_cast<double>(r.node_y) + 0.5) * h_um << " um]";
+  out << (std::isnan(r.limit) ? " is not finite" : " is outside its limit " + std::to_string(r.limit))
+      << ". Lower transport.time_step_s or the diffusivity (docs/transport.md).";
+  return out.str();
+}
+
 namespace {
 bool due(long step, long interval) { return interval > 0 && step % interval == 0; }
 
@@ -164,15 +183,40 @@ RunSummary Simulation::run(RunObserver& observer) {
   const auto start = clock::now();
   double mlups = 0.0;
 
+  // Transport diagnostics and fields (scenes with [transport]).
+  auto transport_sample = [&](long step) {
+    if (!transport_) return;
+    TransportDiagnostics d;
+    d.step = step;
+    for (std::size_t i = 0; i < transport_->species_count(); ++i) {
+      const auto& lat = transport_->lattice(i);
+      d.mean_concentration.push_back(lat.total_amount() / nodes);
+      d.residual.push_back(step == 0 ? 0.0 : lat.mass_balance().relative_residual());
+    }
+    d.saturation.assign(transport_->saturation().begin(), transport_->saturation().end());
+    observer.on_transport_diagnostics(d);
+  };
+  auto transport_fields = [&](long step) {
+    if (!transport_) return;
+    TransportFields f;
+    for (std::size_t i = 0; i < transport_->species_count(); ++i) {
+      f.names.push_back(transport_->name(i));
+      f.concentration.push_back(transport_->lattice(i).concentration());
+    }
+    observer.on_transport_fields(step, f);
+  };
+
   // Fluid diagnostics plus, with cells, each cell's area change and Taylor deformation.
   auto sample = [&](long step, const fluid::Moments& m) {
     observer.on_diagnostics(diagnose(step, m));
+    transport_sample(step);
     if (!cells_) return;
     CellDiagnostics d;
     d.step = step;
-    for (int c = 0; c < cells_->cell_count(); ++c) {
-      const membrane::Polygon p = cells_->polygon(c);
-      d.area_change.push_back(membrane::signed_area(p) / cells_->rest(c).area - 1.0);
+    const membrane::ImmersedCells& cells = cells_->cells();
+    for (int c = 0; c < cells.cell_count(); ++c) {
+      const membrane::Polygon p = cells.polygon(c);
+      d.area_change.push_back(membrane::signed_area(p) / cells.rest(c).area - 1.0);
       d.taylor_deformation.push_back(taylor_deformation(p));
     }
     observer.on_cell_diagnostics(d);
@@ -186,6 +230,25 @@ RunSummary Simulation::run(RunObserver& observer) {
     const bool steady_check = steady && due(step, steady->check_interval_steps) && step > 0;
     if (!(fields || diagnostics || monitor || steady_check)) return true;
 
+    if (transport_) {  // health first: nothing unhealthy is ever written
+      const HealthReport th = transport_->check_health();
+      if (!th.healthy) {
+        summary.status = RunStatus::diverged;
+        summary.diagnosis = describe_transport_divergence(step, th, setup_);
+        return false;
+      }
+    }
+    if (!fluid_) {  // still medium: the transport is all there is
+      if (diagnostics) {
+        DiagnosticsSample d;
+        d.step = step;
+        observer.on_diagnostics(d);
+        transport_sample(step);
+      }
+      if (fields) transport_fields(step);
+      return true;
+    }
+
     fluid::Moments m = fluid_->moments();
     // Health first: nothing unhealthy is ever written.
     const HealthReport health = fluid::check_health(setup_.grid, m, scene_.monitor.max_mach);
@@ -196,7 +259,8 @@ RunSummary Simulation::run(RunObserver& observer) {
     }
     if (diagnostics) sample(step, m);
     if (fields) observer.on_fields(step, m);
-    if (fields && cells_) observer.on_cells(step, *cells_);
+    if (fields && cells_) observer.on_cells(step, cells_->cells());
+    if (fields) transport_fields(step);
     if (steady_check) {
       if (!previous_ux.empty()) {
         const double umax = health.max_speed;  // the health scan's max |u|, no second pass
@@ -204,7 +268,8 @@ RunSummary Simulation::run(RunObserver& observer) {
         if (umax > 0.0 && change / umax < steady->tolerance) {
           summary.status = RunStatus::steady_state;
           if (!fields) observer.on_fields(step, m);
-          if (!fields && cells_) observer.on_cells(step, *cells_);
+          if (!fields && cells_) observer.on_cells(step, cells_->cells());
+          if (!fields) transport_fields(step);
           if (!diagnostics) sample(step, m);
           return false;
         }
@@ -218,22 +283,49 @@ RunSummary Simulation::run(RunObserver& observer) {
 
   long step = 0;
   bool keep_going = observe(0, total == 0);
+  const long transport_every = setup_.transport ? std::max(1L, setup_.transport->fluid_steps_per_step) : 0;
+  std::vector<membrane::Polygon> moved;
   while (keep_going && step < total) {
+    if (!fluid_) {  // still medium: one transport step per step
+      transport_->step({}, {});
+      ++step;
+      const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
+      mlups = elapsed > 0.0 ? nodes * static_cast<double>(step) / elapsed * 1e-6 : 0.0;
+      observer.on_progress(step, total, mlups);
+      keep_going = observe(step, step == total);
+      continue;
+    }
     apply_body_force(step);
     if (cells_) {
       // One immersed-boundary cycle per fluid step (immersed_cells.hpp): membrane forces,
       // spreading (the body force adds to the field), fluid step, marker advection.
       try {
-        cells_->advance(*fluid_);
+        cells_->advance(*fluid_, step);
       } catch (const std::domain_error& e) {  // a marker velocity or position is not finite
         ++step;
         summary.status = RunStatus::diverged;
         summary.diagnosis = "diverged at step " + std::to_string(step) + ": membrane markers: " + e.what() +
                             "; lower the moduli or the time step (see erythro check's stability numbers)";
         break;
+      } catch (const interior::FillLeakError& e) {  // a membrane tangled: its interior is no longer closed
+        summary.status = RunStatus::diverged;
+        summary.diagnosis = "diverged at step " + std::to_string(step) + ": interior index field: " + e.what() +
+                            "; the membrane folded or crossed itself (lower the capillary number or refine)";
+        break;
       }
     } else {
       fluid_->step();
+    }
+    if (transport_ && (step + 1) % transport_every == 0) {
+      // Sub-cycling: one transport step of Δt_T = k Δt_F every k fluid steps, with the
+      // velocity of the last fluid step and the cells where they are now.
+      if (cells_) {
+        moved.resize(static_cast<std::size_t>(cells_->cells().cell_count()));
+        for (int c = 0; c < cells_->cells().cell_count(); ++c) moved[static_cast<std::size_t>(c)] = cells_->cells().polygon(c);
+        transport_->place_cells(moved);
+      }
+      const fluid::Moments m = fluid_->moments();
+      transport_->step(m.ux, m.uy);
     }
     ++step;
     const double elapsed = std::chrono::duration<double>(clock::now() - start).count();

@@ -4,10 +4,14 @@
 #include <chrono>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <sstream>
 #include <stdexcept>
 
 #include "capsule_run.hpp"  // make_shear_lattice: the undisturbed shear flow
 #include "fluid/fluid_lattice.hpp"
+#include "ib/domain.hpp"
+#include "interior/index_field.hpp"
 #include "membrane/immersed_cells.hpp"
 #include "membrane/shapes.hpp"
 #include "membrane/stability.hpp"
@@ -18,6 +22,24 @@ namespace {
 constexpr double kPi = std::numbers::pi;
 // Wraps an angle difference (degrees) into (−period/2, period/2].
 double wrap(double d, double period) { return d - period * std::round(d / period); }
+
+// Upper bound on any relaxation time of the run. BGK is linearly stable for every τ > ½,
+// but the IB no-slip error (leakage, slip at the membrane) grows with τ, roughly as
+// (τ − ½)² for the bounce-back-like halfway errors; τ = 5 (ratio 9 at τ_ex = 1) is kept
+// as a hard stop against a mistyped ratio rather than a physical limit.
+constexpr double kTauMax = 5.0;
+
+// The health monitor's message (cf. sim::describe_divergence), in lattice units.
+std::string describe(long step, const HealthReport& h, double tau_ex, double tau_in) {
+  std::ostringstream out;
+  out << "diverged at step " << step << ": " << h.quantity << " = " << h.value << " at node (" << h.node_x << ", "
+      << h.node_y << ")";
+  if (std::isnan(h.limit)) out << " is not finite";
+  else if (h.quantity == "density") out << " is not positive";
+  else out << " exceeds the limit " << h.limit << " (max_mach)";
+  out << "; tau_ex = " << tau_ex << ", tau_in = " << tau_in;
+  return out.str();
+}
 }  // namespace
 
 std::string classify(const RbcResult& r) {
@@ -48,6 +70,21 @@ RbcResult run_rbc(const RbcConfig& c) {
   const int nx = r.nx, ny = r.ny;
   const double gamma = r.gamma_lat;
   fluid::FluidLattice lat = make_shear_lattice(nx, ny, gamma, c.tau);  // undisturbed shear u = γ̇(y − H/2)
+  // Interior viscosity (model.md §5): eq 27 with ν_ex from τ and ν_in = ratio·ν_ex, so
+  // τ_in = ½ + ratio(τ_ex − ½). Indexless leaves the lattice untouched (no τ field).
+  const bool varying = c.indicator != interior::Method::indexless;
+  const double nu_in = varying ? c.viscosity_ratio * nu : nu;
+  r.tau_ex = c.tau;
+  r.tau_in = 0.5 + 3.0 * nu_in;
+  if (!(c.tau > 0.5) || !(r.tau_in > 0.5) || r.tau_ex > kTauMax || r.tau_in > kTauMax)
+    throw std::invalid_argument("rbc run: relaxation times tau_ex = " + std::to_string(r.tau_ex) + ", tau_in = " +
+                                std::to_string(r.tau_in) + " outside (0.5, 5]");
+  if (c.index_update_interval < 1) throw std::invalid_argument("rbc run: index_update_interval must be >= 1");
+  std::optional<interior::IndexField> field;
+  if (varying) {
+    lat.enable_tau_field();
+    field.emplace(ib::Domain::from(lat.grid(), lat.boundaries()), interior::IndexFieldOptions{c.indicator, 2.0});
+  }
 
   // Biconcave cell, long axis along the flow (tilted 0.01 rad), centred slightly off the lattice symmetry.
   const double perimeter_over_a = 19.271 / 3.91;  // parameters.md
@@ -60,11 +97,11 @@ RbcResult run_rbc(const RbcConfig& c) {
   StabilityInput si;
   si.kernel = c.kernel;
   si.model = model;
-  si.viscosity = nu;
+  si.viscosity = std::min(nu, nu_in);  // the smallest viscosity at the membrane
   si.max_stretch = 1.2;
   const StabilityEstimate est = estimate_stability(si);
   r.stability_factor = est.max_dt_factor;
-  if (!est.acceptable()) throw std::runtime_error(est.problem);
+  if (!est.acceptable() && c.require_stability_estimate) throw std::runtime_error(est.problem);
   ImmersedCells cells(c.kernel, lat);
   cells.add_cell(shape, rest, model);
   const double A0 = rest.area;
@@ -86,12 +123,29 @@ RbcResult run_rbc(const RbcConfig& c) {
     }
     r.snapshots.push_back(std::move(s));
   };
+  // Index field → τ field from the current membrane (thesis §II.4: before each fluid step).
+  auto update_viscosity = [&]() {
+    const auto t0 = std::chrono::steady_clock::now();
+    const Polygon p = cells.polygon(0);
+    const interior::FillReport& fr = field->update(std::span<const Polygon>(&p, 1));
+    field->write_relaxation_times(lat.tau_field(), nu_in, nu);
+    r.max_fill_mismatch = std::max(r.max_fill_mismatch, fr.max_area_mismatch / A0);
+    r.fallback_cells = std::max(r.fallback_cells, fr.fallback_cells);
+    ++r.index_updates;
+    r.index_time_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  };
   for (long s = 0; s <= steps; ++s) {
     if (s > 0) {
       try {
+        if (varying && (s - 1) % c.index_update_interval == 0) update_viscosity();
         cells.advance(lat);
-      } catch (const std::domain_error&) {
+      } catch (const interior::FillLeakError& e) {
         r.diverged = true;
+        r.diagnosis = "index field at step " + std::to_string(s) + ": " + e.what();
+        break;
+      } catch (const std::domain_error& e) {
+        r.diverged = true;
+        r.diagnosis = "step " + std::to_string(s) + ": " + e.what();
         break;
       }
       r.steps = s;
@@ -105,10 +159,22 @@ RbcResult run_rbc(const RbcConfig& c) {
       const double l = std::hypot(p.x[f] - p.x[e], p.y[f] - p.y[e]);
       emax = std::max(emax, std::abs(l / rest.length[e] - 1.0));
     }
-    if (!std::isfinite(dA) || std::abs(dA) > 0.2) { r.diverged = true; break; }
+    if (!std::isfinite(dA) || std::abs(dA) > 0.2) {
+      r.diverged = true;
+      r.diagnosis = "area change A/A0 - 1 = " + std::to_string(dA) + " at step " + std::to_string(s) +
+                    " (limit 0.2): the membrane failed";
+      break;
+    }
     r.max_area_change = std::max(r.max_area_change, std::abs(dA));
     r.max_edge_strain = std::max(r.max_edge_strain, emax);
     if (s % sample_every != 0 && s != steps) continue;
+    // Health monitor at every sample (finite ρ, u; ρ > 0; |u|/c_s ≤ max_mach).
+    const HealthReport health = lat.check_health(c.max_mach);
+    if (!health.healthy) {
+      r.diverged = true;
+      r.diagnosis = describe(s, health, r.tau_ex, r.tau_in);
+      break;
+    }
     const double strain = static_cast<double>(s) * gamma;
     double D, th;
     taylor_deformation(p, D, th);
@@ -129,14 +195,35 @@ RbcResult run_rbc(const RbcConfig& c) {
     r.area_h.push_back(dA);
     r.estrain_h.push_back(emax);
     r.psi_h.push_back(marker0_start + phase[0] - theta_unwrapped);  // ψ: marker 0 from the long axis
+    double mp = 0;
+    for (double ph : phase) mp += ph / static_cast<double>(n);
+    r.phase_h.push_back(mp);
     while (next_snap < c.snapshot_strains.size() && strain >= c.snapshot_strains[next_snap] - 0.5 * gamma) {
       snapshot(p, strain);
       ++next_snap;
     }
   }
   r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  if (r.diverged || r.strain_h.size() < 3) { r.diverged = true; return r; }
+  if (r.diverged || r.strain_h.size() < 3) {
+    if (r.diagnosis.empty()) r.diagnosis = "fewer than 3 samples";
+    r.diverged = true;
+    if (!r.strain_h.empty()) r.strain = r.strain_h.back();
+    return r;
+  }
   r.strain = r.strain_h.back();
+  if (field) {  // Σ(1 − I)/A of the last update: 1 when the whole interior carries ν_in
+    double filled = 0;
+    for (double v : field->values()) filled += 1.0 - v;
+    r.interior_fraction = filled / A0;
+  }
+  {  // rates over the second half of the run
+    const std::size_t i0 = r.strain_h.size() / 2, i1 = r.strain_h.size() - 1;
+    const double ds = r.strain_h[i1] - r.strain_h[i0];
+    if (ds > 0) {
+      r.marker_rate_deg = (r.phase_h[i1] - r.phase_h[i0]) / ds;
+      r.body_rate_deg = (r.theta_h[i1] - r.theta_h[i0]) / ds;
+    }
+  }
   r.body_rotation_deg = r.theta_h.back() - r.theta_h.front();
   double mean = 0;
   for (double ph : phase) mean += ph / static_cast<double>(n);

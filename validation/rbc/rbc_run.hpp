@@ -1,7 +1,11 @@
 #pragma once
 // One run of the red-blood-cell-in-shear set-up (validation.rbc_shear): a 2D
 // Evans–Fung biconcave cell (model.md §3, thesis eq 29) between two walls moving
-// at ±U (simple shear γ̇ = 2U/H), periodic in x, one fluid (viscosity ratio 1).
+// at ±U (simple shear γ̇ = 2U/H), periodic in x. Interior viscosity (issue 5,
+// model.md §5, thesis eqs 26–27): `indicator` picks how the cytoplasm is marked —
+// indexless (one fluid, today's behaviour bit for bit), band_only or flood_fill —
+// and the per-node τ field is rewritten from the index field every
+// `index_update_interval` steps with ν_in = viscosity_ratio·ν_ex.
 // Membrane: neo-Hookean tension, bending about the biconcave rest curvature, area
 // penalty; the rest shape is the initial biconcave polygon (no prestress).
 // Physical inputs are turned into the dimensionless groups the 2D Stokes problem
@@ -11,6 +15,7 @@
 #include <vector>
 
 #include "ib/kernel.hpp"
+#include "interior/index_field.hpp"
 
 namespace erythro::vv {
 
@@ -19,7 +24,13 @@ struct RbcConfig {
   // Physical (SI) inputs, parameters.md.
   double a_m = 3.91e-6;          // Evans–Fung equivalent radius
   double h_m = 0.25e-6;          // lattice spacing
-  double mu_Pa_s = 1.2e-3;       // plasma viscosity (1.2 cP), also inside (ratio 1)
+  double mu_Pa_s = 1.2e-3;       // plasma viscosity (1.2 cP): the exterior viscosity μ_ex
+  // Interior viscosity (issue 5). indexless: uniform μ_ex everywhere (viscosity_ratio is
+  // then ignored; the τ field is never enabled). Otherwise τ(x) from eq 27 with
+  // ν_in = viscosity_ratio·ν_ex (cytoplasm 6.0 cP / plasma 1.2 cP = 5).
+  interior::Method indicator = interior::Method::indexless;
+  double viscosity_ratio = 1.0;  // μ_in/μ_ex
+  int index_update_interval = 1; // rebuild I and τ every k steps (1 = every step)
   double shear_rate = 100.0;     // γ̇ [1/s]
   double Es_N_m = 6e-6;          // E_S = 6e-3 dyn/cm
   double Eb_J = 3.6e-19;         // E_B = 3.6e-12 dyn·cm (thesis)
@@ -31,6 +42,10 @@ struct RbcConfig {
   double length = 8.0;           // L_x/a (periodic)
   double marker_spacing = 0.5;   // rest marker spacing in h
   double strain = 20.0;          // γ̇t to run
+  double max_mach = 0.3;         // health monitor: |u|/c_s limit (scene default, scene.hpp)
+  // Throw when membrane::estimate_stability rejects the set-up (default). The stability
+  // map (validation.rbc_viscosity_stability) turns this off to see what such runs do.
+  bool require_stability_estimate = true;
   std::vector<double> snapshot_strains = {0, 2, 5, 10, 15, 20};
 };
 
@@ -41,6 +56,13 @@ struct ShapeSnapshot {
 
 struct RbcResult {
   bool diverged = false;
+  std::string diagnosis;         // why the run stopped early (health monitor, marker, fill, area)
+  double tau_ex = 0, tau_in = 0; // relaxation times outside / inside (τ_in = τ_ex when indexless)
+  long index_updates = 0;        // index-field rebuilds
+  double index_time_s = 0;       // wall time of the rebuilds and τ writes
+  int fallback_cells = 0;        // max over updates of FillReport::fallback_cells
+  double max_fill_mismatch = 0;  // max over updates of |Σ(1 − I) − A| / A
+  double interior_fraction = 0;  // last update: Σ(1 − I) / A (1 for a filled cell)
   long steps = 0;
   double strain = 0;
   int markers = 0;
@@ -55,11 +77,15 @@ struct RbcResult {
   double body_rotation_deg = 0;  // change of the unwrapped inclination θ over the run
   double marker_rotation_deg = 0;// mean over markers of the unwrapped angle change about the centroid
   double marker0_rotation_deg = 0; // same for marker 0 alone
+  // Rates over the second half of the run (deg per unit strain; negative = clockwise,
+  // with the vorticity): mean marker angle about the centroid, and the long axis.
+  double marker_rate_deg = 0, body_rate_deg = 0;
   double theta_min = 0, theta_max = 0;  // range of unwrapped θ after strain 2 (final θ if shorter)
   double D_mean = 0, theta_mean = 0;    // means over the last 2 strain units
   double centre_drift = 0;       // |y_c − H/2| / a at the end
   double wall_time_s = 0;
   std::vector<double> strain_h, D_h, theta_h, area_h, estrain_h, psi_h;  // every 0.05 strain units
+  std::vector<double> phase_h;   // mean marker angle about the centroid (deg, unwrapped, from 0)
   std::vector<ShapeSnapshot> snapshots;
 };
 

@@ -58,5 +58,60 @@ TEST(CellSimulation, CapsuleDeformsInShear) {
   EXPECT_LT(std::abs(c.samples.back().area_change[0]), 1e-3);
 }
 
+
+// Interior viscosity 5× the plasma's by flood fill: the index field exists, the lattice's
+// τ field holds τ_ex far outside and τ_in at the centre (eq 27), and the run completes.
+TEST(CellSimulation, InteriorViscosityByFloodFill) {
+  const scene::Scene s = scene::load_scene(std::string(ERYTHRO_SCENES_DIR) + "/capsule_shear.toml",
+                                           {"run.steps=200", "membrane.interior_viscosity_cP=5.0",
+                                            "output.fields_interval_steps=0"});
+  const scene::LatticeSetup L = scene::derive_lattice(s);
+  Simulation sim(s, L);
+  ASSERT_NE(sim.index_field(), nullptr);
+  const Grid& g = L.grid;
+  const auto tau = sim.fluid()->tau_field();
+  ASSERT_EQ(tau.size(), g.size());
+  double cx = 0, cy = 0;
+  membrane::centroid(sim.cells()->polygon(0), cx, cy);
+  const double ratio = *s.membrane->interior_viscosity_cP / s.fluid.viscosity_cP;
+  EXPECT_NEAR(tau[g.index(static_cast<int>(cx), static_cast<int>(cy))], 0.5 + ratio * (L.collision.tau - 0.5), 1e-12);
+  EXPECT_NEAR(tau[g.index(0, g.ny / 2)], L.collision.tau, 1e-12);
+  Collect c;
+  EXPECT_EQ(sim.run(c).status, RunStatus::completed);
+}
+
+}  // namespace
+}  // namespace erythro::sim
+
+namespace erythro::sim {
+namespace {
+
+// Two capsules a little beyond the Morse range apart in still fluid, with aggregation:
+// the simulation builds the aggregation and the pair attracts (their gap shrinks).
+TEST(CellSimulation, AggregatingPairAttracts) {
+  const std::string text =
+      "[domain]\nsize_um = [20, 10]\nspacing_um = 0.25\n[time]\ntau = 1.0\n"
+      "[fluid]\ndensity_kg_m3 = 1000\nviscosity_cP = 1.0\n"
+      "[boundaries.bottom]\ntype = \"wall\"\n[boundaries.top]\ntype = \"wall\"\n[run]\nsteps = 400\n"
+      "[output]\nfields_interval_steps = 0\n"
+      "[membrane]\nshear_modulus_dyn_cm = 6e-3\n"
+      "[aggregation]\npair_density_Pa = 500\n"
+      "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [7.6, 5]\nmarkers = 64\n"
+      "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [12.4, 5]\nmarkers = 64\n";
+  const scene::Scene s = scene::parse_scene(text, "pair.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  ASSERT_NE(sim.cells(), nullptr);
+  const auto gap = [&] {
+    double cx0 = 0, cy0 = 0, cx1 = 0, cy1 = 0;
+    membrane::centroid(sim.cells()->polygon(0), cx0, cy0);
+    membrane::centroid(sim.cells()->polygon(1), cx1, cy1);
+    return cx1 - cx0;
+  };
+  const double before = gap();
+  Collect c;
+  EXPECT_EQ(sim.run(c).status, RunStatus::completed);
+  EXPECT_LT(gap(), before);
+}
+
 }  // namespace
 }  // namespace erythro::sim

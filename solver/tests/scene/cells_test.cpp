@@ -221,3 +221,95 @@ TEST(SceneCells, RejectsAMembraneBeyondTheStabilityLimit) {
 
 }  // namespace
 }  // namespace erythro::scene
+
+namespace erythro::scene {
+namespace {
+
+using testing::channel_scene;
+using testing::derive;
+using testing::error_of;
+
+const std::string interior_channel = channel_scene("20, 10", "0.5", "1.0", "10");
+const std::string interior_cell = "\n[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 32\n";
+
+// Absent interior viscosity: no index field, the interior has the fluid's ν.
+TEST(SceneInterior, AbsentMeansIndexless) {
+  const LatticeSetup L = derive(interior_channel + interior_cell);
+  ASSERT_TRUE(L.membrane.has_value());
+  EXPECT_EQ(L.membrane->indicator, interior::Method::indexless);
+  EXPECT_DOUBLE_EQ(L.membrane->interior_viscosity, L.viscosity);
+}
+
+// ν_in/ν_ex = μ_in/μ_ex (eq 27 at one density); τ = 1 → ν_ex = 1/6, ratio 5 → τ_in = 3.
+TEST(SceneInterior, ConvertsViscosityAndMethod) {
+  const LatticeSetup L = derive(interior_channel +
+                                "[membrane]\ninterior_viscosity_cP = 5.0\ninterior_method = \"ray_casting\"\n"
+                                "index_update_interval = 4\n" + interior_cell);
+  ASSERT_TRUE(L.membrane.has_value());
+  EXPECT_EQ(L.membrane->indicator, interior::Method::ray_casting);
+  EXPECT_NEAR(L.membrane->interior_viscosity, 5.0 / 6.0, 1e-12);
+  EXPECT_NEAR(L.membrane->interior_tau, 3.0, 1e-12);
+  EXPECT_EQ(L.membrane->index_update_interval, 4);
+  const LatticeSetup D = derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 6.0\n" + interior_cell);
+  EXPECT_EQ(D.membrane->indicator, interior::Method::flood_fill);  // the thesis method by default
+}
+
+TEST(SceneInterior, RejectsBadInput) {
+  EXPECT_CONTAINS(error_of([] { derive(interior_channel + "[membrane]\ninterior_method = \"band_only\"\n" + interior_cell); }),
+                  "needs membrane.interior_viscosity_cP");
+  EXPECT_CONTAINS(error_of([] {
+                    derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 6\ninterior_method = \"paint\"\n" +
+                           interior_cell);
+                  }),
+                  "membrane.interior_method");
+  EXPECT_CONTAINS(error_of([] { derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 0.001\n" + interior_cell); }),
+                  "interior relaxation time");
+  EXPECT_CONTAINS(error_of([] {
+                    derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 6\nindex_update_interval = 0\n" +
+                           interior_cell);
+                  }),
+                  "membrane.index_update_interval");
+}
+
+}  // namespace
+}  // namespace erythro::scene
+
+namespace erythro::scene {
+namespace {
+
+using testing::channel_scene;
+using testing::derive;
+using testing::error_of;
+
+const std::string pair_channel = channel_scene("20, 10", "0.25", "1.0", "10");
+const std::string two_cells =
+    "\n[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [7.7, 5]\nmarkers = 64\n"
+    "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [12.3, 5]\nmarkers = 64\n";
+
+// [aggregation] → lattice Morse parameters: r0 = 0.49 µm / 0.25 µm = 1.96 h, β = 3.84 µm⁻¹ × 0.25 µm
+// = 0.96 /h; the surface energy becomes a positive pair density and a flat-contact gap below r0.
+TEST(SceneAggregation, ConvertsTheThesisSurfaceEnergy) {
+  const LatticeSetup L = derive(pair_channel + "[aggregation]\nsurface_energy_uJ_um2 = 1.3e-7\n" + two_cells);
+  ASSERT_TRUE(L.membrane && L.membrane->aggregation);
+  const auto& a = *L.membrane->aggregation;
+  EXPECT_NEAR(a.r0, 1.96, 1e-12);
+  EXPECT_NEAR(a.beta, 0.96, 1e-12);
+  EXPECT_NEAR(a.cutoff, 6.0, 1e-12);
+  EXPECT_GT(a.De, 0.0);
+  EXPECT_GT(L.membrane->aggregation_flat_gap, 0.0);
+  EXPECT_LT(L.membrane->aggregation_flat_gap, a.r0);
+  const LatticeSetup P = derive(pair_channel + "[aggregation]\npair_density_Pa = 2.0\n" + two_cells);
+  EXPECT_GT(P.membrane->aggregation->De, 0.0);
+}
+
+TEST(SceneAggregation, RejectsBadInput) {
+  EXPECT_CONTAINS(error_of([] { derive(pair_channel + "[aggregation]\nzero_force_distance_um = 0.5\n" + two_cells); }),
+                  "surface_energy_uJ_um2");
+  EXPECT_CONTAINS(error_of([] {
+                    derive(pair_channel + "[aggregation]\nsurface_energy_uJ_um2 = 1e-7\ncutoff_um = 0.3\n" + two_cells);
+                  }),
+                  "must exceed aggregation.zero_force_distance_um");
+}
+
+}  // namespace
+}  // namespace erythro::scene

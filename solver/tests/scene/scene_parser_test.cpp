@@ -170,8 +170,8 @@ TEST(SceneParser, UnknownTableAndMisplacedKey) {
   // A quoted dotted key is a different key.
   EXPECT_CONTAINS(parse_error("\"fluid.viscosity_cP\" = 2\n" + minimal), "scenes/x.toml:1: unknown key 'fluid.viscosity_cP'");
   // Nothing close: no suggestion.
-  const std::string m = parse_error(minimal + "[aggregation]\nwell_depth = 6e-3\n");
-  EXPECT_CONTAINS(m, "unknown table 'aggregation'");
+  const std::string m = parse_error(minimal + "[adhesion]\nwell_depth = 6e-3\n");
+  EXPECT_CONTAINS(m, "unknown table 'adhesion'");
   EXPECT_EQ(m.find("did you mean"), std::string::npos) << m;
 }
 

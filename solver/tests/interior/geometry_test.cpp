@@ -1,0 +1,80 @@
+// Geometry of the index field (interior/index_field.hpp, geometry.hpp): eq 26, signed
+// distance sign and accuracy, even–odd ray casting with periodic wrap, clipped area.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "interior/geometry.hpp"
+#include "interior/index_field.hpp"
+#include "membrane/shapes.hpp"
+
+using namespace erythro;
+using namespace erythro::interior;
+
+TEST(Heaviside, Eq26Values) {
+  // H(d) = ½[1 + d/w + (1/π) sin(πd/w)], w = 2.
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(-2.0), 0.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(-5.0), 0.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(2.0), 1.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(7.0), 1.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(0.0), 0.5);
+  EXPECT_NEAR(smoothed_heaviside(1.0), 0.5 * (1.5 + 1.0 / std::numbers::pi), 1e-15);
+  EXPECT_NEAR(smoothed_heaviside(-1.0), 0.5 * (0.5 - 1.0 / std::numbers::pi), 1e-15);
+  // Odd symmetry about ½, monotone, C¹ at ±w (H' = (1 + cos(πd/w))/(2w) → 0).
+  for (double d = -1.99; d < 2.0; d += 0.01) {
+    EXPECT_NEAR(smoothed_heaviside(d) + smoothed_heaviside(-d), 1.0, 1e-14);
+    EXPECT_LE(smoothed_heaviside(d - 0.01), smoothed_heaviside(d));
+  }
+  EXPECT_NEAR(smoothed_heaviside(-1.9999), 0.0, 1e-10);
+  EXPECT_NEAR(smoothed_heaviside(3.0, 3.0), 1.0, 0.0);
+  EXPECT_NEAR(smoothed_heaviside(1.5, 3.0), 0.5 * (1.5 + 1.0 / std::numbers::pi), 1e-15);
+}
+
+TEST(SignedDistance, SquareSignAndValue) {
+  membrane::Polygon sq{{0, 4, 4, 0}, {0, 0, 4, 4}};  // counter-clockwise
+  EXPECT_NEAR(signed_distance(sq, 2.0, 2.0), -2.0, 1e-15);
+  EXPECT_NEAR(signed_distance(sq, 1.0, 2.0), -1.0, 1e-15);
+  EXPECT_NEAR(signed_distance(sq, 5.0, 2.0), 1.0, 1e-15);
+  EXPECT_NEAR(signed_distance(sq, 5.0, 5.0), std::sqrt(2.0), 1e-15);  // nearest point: a vertex
+  EXPECT_NEAR(signed_distance(sq, -3.0, -4.0), 5.0, 1e-15);
+}
+
+TEST(SignedDistance, CircleAccuracy) {
+  // A 400-gon of radius 10: d = r − 10 to within the chord sagitta 10(1 − cos(π/400)) ≈ 3e-4.
+  const auto c = membrane::circle(400, 10.0);
+  for (double r : {0.5, 7.3, 9.5, 10.4, 13.0})
+    for (double th = 0.1; th < 6.2; th += 0.7)
+      EXPECT_NEAR(signed_distance(c, r * std::cos(th), r * std::sin(th)), r - 10.0, 3.1e-4) << r << " " << th;
+}
+
+TEST(RayCast, PeriodicWrapMatchesUnwrappedImage) {
+  // A circle centred at (1, 1) on a 20 × 16 periodic grid: its nodes wrap to the far sides.
+  const ib::Domain d{Grid{20, 16}, true, true};
+  const auto c = membrane::transformed(membrane::circle(64, 4.0), 1.0, 0.0, 1.0, 1.0);
+  const auto mask = ray_cast_inside(c, d);
+  long inside = 0;
+  for (int j = 0; j < 16; ++j)
+    for (int i = 0; i < 20; ++i) {
+      // The nearest image of node (i, j) relative to the centre.
+      double dx = i + 0.5 - 1.0, dy = j + 0.5 - 1.0;
+      if (dx > 10) dx -= 20;
+      if (dy > 8) dy -= 16;
+      const bool expect = signed_distance(c, 1.0 + dx, 1.0 + dy) < 0;
+      EXPECT_EQ(mask[d.grid.index(i, j)] != 0, expect) << i << " " << j;
+      inside += mask[d.grid.index(i, j)];
+    }
+  EXPECT_GT(inside, 40);
+  // Without periodic wrap the images beyond x = 0 and y = 0 are dropped.
+  const auto walls = ray_cast_inside(c, ib::Domain{Grid{20, 16}, false, false});
+  long kept = 0;
+  for (auto v : walls) kept += v;
+  EXPECT_LT(kept, inside / 2);
+}
+
+TEST(ClippedArea, ClipsOnlyNonPeriodicAxes) {
+  membrane::Polygon r{{-2, 6, 6, -2}, {1, 1, 3, 3}};  // 8 × 2, crossing x = 0
+  EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{10, 10}, true, false}), 16.0, 1e-12);
+  EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{10, 10}, false, false}), 12.0, 1e-12);
+  EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{4, 10}, false, true}), 8.0, 1e-12);
+}

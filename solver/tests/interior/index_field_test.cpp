@@ -1,0 +1,188 @@
+// The index field (interior/index_field.hpp): method names, eq 26 in the band, the
+// interior of each method, periodic wrap, overlapping bands, small cells, eq 27.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "interior/index_field.hpp"
+#include "membrane/shapes.hpp"
+
+using namespace erythro;
+using namespace erythro::interior;
+
+namespace {
+membrane::Polygon disc(double r, double cx, double cy, int markers = 100) {
+  return membrane::transformed(membrane::circle(markers, r), 1.0, 0.0, cx, cy);
+}
+IndexField field(int nx, int ny, Method m, bool px = true, bool py = true) {
+  return IndexField(ib::Domain{Grid{nx, ny}, px, py}, IndexFieldOptions{m, 2.0});
+}
+}  // namespace
+
+TEST(Method, NamesRoundTripAndUnknownThrows) {
+  for (Method m : {Method::indexless, Method::band_only, Method::flood_fill, Method::ray_casting})
+    EXPECT_EQ(parse_method(to_string(m)), m);
+  EXPECT_EQ(to_string(Method::flood_fill), "flood_fill");
+  try {
+    parse_method("floodfill");
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    for (const char* n : {"floodfill", "indexless", "band_only", "flood_fill", "ray_casting"})
+      EXPECT_NE(what.find(n), std::string::npos) << what;
+  }
+}
+
+TEST(IndexField, RejectsBadOptions) {
+  EXPECT_THROW(IndexField(ib::Domain{Grid{0, 5}}, {}), std::invalid_argument);
+  EXPECT_THROW(IndexField(ib::Domain{Grid{5, 5}}, IndexFieldOptions{Method::flood_fill, 0.0}), std::invalid_argument);
+}
+
+TEST(IndexField, FloodFillDiscValuesFollowEq26) {
+  auto f = field(40, 40, Method::flood_fill);
+  const auto c = disc(10.0, 20.0, 20.0, 400);
+  const std::vector<membrane::Polygon> cells{c};
+  const FillReport& r = f.update(cells);
+  EXPECT_EQ(r.cells, 1);
+  EXPECT_EQ(r.fill_starts, 1);
+  EXPECT_EQ(r.fallback_cells, 0);
+  EXPECT_GT(r.interior_nodes, 0);
+  long band = 0;
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) {
+      const double d = signed_distance(c, i + 0.5, j + 0.5);
+      const double I = f.values()[j * 40 + i];
+      if (std::abs(d) < 2.0) {
+        ++band;
+        EXPECT_NEAR(I, smoothed_heaviside(d), 1e-12) << i << " " << j;
+      } else {
+        EXPECT_EQ(I, d < 0 ? 0.0 : 1.0) << i << " " << j;
+      }
+    }
+  EXPECT_EQ(r.band_nodes, band);
+  // Σ(1 − I) − A → (π/3 − 2/π) w² for a closed curve whose band does not overlap itself
+  // (the curvature term of eq 26's first moment: docs/verification-interior.md).
+  double s = 0;
+  for (double I : f.values()) s += 1 - I;
+  EXPECT_NEAR(s - membrane::signed_area(c), 4.0 * (std::numbers::pi / 3 - 2 / std::numbers::pi), 0.02);
+}
+
+TEST(IndexField, MethodsDifferAsSpecified) {
+  const std::vector<membrane::Polygon> cells{disc(9.0, 16.0, 15.0)};
+  auto none = field(32, 32, Method::indexless), band = field(32, 32, Method::band_only),
+       fill = field(32, 32, Method::flood_fill), ray = field(32, 32, Method::ray_casting);
+  none.update(cells);
+  band.update(cells);
+  fill.update(cells);
+  ray.update(cells);
+  long band_lt1 = 0;
+  for (std::size_t k = 0; k < 32 * 32; ++k) {
+    EXPECT_EQ(none.values()[k], 1.0);
+    EXPECT_EQ(fill.values()[k], ray.values()[k]) << k;  // same band, same interior set
+    if (band.values()[k] < 1.0) {
+      ++band_lt1;
+      EXPECT_EQ(band.values()[k], fill.values()[k]);    // band_only: eq 26 in the band …
+    } else {
+      EXPECT_TRUE(fill.values()[k] == 1.0 || fill.values()[k] == 0.0);  // … and 1 elsewhere
+    }
+  }
+  EXPECT_EQ(band_lt1, band.report().band_nodes);
+  EXPECT_EQ(band.report().interior_nodes, 0);
+}
+
+TEST(IndexField, PeriodicWrapGivesTheShiftedField) {
+  // A cell across the corner equals the same cell in the middle, cyclically shifted.
+  const int n = 36;
+  auto a = field(n, n, Method::flood_fill), b = field(n, n, Method::flood_fill);
+  const std::vector<membrane::Polygon> mid{membrane::transformed(membrane::biconcave(100, 12.0), 1.0, 0.3, 18.0, 18.0)};
+  const std::vector<membrane::Polygon> corner{membrane::transformed(membrane::biconcave(100, 12.0), 1.0, 0.3, 0.0, 36.0)};
+  a.update(mid);
+  b.update(corner);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      EXPECT_NEAR(a.values()[j * n + i], b.values()[((j + 18) % n) * n + (i + 18) % n], 1e-12) << i << " " << j;
+}
+
+TEST(IndexField, UpdateResetsThePreviousField) {
+  auto f = field(40, 40, Method::flood_fill);
+  f.update(std::vector<membrane::Polygon>{disc(8.0, 12.0, 12.0)});
+  const std::vector<membrane::Polygon> moved{disc(8.0, 27.0, 26.0)};
+  f.update(moved);
+  auto fresh = field(40, 40, Method::flood_fill);
+  fresh.update(moved);
+  for (std::size_t k = 0; k < 1600; ++k) EXPECT_EQ(f.values()[k], fresh.values()[k]);
+  f.update(std::vector<membrane::Polygon>{});
+  for (double I : f.values()) EXPECT_EQ(I, 1.0);
+}
+
+TEST(IndexField, OverlappingBandsKeepTheMinimum) {
+  // Gap 1.5 h between two discs: their bands (±2 h) overlap.
+  const auto c1 = disc(8.0, 12.0, 16.0), c2 = disc(8.0, 29.5, 16.0);
+  auto f = field(44, 32, Method::flood_fill);
+  const std::vector<membrane::Polygon> cells{c1, c2};
+  const FillReport& r = f.update(cells);
+  EXPECT_GT(r.overlap_nodes, 0);
+  EXPECT_EQ(r.fill_starts, 2);
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 44; ++i) {
+      const double d1 = signed_distance(c1, i + 0.5, j + 0.5), d2 = signed_distance(c2, i + 0.5, j + 0.5);
+      const double expect = (d1 < -2 || d2 < -2) ? 0.0 : std::min(smoothed_heaviside(d1), smoothed_heaviside(d2));
+      EXPECT_NEAR(f.values()[j * 44 + i], expect, 1e-12) << i << " " << j;
+    }
+}
+
+TEST(IndexField, SmallCellFallsBackToRayCasting) {
+  // Radius 2.2: every interior node lies within the band (no node with −d > 2) → no start.
+  auto f = field(20, 20, Method::flood_fill);
+  const FillReport& r = f.update(std::vector<membrane::Polygon>{disc(2.2, 10.0, 10.0, 20)});
+  EXPECT_EQ(r.fallback_cells, 1);
+  EXPECT_EQ(r.fill_starts + r.completion_starts, 0);
+  EXPECT_EQ(r.interior_nodes, 0);
+  EXPECT_GT(r.band_nodes, 0);
+}
+
+TEST(IndexField, FlatMembraneNeedsTheCompletionPass) {
+  // A slab y ∈ [4, 14] across a non-periodic 6-wide domain: in a 4h × 4h window of a
+  // marker on a flat edge every node has |d| ≤ 2, so the thesis rule finds no start node;
+  // the completion pass starts from a node with 2 ≤ −d < 3 instead.
+  membrane::Polygon slab;
+  for (int k = -3; k <= 9; ++k) { slab.x.push_back(k); slab.y.push_back(4.0); }
+  for (int k = 9; k >= -3; --k) { slab.x.push_back(k); slab.y.push_back(14.0); }
+  auto f = field(6, 20, Method::flood_fill, false, false);
+  const FillReport& r = f.update(std::vector<membrane::Polygon>{slab});
+  EXPECT_EQ(r.fill_starts, 0);
+  EXPECT_EQ(r.completion_starts, 1);
+  EXPECT_EQ(r.fallback_cells, 0);
+  for (int j = 0; j < 20; ++j) {
+    const double y = j + 0.5;
+    const double d = std::max(4.0 - y, y - 14.0);  // signed distance to the slab
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(f.values()[j * 6 + i], smoothed_heaviside(d), 1e-12) << i << " " << j;
+  }
+}
+
+TEST(IndexField, WriteRelaxationTimesEq27) {
+  auto f = field(30, 30, Method::flood_fill);
+  f.update(std::vector<membrane::Polygon>{disc(8.0, 15.0, 15.0)});
+  std::vector<double> tau(900);
+  const double nu_in = 1.0 / 3.0, nu_ex = 0.2 / 3.0;
+  f.write_relaxation_times(tau, nu_in, nu_ex);
+  for (std::size_t k = 0; k < 900; ++k) {
+    const double I = f.values()[k];
+    EXPECT_NEAR(tau[k], 0.5 + 3.0 * (nu_in + (nu_ex - nu_in) * I), 1e-15);
+    if (I == 0.0) { EXPECT_NEAR(tau[k], 1.5, 1e-15); }
+    if (I == 1.0) { EXPECT_NEAR(tau[k], 0.7, 1e-15); }
+  }
+  std::vector<double> wrong(899);
+  EXPECT_THROW(f.write_relaxation_times(wrong, nu_in, nu_ex), std::invalid_argument);
+}
+
+TEST(IndexField, ClockwisePolygonGivesTheSameField) {
+  auto c = disc(9.0, 15.0, 15.0);
+  membrane::Polygon cw{{c.x.rbegin(), c.x.rend()}, {c.y.rbegin(), c.y.rend()}};
+  auto a = field(30, 30, Method::flood_fill), b = field(30, 30, Method::flood_fill);
+  a.update(std::vector<membrane::Polygon>{c});
+  b.update(std::vector<membrane::Polygon>{cw});
+  for (std::size_t k = 0; k < 900; ++k) EXPECT_NEAR(a.values()[k], b.values()[k], 1e-12);
+}

@@ -1,0 +1,162 @@
+// [transport], [[species]], [hemoglobin]: parsing, conversion to transport lattice
+// units, the refusals, and runs through the simulation (still medium: no fluid is
+// built; sub-cycling: the transport advances every k fluid steps).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "input_error_matchers.hpp"
+#include "scene/scene_parser.hpp"
+#include "scene/units.hpp"
+#include "simulation/simulation.hpp"
+#include "transport/hb_kinetics.hpp"
+
+namespace erythro::sim {
+namespace {
+
+using scene::testing::error_of;
+
+// 10 µm box, h = 0.5 µm (20 × 20 nodes), walls; O2 with D = 2800 µm²/s, Δt_T = 1e-5 s
+// → D_lat = 2800e-5 / 0.25 = 0.112; a biconcave cell (a = 3 µm) starting at 100 Torr.
+std::string still_scene(const std::string& side = "zero_flux", const std::string& extra = "") {
+  std::string s =
+      "[domain]\nsize_um = [10, 10]\nspacing_um = 0.5\n"
+      "[boundaries.left]\ntype = \"wall\"\n[boundaries.right]\ntype = \"wall\"\n"
+      "[boundaries.bottom]\ntype = \"wall\"\n[boundaries.top]\ntype = \"wall\"\n"
+      "[transport]\ncoupling = \"none\"\ntime_step_s = 1e-5\n"
+      "[[species]]\nname = \"O2\"\ndiffusivity_um2_s = 2800\ncell_diffusivity_um2_s = 950\ninitial_uM = 20\n"
+      "cell_initial_uM = 130\n";
+  for (const char* k : {"left", "right", "bottom", "top"}) {
+    s += std::string(k) + " = \"" + side + "\"\n";
+    if (side == "fixed_concentration") s += std::string(k) + "_value = 20\n";
+  }
+  return s + extra +
+         "[hemoglobin]\nspecies = \"O2\"\n"
+         "[[cells]]\nshape = \"biconcave\"\nradius_um = 3.0\ncenter_um = [5, 5]\nmarkers = 40\n"
+         "[run]\nsteps = 400\n[output]\ndiagnostics_interval_steps = 50\n";
+}
+
+scene::LatticeSetup derive(const std::string& text) {
+  return scene::derive_lattice(scene::parse_scene(text, "t.toml"));
+}
+
+TEST(TransportScene, StillMediumBuildsNoFluid) {
+  const scene::LatticeSetup L = derive(still_scene("fixed_concentration"));
+  EXPECT_FALSE(L.has_fluid);
+  ASSERT_TRUE(L.transport.has_value());
+  EXPECT_EQ(L.transport->coupling, "none");
+  EXPECT_DOUBLE_EQ(L.scales.time_s, 1e-5);
+  EXPECT_EQ(L.total_steps, 400);
+  ASSERT_EQ(L.transport->species.size(), 1u);
+  EXPECT_NEAR(L.transport->species[0].diffusivity, 0.112, 1e-12);
+  EXPECT_NEAR(L.transport->species[0].cell_diffusivity, 0.038, 1e-12);
+  EXPECT_EQ(L.transport->species[0].boundaries.left.kind, transport::SideKind::fixed_concentration);
+  EXPECT_DOUBLE_EQ(L.transport->species[0].boundaries.top.value, 20.0);
+  EXPECT_EQ(L.transport->hemoglobin_species, 0);
+  const scene::Scene s = scene::parse_scene(still_scene(), "t.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  EXPECT_EQ(sim.fluid(), nullptr);
+  ASSERT_NE(sim.transport(), nullptr);
+}
+
+TEST(TransportScene, RefusesWhatCannotRun) {
+  EXPECT_CONTAINS(error_of([] { derive("[time]\ntau = 1\n" + still_scene()); }), "builds no fluid");
+  EXPECT_CONTAINS(error_of([] { derive(still_scene("periodic")); }), "does not match [boundaries.left]");
+  EXPECT_CONTAINS(error_of([] {
+                    std::string t = still_scene();
+                    t.replace(t.find("time_step_s = 1e-5"), 18, "time_step_s = 1e-3");  // D_lat = 11.2
+                    derive(t);
+                  }),
+                  "species[0].diffusivity_um2_s");
+  EXPECT_CONTAINS(error_of([] {
+                    std::string t = still_scene();
+                    t.replace(t.find("[[cells]]"), 9, "[[cellz]]");
+                    derive(t);
+                  }),
+                  "cellz");
+  EXPECT_CONTAINS(error_of([] {
+                    derive("[domain]\nsize_um = [10, 10]\nspacing_um = 0.5\n[time]\ntau = 1\n[transport]\n"
+                           "coupling = \"subcycle\"\n[[species]]\nname = \"NO\"\ndiffusivity_um2_s = 3300\n"
+                           "[run]\nsteps = 10\n");
+                  }),
+                  "fluid_steps_per_step");
+  EXPECT_CONTAINS(error_of([] {
+                    derive("[domain]\nsize_um = [10, 10]\nspacing_um = 0.5\n[transport]\ntime_step_s = 1e-5\n"
+                           "[run]\nsteps = 10\n");
+                  }),
+                  "at least one [[species]]");
+}
+
+struct Record : RunObserver {
+  std::vector<TransportDiagnostics> samples;
+  int field_frames = 0;
+  void on_transport_diagnostics(const TransportDiagnostics& d) override { samples.push_back(d); }
+  void on_transport_fields(long, const TransportFields&) override { ++field_frames; }
+};
+
+// Closed box (zero flux everywhere): O2 only moves between haemoglobin and solution,
+// so free + bound O2, Σ C + C_heme S N_cell, is conserved to round-off while the cell
+// releases O2 (S falls monotonically towards equilibrium with the medium).
+TEST(TransportScene, ClosedBoxConservesFreePlusBoundOxygen) {
+  const scene::Scene s = scene::parse_scene(still_scene("zero_flux"), "t.toml");
+  const scene::LatticeSetup L = scene::derive_lattice(s);
+  Simulation sim(s, L);
+  const auto total_o2 = [&] { return sim.transport()->lattice(0).stored_amount(); };
+  const double free0 = total_o2();
+  Record rec;
+  const RunSummary r = sim.run(rec);
+  EXPECT_EQ(r.status, RunStatus::completed);
+  ASSERT_GE(rec.samples.size(), 3u);
+  for (std::size_t k = 1; k < rec.samples.size(); ++k) {
+    EXPECT_LT(rec.samples[k].saturation[0], rec.samples[k - 1].saturation[0]);
+    EXPECT_LT(std::abs(rec.samples[k].residual[0]), 1e-13);
+  }
+  // Bound O2 released = C_heme (S0 − S) per interior node; the free O2 gained must match.
+  const double S0 = rec.samples.front().saturation[0], S1 = rec.samples.back().saturation[0];
+  const double gained = total_o2() - free0;
+  const double released_per_node = L.transport->hemoglobin->C_heme * (S0 - S1);
+  EXPECT_GT(gained, 0.0);
+  const double nodes_inside = gained / released_per_node;  // must be the cell's interior node count
+  EXPECT_NEAR(nodes_inside, std::round(nodes_inside), 1e-9 * nodes_inside);
+  EXPECT_EQ(rec.field_frames, 2);  // initial and final
+}
+
+// Held at 20 µM on every side: the cell loses O2 to the boundary; every transport
+// sample has a round-off mass-balance residual, and the saturation heads towards
+// the Hill value at the medium's PO2 without passing it.
+TEST(TransportScene, HeldMediumDeoxygenatesTheCell) {
+  const scene::Scene s = scene::parse_scene(still_scene("fixed_concentration"), "t.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  Record rec;
+  EXPECT_EQ(sim.run(rec).status, RunStatus::completed);
+  const double S_eq = transport::hill_saturation(20.0 / 1.3);
+  EXPECT_LT(rec.samples.back().saturation[0], rec.samples.front().saturation[0]);
+  EXPECT_GT(rec.samples.back().saturation[0], S_eq);
+  for (const auto& d : rec.samples) EXPECT_LT(std::abs(d.residual[0]), 1e-13);
+}
+
+// Sub-cycling: a passive tracer in the example capsule scene advances once every
+// 20 fluid steps with the fluid's velocity; Δt_T = 20 Δt_F.
+TEST(TransportScene, SubcyclingFollowsTheFluid) {
+  // [[species]] cannot be set from the command line: append it to the scene's text.
+  const std::string text = "[transport]\ncoupling = \"subcycle\"\nfluid_steps_per_step = 20\n"
+                     "[[species]]\nname = \"tracer\"\ndiffusivity_um2_s = 2800.0\ninitial_uM = 1.0\n";
+  const scene::Scene base = scene::load_scene(std::string(ERYTHRO_SCENES_DIR) + "/capsule_shear.toml",
+                                              {"run.steps=100", "output.diagnostics_interval_steps=50"});
+  const scene::Scene t = scene::parse_scene(base.source_text + text, "t.toml");
+  const scene::LatticeSetup L = scene::derive_lattice(t);
+  ASSERT_TRUE(L.transport.has_value());
+  EXPECT_EQ(L.transport->fluid_steps_per_step, 20);
+  EXPECT_DOUBLE_EQ(L.transport->time_step_s, 20 * L.scales.time_s);
+  Simulation sim(t, L);
+  ASSERT_NE(sim.fluid(), nullptr);
+  Record rec;
+  EXPECT_EQ(sim.run(rec).status, RunStatus::completed);
+  EXPECT_EQ(sim.transport()->lattice(0).steps_done(), 5);
+  // A uniform tracer in a divergence-free flow with zero-flux walls stays uniform.
+  for (const auto& d : rec.samples) EXPECT_NEAR(d.mean_concentration[0], 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace erythro::sim

@@ -1,0 +1,59 @@
+// Transport units (transport_units.hpp) and compartments (compartments.hpp).
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "transport/compartments.hpp"
+#include "transport/reactions.hpp"
+#include "transport/transport_units.hpp"
+
+using namespace erythro;
+using namespace erythro::transport;
+
+TEST(TransportUnits, Conversions) {
+  const TransportUnits u{0.2, 1e-5};  // thesis ch. V: 0.2 µm, 10 µs
+  EXPECT_NEAR(u.diffusivity(3300.0), 0.825, 1e-12);
+  EXPECT_NEAR(u.tau(3300.0), 0.5 + 3 * 0.825, 1e-12);
+  EXPECT_NEAR(u.rate(2842.0), 0.02842, 1e-15);
+  EXPECT_NEAR(u.source(50.0), 5e-4, 1e-18);
+  EXPECT_NEAR(u.flux(10.0), 5e-4, 1e-18);
+  EXPECT_NEAR(u.velocity(1000.0), 0.05, 1e-15);
+  EXPECT_NEAR(dt_for_tau(0.2, 3300.0, u.tau(3300.0)), 1e-5, 1e-18);
+  EXPECT_TRUE(check_transport_units(u, 3300.0, 2842.0, 1000.0).empty());
+}
+
+TEST(TransportUnits, ChecksNameEachViolation) {
+  const TransportUnits tiny_dt{0.2, 1e-8};  // τ − ½ = 0.0025
+  const auto p = check_transport_units(tiny_dt, 3300.0, 0.0, 0.0);
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_NE(p[0].find("tau"), std::string::npos);
+  const TransportUnits big_dt{0.2, 1e-3};  // τ = 247; k dt = 2.8; u = 5
+  EXPECT_EQ(check_transport_units(big_dt, 3300.0, 2842.0, 1000.0).size(), 3u);
+}
+
+TEST(Compartments, DiffusivitiesAndReactionsPerNode) {
+  const Grid g{5, 1};
+  const std::vector<std::uint8_t> ids = {0, 1, 2, 3, 4};  // plasma, rbc, EC, SM, tissue
+  const NoO2Model m = NoO2Model::arteriole_defaults();
+  const TransportUnits u{0.2, 1e-5};
+  TransportLattice no(g, Stencil::d2q5, {}), o2(g, Stencil::d2q5, {});
+  no.initialize_uniform(0.027);  // µM = C_ref
+  o2.initialize_uniform(1.3 * 4.7);  // P = K_m,eNOS = 4.7 Torr
+  apply_diffusivities(m, ids, u, no, o2);
+  EXPECT_NEAR(no.diffusivity()[0], 0.825, 1e-12);
+  EXPECT_NEAR(o2.diffusivity()[4], 0.7, 1e-12);
+  update_reactions(m, ids, u, no, o2);
+  // Plasma: nothing.
+  EXPECT_EQ(no.source()[0], 0.0);
+  EXPECT_EQ(no.decay_rate()[0], 0.0);
+  EXPECT_EQ(o2.decay_rate()[0], 0.0);
+  // RBC: NO scavenging 2842 1/s.
+  EXPECT_NEAR(no.decay_rate()[1], u.rate(no_scavenging_rate()), 1e-15);
+  // EC: NO source R1 = 25 µM/s at P = K_m; the O2 sink k C equals it (1:1).
+  EXPECT_NEAR(no.source()[2], u.source(25.0), 1e-15);
+  EXPECT_NEAR(o2.decay_rate()[2] * o2.concentration()[2], u.source(25.0), 1e-15);
+  // SM: NO 1 1/s; O2 Q = Q_max P/(P + 2 K_m) at C_NO = C_ref.
+  EXPECT_NEAR(no.decay_rate()[3], u.rate(1.0), 1e-18);
+  EXPECT_NEAR(o2.decay_rate()[3] * o2.concentration()[3], u.source(o2_consumption(4.7, 0.027, 5.0)), 1e-15);
+  EXPECT_NEAR(o2.decay_rate()[4] * o2.concentration()[4], u.source(o2_consumption(4.7, 0.027, 50.0)), 1e-15);
+}

@@ -1,0 +1,43 @@
+#include "transport/hb_kinetics.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace erythro::transport {
+
+double hill_saturation(double P_torr, double P50, double n) {
+  if (!(P_torr > 0.0)) return 0.0;
+  // S = 1 / (1 + (P50/P)ⁿ): no overflow of Pⁿ for large P.
+  return 1.0 / (1.0 + std::pow(P50 / P_torr, n));
+}
+
+double hb_relaxation_rate(const HbParameters& p, double P_torr) {
+  const double r = P_torr > 0.0 ? std::pow(P_torr / p.P50, p.n) : 0.0;
+  return p.sigma * p.k_off * (1.0 + r) / p.M;
+}
+
+HbStep advance_saturation(const HbParameters& p, double S, double P_mean_torr, double dt) {
+  if (!(p.M >= 1.0)) throw std::invalid_argument("advance_saturation: rate modifier M must be >= 1");
+  if (!(dt >= 0.0)) throw std::invalid_argument("advance_saturation: dt must be non-negative");
+  const double S_eq = hill_saturation(P_mean_torr, p.P50, p.n);
+  const double lambda = hb_relaxation_rate(p, P_mean_torr);
+  // Exact solution of the frozen-P linear ODE (H2). expm1 keeps small λdt accurate:
+  // S_new − S = (S_eq − S)(1 − e^{−λdt}) = −(S_eq − S) expm1(−λdt).
+  const double dS = -(S_eq - S) * std::expm1(-lambda * dt);
+  const double S_new = S + dS;
+  return {S_new, -p.C_heme * dS};
+}
+
+double mean_partial_pressure(std::span<const std::size_t> nodes, std::span<const double> concentration,
+                             double alpha) {
+  if (nodes.empty()) return 0.0;
+  double sum = 0.0;
+  for (std::size_t n : nodes) sum += concentration[n];
+  return sum / (static_cast<double>(nodes.size()) * alpha);
+}
+
+void distribute_release(std::span<const std::size_t> nodes, double released, std::span<double> source) {
+  for (std::size_t n : nodes) source[n] += released;
+}
+
+}  // namespace erythro::transport

@@ -1,0 +1,135 @@
+#pragma once
+// One transported species (NO or O2): advection–diffusion–reaction lattice Boltzmann,
+// lattice units h = Δt = 1 (docs/transport.md). Solves
+//   ∂C/∂t + ∇·(C u) = ∇·(D ∇C) + q − k C                                   (T1)
+// with BGK, per-node τ = ½ + D/c_s² (c_s² = 1/3), an equilibrium linear in u (T2) and
+// a second-order source (T3–T4):
+//   g_i(x + c_i, t + 1) = g_i − ω (g_i − g_i^eq) + (1 − ω/2) w_i q_tot,
+//   C = Σ g_i + q_tot/2,    q_tot = q − k C   ⇒   C = (Σ g_i + q/2) / (1 + k/2).
+// The first-order sink k is thus implicit (trapezoidal in time, unconditionally
+// stable); q is whatever the caller set before step() (reactions computed from the
+// previous step's concentrations: explicit).
+//
+// Storage: structure of arrays g[i*N + n], n = y*nx + x, post-collision values; one
+// fused pull stream–collide step, OpenMP over rows (as fluid/stream_collide.cpp).
+// Node (x, y) sits at ((x+½)h, (y+½)h): every non-periodic side lies halfway between
+// the last node and the (virtual) next one.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "common/health.hpp"
+#include "lattice/grid.hpp"
+
+namespace erythro::transport {
+
+enum class Stencil { d2q5, d2q9 };
+
+// Boundary condition of one side (docs/transport.md §3):
+//  periodic            : populations leaving one side enter the opposite one.
+//  fixed_concentration : C = value on the side (anti-bounce-back, halfway, 2nd order)
+//                        g_ī(x, t+1) = −g*_i(x, t) + 2 w_i value.
+//  fixed_flux          : net amount `value` per unit side length per step enters
+//                        through the side (inward flux, advective + diffusive)
+//                        g_ī(x, t+1) = g*_i(x, t) + value w_i / Σ_crossing w.
+//  zero_flux           : bounce-back, g_ī(x, t+1) = g*_i(x, t) (fixed_flux with 0).
+// The velocity at a non-periodic side must be tangential (u·n = 0).
+enum class SideKind { periodic, fixed_concentration, fixed_flux, zero_flux };
+struct Side {
+  SideKind kind = SideKind::periodic;
+  double value = 0.0;  // concentration, or inward flux per unit length (lattice units)
+};
+struct TransportBoundaries {
+  Side left, right, bottom, top;
+  // Empty when consistent; otherwise a sentence (a periodic side must face a periodic side).
+  std::string inconsistency() const;
+};
+
+// Balance of the last step. The conserved lattice amount is M = Σ_n Σ_i g*_i (the
+// stored post-collision populations); M = Σ C + ½ Σ q_tot. Exactly (eq T5):
+//   M(t+1) − M(t) = boundary_in + source,
+// so residual() is round-off only.
+struct MassBalance {
+  double source = 0.0;          // Σ_n q_tot of the last collision (sources − sinks)
+  double boundary_in = 0.0;     // net amount that entered through the sides while streaming
+  double storage_change = 0.0;  // M(t+1) − M(t)
+  double amount = 0.0;          // M(t+1)
+  double scale = 0.0;           // Σ |g*| after the step (for a relative residual)
+  double residual() const { return storage_change - source - boundary_in; }
+  // |residual| / max(scale, tiny): ~1e-16 × (number of nodes)^½ expected.
+  double relative_residual() const;
+};
+
+class TransportLattice {
+ public:
+  TransportLattice(Grid grid, Stencil stencil, TransportBoundaries boundaries);
+
+  const Grid& grid() const { return grid_; }
+  Stencil stencil() const { return stencil_; }
+  const TransportBoundaries& boundaries() const { return boundaries_; }
+  TransportBoundaries& boundaries() { return boundaries_; }  // values may change between steps
+  int q() const;  // populations per node
+
+  // Equilibrium populations of the given concentration (and the current velocity),
+  // zero source. The concentration() before the first step is this field.
+  void initialize(std::span<const double> concentration);
+  void initialize_uniform(double c);
+
+  // D = c_s² (τ − ½). The uniform value; also resets an enabled per-node field.
+  void set_uniform_diffusivity(double D);
+  double uniform_diffusivity() const { return uniform_D_; }
+  // Per-node D: allocated (filled with the uniform value) on the first call.
+  std::span<double> diffusivity();
+  bool has_diffusivity_field() const { return !D_field_.empty(); }
+
+  // Per-node source q (amount per node per step, i.e. concentration per step) and
+  // first-order sink rate k (per step, implicit): q_tot = q − k C. Allocated, zero,
+  // on the first call of either; the caller rewrites them between steps.
+  std::span<double> source();
+  std::span<double> decay_rate();
+  bool has_reaction() const { return !source_.empty(); }
+
+  // Advecting velocity (lattice units), copied; |u| ≤ 0.1 recommended (positivity of
+  // g^eq needs |u| < c_s² = 1/3 on D2Q5). clear_velocity(): still medium.
+  void set_velocity(std::span<const double> ux, std::span<const double> uy);
+  void set_uniform_velocity(double ux, double uy);
+  void clear_velocity();
+  bool has_velocity() const { return !ux_.empty(); }
+  std::span<const double> velocity_x() const { return ux_; }
+  std::span<const double> velocity_y() const { return uy_; }
+
+  // One fused stream–collide step of every node; updates concentration() and mass_balance().
+  void step();
+  long steps_done() const { return steps_done_; }
+
+  // C of the last collision (eq T4, source-corrected), size N.
+  std::span<const double> concentration() const { return C_; }
+  double total_amount() const;  // Σ_n C
+  double stored_amount() const;  // M = Σ_n Σ_i g*_i
+  const MassBalance& mass_balance() const { return balance_; }
+
+  // Net amount per step crossing the east face (x+½) and the north face (y+½) of each
+  // node during the next streaming (eq T6): exactly the discrete flux, including the
+  // faces on the sides (as the boundary condition gives). Size N each.
+  void face_flux(std::span<double> east, std::span<double> north) const;
+
+  // Finite C everywhere and τ − ½ ≥ min_tau_margin (D field), first offending node.
+  HealthReport check_health(double min_tau_margin = 1e-3) const;
+
+  std::span<const double> populations() const { return g_; }  // [i*N + n], post-collision
+  std::span<double> populations() { return g_; }
+
+ private:
+  Grid grid_;
+  Stencil stencil_;
+  TransportBoundaries boundaries_;
+  double uniform_D_ = 1.0 / 6.0;  // τ = 1
+  std::vector<double> g_, g_next_, C_;
+  std::vector<double> D_field_, source_, decay_, ux_, uy_;
+  std::vector<double> row_source_, row_boundary_, row_amount_, row_scale_;
+  MassBalance balance_;
+  long steps_done_ = 0;
+};
+
+}  // namespace erythro::transport

@@ -1,0 +1,97 @@
+#include "layered_slab.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+namespace erythro::vv {
+
+LayeredSlab::LayeredSlab(std::vector<SlabLayer> layers) : layers_(std::move(layers)) {
+  const int L = static_cast<int>(layers_.size());
+  if (L < 1) throw std::invalid_argument("LayeredSlab: no layers");
+  y_.assign(1, 0.0);
+  for (const auto& l : layers_) y_.push_back(y_.back() + l.thickness);
+  const int M = 2 * L;
+  std::vector<std::vector<double>> A(M, std::vector<double>(M + 1, 0.0));  // augmented
+  auto row_value = [&](int r, int j, double s, double sign, bool derivative) {
+    double p, pa, pb, dp, dpa, dpb;
+    basis(j, s, p, pa, pb, dp, dpa, dpb);
+    const double scale = derivative ? layers_[j].D : 1.0;  // flux continuity: D C'
+    A[r][2 * j] += sign * scale * (derivative ? dpa : pa);
+    A[r][2 * j + 1] += sign * scale * (derivative ? dpb : pb);
+    A[r][M] -= sign * scale * (derivative ? dp : p);
+  };
+  int r = 0;
+  row_value(r++, 0, 0.0, 1.0, true);  // C'(0) = 0
+  for (int j = 0; j + 1 < L; ++j) {
+    row_value(r, j, layers_[j].thickness, 1.0, false);  // C_j(t_j) − C_{j+1}(0) = 0
+    row_value(r++, j + 1, 0.0, -1.0, false);
+    row_value(r, j, layers_[j].thickness, 1.0, true);  // D_j C_j' − D_{j+1} C_{j+1}' = 0
+    row_value(r++, j + 1, 0.0, -1.0, true);
+  }
+  row_value(r++, L - 1, layers_[L - 1].thickness, 1.0, true);  // C'(end) = 0
+  // Gaussian elimination with partial pivoting.
+  for (int c = 0; c < M; ++c) {
+    int piv = c;
+    for (int i = c + 1; i < M; ++i)
+      if (std::fabs(A[i][c]) > std::fabs(A[piv][c])) piv = i;
+    std::swap(A[c], A[piv]);
+    for (int i = c + 1; i < M; ++i) {
+      const double f = A[i][c] / A[c][c];
+      for (int k = c; k <= M; ++k) A[i][k] -= f * A[c][k];
+    }
+  }
+  std::vector<double> x(M);
+  for (int i = M - 1; i >= 0; --i) {
+    double s = A[i][M];
+    for (int k = i + 1; k < M; ++k) s -= A[i][k] * x[k];
+    x[i] = s / A[i][i];
+  }
+  for (int j = 0; j < L; ++j) {
+    a_.push_back(x[2 * j]);
+    b_.push_back(x[2 * j + 1]);
+  }
+}
+
+void LayeredSlab::basis(int j, double s, double& p, double& pa, double& pb, double& dp, double& dpa,
+                        double& dpb) const {
+  const SlabLayer& l = layers_[j];
+  if (l.k > 0.0) {
+    const double kappa = std::sqrt(l.k / l.D);
+    p = l.q / l.k;
+    dp = 0.0;
+    pa = std::exp(-kappa * s);
+    pb = std::exp(-kappa * (l.thickness - s));
+    dpa = -kappa * pa;
+    dpb = kappa * pb;
+  } else {
+    p = -l.q * s * s / (2.0 * l.D);
+    dp = -l.q * s / l.D;
+    pa = 1.0;
+    pb = s / l.thickness;
+    dpa = 0.0;
+    dpb = 1.0 / l.thickness;
+  }
+}
+
+int LayeredSlab::layer_of(double y) const {
+  for (int j = 0; j + 1 < static_cast<int>(layers_.size()); ++j)
+    if (y < y_[j + 1]) return j;
+  return static_cast<int>(layers_.size()) - 1;
+}
+
+double LayeredSlab::concentration(double y) const {
+  const int j = layer_of(y);
+  double p, pa, pb, dp, dpa, dpb;
+  basis(j, y - y_[j], p, pa, pb, dp, dpa, dpb);
+  return p + a_[j] * pa + b_[j] * pb;
+}
+
+double LayeredSlab::flux(double y) const {
+  const int j = layer_of(y);
+  double p, pa, pb, dp, dpa, dpb;
+  basis(j, y - y_[j], p, pa, pb, dp, dpa, dpb);
+  return -layers_[j].D * (dp + a_[j] * dpa + b_[j] * dpb);
+}
+
+}  // namespace erythro::vv
