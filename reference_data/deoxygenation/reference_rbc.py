@@ -24,10 +24,16 @@ variable-step BDF2 in time (first step backward Euler), (modified) Newton on the
 system with an exact sparse Jacobian (scipy.sparse splu) refreshed every 4th iterate;
 Newton stops at |ΔC| < 1e-9 C_b and |ΔS| < 1e-11.
 
-Usage:  reference_rbc.py [--study] [--hb-diffusion D] [--out DIR]
-  default: one run at the reference resolution, prints the curve summary;
-  --study: three grids/time schedules refined together by 2, observed order and
-           Richardson estimate, writes reference_S.csv, convergence.csv, study.json.
+Usage:  reference_rbc.py [--study] [--planar] [--levels 0 1 2] [--t-end T] [--box L]
+                         [--hb-diffusion D] [--d-out D] [--out DIR]
+  default: one run at --levels[0], prints the half-time and 90 %/99 % times;
+  --study: the given (three) grids/time schedules refined together by 2, observed order
+           and Richardson estimate; writes reference_S[_planar].csv and study[_planar].json;
+  --planar: the same Evans–Fung section as a PLANAR 2D cell (per unit depth), the exact
+           continuum counterpart of the 2D lattice model, with local kinetics.
+Regenerate (PROVENANCE.md):
+  reference_rbc.py --study --levels 0 1 2 --t-end 1.8            (3D cell, ~3 min)
+  reference_rbc.py --study --levels 0 1 2 --t-end 2.4 --planar   (planar, ~3.5 min)
 """
 import argparse
 import json
@@ -47,7 +53,7 @@ P50, N_HILL = 26.8, 2.7  # Torr, -
 K_OFF = 44.0  # 1/s
 C_HEME = 20300.0  # µM
 ALPHA = 1.3  # µM/Torr
-D_OUT = float(__import__("os").environ.get("DEOXY_D_OUT", 2800.0))  # µm²/s
+D_OUT = 2800.0  # µm²/s (--d-out for sensitivity studies)
 D_IN = 950.0  # µm²/s
 C_B = 20.0  # µM
 P0 = 100.0  # Torr
@@ -289,11 +295,13 @@ def main():
     ap.add_argument("--t-end", type=float, default=None)
     ap.add_argument("--hb-diffusion", type=float, default=0.0, help="D_Hb in µm²/s (0: off)")
     ap.add_argument("--out", default=".")
+    ap.add_argument("--d-out", type=float, default=2800.0, help="D_O2 in the medium, µm²/s")
     ap.add_argument("--planar", action="store_true", help="planar 2D section instead of the 3D cell")
     ap.add_argument("--box", type=float, default=6.0, help="half-width L of the held box, µm")
     args = ap.parse_args()
-    global L_BOX, PLANAR
+    global L_BOX, PLANAR, D_OUT
     L_BOX = args.box
+    D_OUT = args.d_out
     PLANAR = args.planar
     s0, sf = hill(P0), hill(C_B / ALPHA)
     t_end = args.t_end if args.t_end else 2.5

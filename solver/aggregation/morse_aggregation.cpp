@@ -32,11 +32,16 @@ void check_view(const MarkerView& v) {
   for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
     if (v.offsets[c + 1] < v.offsets[c] + 3) throw std::invalid_argument("aggregation: a cell needs >= 3 markers");
   }
+  for (std::size_t m = 0; m < v.x.size(); ++m) {
+    if (!std::isfinite(v.x[m]) || !std::isfinite(v.y[m])) {
+      throw std::domain_error("aggregation: marker " + std::to_string(m) + " has a non-finite position");
+    }
+  }
 }
 
 // The shared arithmetic of the cell-list and brute-force paths (see the header).
-// `candidates(m)` returns, for marker m, a span of marker indices in ASCENDING order that
-// contains every marker of another cell within the cut-off (it may contain more).
+// pair_sums(m, cand) takes, for marker m, marker indices in ASCENDING order containing
+// every marker of another cell within the cut-off (it may contain more).
 struct Engine {
   const ib::Domain& domain;
   const ShiftedMorse& morse;
@@ -208,8 +213,9 @@ struct CellList {
   static int bin_of(double x, int n, int nb, bool periodic) {
     double t = x / n;
     if (periodic) t -= std::floor(t);
-    const int b = static_cast<int>(std::floor(t * nb));
-    return std::clamp(b, 0, nb - 1);  // non-periodic: markers beyond a wall join the edge bin
+    // Clamped before the conversion (no overflow): on a non-periodic axis markers beyond a
+    // wall join the edge bin; on a periodic one it only catches t·nb rounding up to nb.
+    return static_cast<int>(std::clamp(std::floor(t * nb), 0.0, double(nb - 1)));
   }
 
   void build(const ib::Domain& d, const MarkerView& v, std::vector<int>& bin) {

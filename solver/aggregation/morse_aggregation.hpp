@@ -20,15 +20,20 @@
 // unwrapped: ImmersedCells shifts whole cells only), so the cut-off must be < half the
 // period (checked). Within a cell the edges use the plain coordinate differences.
 //
-// Neighbour search: cell lists with bins of side ≥ r_c (O(N) in markers). Each marker
-// gathers the markers of its ≤ 9 neighbouring bins, SORTS them by index and sums over
-// them in ascending index order, skipping its own cell and pairs beyond r_c: exactly the
-// order of the brute-force loop over all n (add_forces_brute_force), so the two give
-// BITWISE identical forces and energies. Each pair term is computed with exactly
-// antisymmetric arithmetic (X_m − X_n = −(X_n − X_m) in IEEE; the weight Φ_s'(r)(ℓ_mℓ_n)/r is
-// symmetric), so the force marker n gets from m is bit for bit minus the force m gets
-// from n; only their accumulation into different sums rounds. Each marker writes only
-// its own force: parallel over markers (OpenMP), deterministic for any thread count.
+// Neighbour search: cell lists with bins of side ≥ r_c (O(N) in markers). The markers
+// of a bin share one candidate list: the markers of its ≤ 9 neighbouring bins, in
+// ASCENDING index order (each bin is filled in index order; the runs are merged). A
+// marker sums over it in that order, skipping its own cell (a contiguous block), whole
+// blocks of cells whose bounding box lies beyond r_c (exact: the minimum-image distance
+// is 1-Lipschitz) and pairs beyond r_c: exactly the pairs and the order of the
+// brute-force loop over all n (add_forces_brute_force, which tests every pair), so the
+// two give BITWISE identical forces and energies (asserted in
+// verification.aggregation_forces). Each pair term uses exactly antisymmetric arithmetic
+// (X_m − X_n = −(X_n − X_m) in IEEE, odd-symmetric minimum image; the weight
+// Φ_s'(r)(ℓ_mℓ_n)/r is symmetric), so the force marker n gets from m is bit for bit minus
+// the force m gets from n; only their accumulation into different sums rounds. Each
+// marker writes only its own force: parallel over bins and markers (OpenMP, from 2000
+// markers on), deterministic for any thread count.
 #include <cstddef>
 #include <span>
 #include <vector>

@@ -100,4 +100,10 @@ double pair_density_for(double gamma, const MorseParameters& shape) {
   return gamma / std::abs(fc.integral);
 }
 
+double pair_density_for_de_star(double de_star, double shear_modulus, const MorseParameters& shape) {
+  if (!std::isfinite(de_star) || de_star < 0.0) throw std::invalid_argument("Morse: De* must be >= 0");
+  if (!std::isfinite(shear_modulus) || !(shear_modulus > 0.0)) throw std::invalid_argument("Morse: E_S must be > 0");
+  return pair_density_for(de_star * shear_modulus, shape);
+}
+
 }  // namespace erythro::aggregation

@@ -54,4 +54,10 @@ FlatContact flat_contact(const MorseParameters& p);
 // system as p: gamma [energy/area] / |J(d*)| [length]).
 double pair_density_for(double gamma, const MorseParameters& shape);
 
+// The thesis's dimensionless surface energy, READ AS De* = γ/E_S (adhesion energy per
+// contact area over the shear modulus; docs/verification-aggregation.md §3, an
+// interpretation): D_e = De*·E_S/|J(d*)|. E_S in the units system of `shape` (lattice:
+// force per depth), De* ≥ 0.
+double pair_density_for_de_star(double de_star, double shear_modulus, const MorseParameters& shape);
+
 }  // namespace erythro::aggregation

@@ -28,8 +28,12 @@ void row_crossings(const membrane::Polygon& p, double py, std::vector<double>& x
 // Node index range [first, last] of unwrapped node coordinates whose centres k + ½ lie
 // in [lo, hi] (first > last when empty).
 inline void node_range(double lo, double hi, int& first, int& last) {
-  first = static_cast<int>(std::ceil(lo - 0.5));
-  last = static_cast<int>(std::floor(hi - 0.5));
+  // ceil / floor by truncation (std::ceil is a library call without SSE4.1).
+  const double a = lo - 0.5, b = hi - 0.5;
+  first = static_cast<int>(a);
+  if (static_cast<double>(first) < a) ++first;
+  last = static_cast<int>(b);
+  if (static_cast<double>(last) > b) --last;
 }
 
 // |area| of the polygon clipped to the domain along its non-periodic axes ([0, nx] or

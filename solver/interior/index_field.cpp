@@ -125,12 +125,51 @@ void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stat
   const double orient = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;
   enx_.resize(n);
   eny_.resize(n);
+  len_.resize(n);
   for (std::size_t a = 0; a < n; ++a) {
     const std::size_t b = a + 1 == n ? 0 : a + 1;
-    const double ex = p.x[b] - p.x[a], ey = p.y[b] - p.y[a], len = std::hypot(ex, ey);
+    const double ex = p.x[b] - p.x[a], ey = p.y[b] - p.y[a], len = std::sqrt(ex * ex + ey * ey);
+    len_[a] = len;
     enx_[a] = len > 0 ? orient * ey / len : 0.0;
     eny_[a] = len > 0 ? -orient * ex / len : 0.0;
   }
+  // Wedges: the line through each vertex along its pseudo-normal (the bisector of the two
+  // edge normals) splits the band between the vertex's two edges. A node whose nearest point
+  // lies on edge e (or on one of its vertices) lies in e's wedge — between the lines at its
+  // ends — provided the polygon turns little per vertex: then each edge evaluates only its
+  // wedge (about 1.6 evaluations per band node instead of 4.4). The local conditions checked
+  // (else every edge evaluates its whole capsule, the always-correct fallback):
+  //  - turning angle |θ_v| ≤ 0.5 rad at every vertex (cos θ = n_in·n_out, sin θ = n_in × n_out);
+  //  - both edges at v longer than (w + 1)|sin θ_v| + 0.1: the nearest point of a node in
+  //    the neighbour's wedge then lies on the neighbour, not beyond it;
+  //  - the wedge lines at an edge's two ends do not cross within w + 1 of it:
+  //    |e| ≥ (w + 1)(|tan(θ_A/2)| + |tan(θ_B/2)|) + 0.1, tan(θ/2) = sin θ/(1 + cos θ).
+  // A tolerance of 0.25 h widens every wedge against round-off (extra nodes are harmless:
+  // the minimum over edges is kept). Verified node for node against the brute-force distance
+  // in verification.interior_fill_agreement.
+  vtx_.resize(n);
+  vty_.resize(n);
+  theta_.resize(n);  // |tan(θ_v/2)|
+  bool wedges = true;
+  const double cos_max = std::cos(0.5);
+  for (std::size_t v = 0; v < n && wedges; ++v) {
+    const std::size_t z = v == 0 ? n - 1 : v - 1;
+    const double lin = len_[z], lout = len_[v];
+    const double cr = enx_[z] * eny_[v] - eny_[z] * enx_[v], dt = enx_[z] * enx_[v] + eny_[z] * eny_[v];
+    const double nx_ = enx_[z] + enx_[v], ny_ = eny_[z] + eny_[v], nl = std::sqrt(nx_ * nx_ + ny_ * ny_);
+    if (lin == 0.0 || lout == 0.0 || dt < cos_max || nl == 0.0 || std::min(lin, lout) < margin * std::abs(cr) + 0.1) {
+      wedges = false;
+      break;
+    }
+    vtx_[v] = -orient * ny_ / nl;  // forward tangent of the bisector line (normal rotated by +90°·orient)
+    vty_[v] = orient * nx_ / nl;
+    theta_[v] = std::abs(cr) / (1.0 + dt);
+  }
+  for (std::size_t a = 0; a < n && wedges; ++a) {
+    const std::size_t b = a + 1 == n ? 0 : a + 1;
+    if (len_[a] < margin * (theta_[a] + theta_[b]) + 0.1) wedges = false;
+  }
+  constexpr double kWedgeTol = 0.25;
   for (std::size_t a = 0; a < n; ++a) {
     const std::size_t b = a + 1 == n ? 0 : a + 1;
     const double ax = p.x[a], ay = p.y[a];
@@ -141,6 +180,11 @@ void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stat
     const double pax = enx_[z] + enx_[a], pay = eny_[z] + eny_[a];  // pseudo-normal at A
     const double pbx = enx_[a] + enx_[b], pby = eny_[a] + eny_[b];  // pseudo-normal at B
     const double nex = enx_[a], ney = eny_[a];                          // normal of the edge
+    const double inv_ey = ey != 0.0 ? 1.0 / ey : 0.0, bx = p.x[b], by = p.y[b];
+    // Bisector-line tangents at A and B (wedge mode) and their reciprocal x components.
+    const double tax = wedges ? vtx_[a] : 0.0, tay = wedges ? vty_[a] : 0.0;
+    const double tbx = wedges ? vtx_[b] : 0.0, tby = wedges ? vty_[b] : 0.0;
+    const double inv_tax = tax != 0.0 ? 1.0 / tax : 0.0, inv_tbx = tbx != 0.0 ? 1.0 / tbx : 0.0;
     int j0, j1;
     node_range(std::min(ay, p.y[b]) - margin, std::max(ay, p.y[b]) + margin, j0, j1);
     for (int j = j0; j <= j1; ++j) {
@@ -151,24 +195,37 @@ void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stat
       // of the edge with |y(t) − py| ≤ margin, t ∈ [tl, th]: a tight row interval.
       double tl = 0.0, th = 1.0;
       if (ey != 0.0) {
-        const double t1 = (qy - margin) / ey, t2 = (qy + margin) / ey;
+        const double t1 = (qy - margin) * inv_ey, t2 = (qy + margin) * inv_ey;
         tl = std::clamp(std::min(t1, t2), 0.0, 1.0);
         th = std::clamp(std::max(t1, t2), 0.0, 1.0);
       }
+      double lo = ax + std::min(tl * ex, th * ex) - margin, hi = ax + std::max(tl * ex, th * ex) + margin;
+      if (wedges) {  // (P − A)·T_A ≥ −tol and (P − B)·T_B ≤ tol on this row
+        const double ra = -kWedgeTol - qy * tay, rb = kWedgeTol - (py - by) * tby;
+        if (tax > 1e-12) lo = std::max(lo, ax + ra * inv_tax);
+        else if (tax < -1e-12) hi = std::min(hi, ax + ra * inv_tax);
+        else if (ra > 0.0) continue;
+        if (tbx > 1e-12) hi = std::min(hi, bx + rb * inv_tbx);
+        else if (tbx < -1e-12) lo = std::max(lo, bx + rb * inv_tbx);
+        else if (rb < 0.0) continue;
+      }
       int i0, i1;
-      node_range(ax + std::min(tl * ex, th * ex) - margin, ax + std::max(tl * ex, th * ex) + margin, i0, i1);
+      node_range(lo, hi, i0, i1);
       const std::size_t row = static_cast<std::size_t>(jj) * static_cast<std::size_t>(g.nx);
       for (int c0 = i0; c0 <= i1; c0 += kChunk) {
-        // Phase 1 (branch-free, vectorisable): squared distance and signed side per node.
+        // Phase 1 (branch-free): squared distance and signed side per node.
         const int cn = std::min(kChunk, i1 - c0 + 1);
         double d2v[kChunk], sv[kChunk];
         for (int q = 0; q < cn; ++q) {
-          const double qx = c0 + q + 0.5 - ax;
-          const double t = std::clamp((qx * ex + qy * ey) * inv_len2, 0.0, 1.0);
+          const double qx = static_cast<double>(c0 + q) + 0.5 - ax;
+          const double t0 = (qx * ex + qy * ey) * inv_len2;
+          const double t = std::min(1.0, std::max(0.0, t0));
           const double dx = qx - t * ex, dy = qy - t * ey;
           d2v[q] = dx * dx + dy * dy;
           const double sa = dx * pax + dy * pay, sb = dx * pbx + dy * pby, se = dx * nex + dy * ney;
-          sv[q] = t <= 0.0 ? sa : t >= 1.0 ? sb : se;
+          // Side at the nearest point: vertex A (t = 0), vertex B (t = 1) or the edge.
+          const double at_a = t0 <= 0.0, at_b = t0 >= 1.0;
+          sv[q] = se + at_a * (sa - se) + at_b * (sb - se);
         }
         // Phase 2: keep the nearest edge per node (signed squared distance).
         for (int q = 0; q < cn; ++q) {

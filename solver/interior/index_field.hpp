@@ -117,6 +117,8 @@ class IndexField {
   std::vector<std::size_t> stack_;      // scan-line seeds
   std::vector<double> crossings_;       // ray-casting scratch
   std::vector<double> enx_, eny_;       // band-pass scratch: outward edge normals
+  std::vector<double> len_;             // … edge lengths
+  std::vector<double> vtx_, vty_, theta_;  // … bisector-line tangents and |tan(θ/2)| at vertices
   std::vector<CellStats> stats_;
   FillReport report_;
 };

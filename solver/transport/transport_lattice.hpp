@@ -2,10 +2,12 @@
 // One transported species (NO or O2): advection–diffusion–reaction lattice Boltzmann,
 // lattice units h = Δt = 1 (docs/transport.md). Solves
 //   ∂C/∂t + ∇·(C u) = ∇·(D ∇C) + q − k C                                   (T1)
-// with BGK, per-node τ = ½ + D/c_s² (c_s² = 1/3), an equilibrium linear in u (T2) and
-// a second-order source (T3–T4):
-//   g_i(x + c_i, t + 1) = g_i − ω (g_i − g_i^eq) + (1 − ω/2) w_i q_tot,
+// with BGK, per-node τ = ½ + D/c_s² (c_s² = 1/3), an equilibrium linear in u (T2),
+// g_i^eq = w_i C (1 + c_i·u/c_s²), and a second-order source (T3–T4):
+//   g_i(x + c_i, t + 1) = g_i − ω (g_i − g_i^eq) + (1 − ω/2) w_i q_tot (1 + c_i·u/c_s²),
 //   C = Σ g_i + q_tot/2,    q_tot = q − k C   ⇒   C = (Σ g_i + q/2) / (1 + k/2).
+// Per-node τ with this equilibrium gives ∇·(D∇C), not ∇²(DC) (measured:
+// verification.transport_manufactured).
 // The first-order sink k is thus implicit (trapezoidal in time, unconditionally
 // stable); q is whatever the caller set before step() (reactions computed from the
 // previous step's concentrations: explicit).

@@ -5,14 +5,17 @@
 // converges at second order (2 ± 0.15) to the exact piecewise exp/cosh solution,
 // with the interfaces midway between node rows; the concentration and the flux at
 // the interfaces converge at second order too; mass balance closes in every step.
+// Variant verification.transport_layered_slab_contrast: D_NO × {1, 1/3, 1, 2} per
+// layer (the per-node τ jumps between two rows): still second order, with the
+// interface C reconstructed flux-continuously, (D_a C_a + D_b C_b)/(D_a + D_b).
 // Reference: layered_slab.hpp (derivation: docs/verification-transport.md): in each
 // layer D C'' − k C + q = 0, C and D C' continuous at interfaces, zero flux at the
 // lumen centre (symmetry) and at the tissue edge. Parameters (parameters.md): lumen
 // half-width 25 µm with whole-blood scavenging λ_b = 382.5 s⁻¹; EC 2.5 µm producing
 // R_NO = R_max P/(P + K_m,eNOS) at P = 70 Torr, R_max = 50 µM/s; SM 10 µm and tissue
 // 100 µm consuming NO at 1 s⁻¹; D_NO = 3300 µm²/s everywhere.
-// Scaling: h = 2.5 µm / m, m = 1, 2, 4 (CI) and 8 (full tier) (interfaces at multiples of h, i.e. midway
-// between node rows), τ = 1.5 fixed (Δt ∝ h²).
+// Scaling: h = 2.5 µm / m, m = 1, 2, 4 (CI) and 8 (full tier); interfaces at
+// multiples of h, i.e. midway between node rows; τ = 1.5 for D_NO fixed (Δt ∝ h²).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,9 +36,14 @@ namespace {
 constexpr double kTau = 1.5;
 constexpr double kDNO = 3300.0;
 
-std::vector<vv::SlabLayer> layers() {
+// contrast: D of the layers × {1, 1/3, 1, 2} (a diffusivity jump at every interface).
+std::vector<vv::SlabLayer> layers(bool contrast) {
   const double R_NO = no_production(70.0, 50.0, 4.7);  // µM/s at 70 Torr
-  return {{25.0, kDNO, 382.5, 0.0}, {2.5, kDNO, 0.0, R_NO}, {10.0, kDNO, 1.0, 0.0}, {100.0, kDNO, 1.0, 0.0}};
+  const double f[4] = {1.0, contrast ? 1.0 / 3.0 : 1.0, 1.0, contrast ? 2.0 : 1.0};
+  return {{25.0, f[0] * kDNO, 382.5, 0.0},
+          {2.5, f[1] * kDNO, 0.0, R_NO},
+          {10.0, f[2] * kDNO, 1.0, 0.0},
+          {100.0, f[3] * kDNO, 1.0, 0.0}};
 }
 
 struct SlabRun {
@@ -44,8 +52,8 @@ struct SlabRun {
   int rows;
 };
 
-SlabRun run_slab(Stencil stencil, int m) {
-  const auto L = layers();
+SlabRun run_slab(Stencil stencil, int m, bool contrast) {
+  const auto L = layers(contrast);
   const vv::LayeredSlab exact(L);
   const double h = 2.5 / m;
   const int rows = static_cast<int>(std::lround(exact.length() / h));
@@ -56,6 +64,7 @@ SlabRun run_slab(Stencil stencil, int m) {
   const Grid g{1, rows};
   TransportLattice lat(g, stencil, b);
   lat.set_uniform_diffusivity(units.diffusivity(kDNO));
+  auto D = lat.diffusivity();
   auto q = lat.source();
   auto k = lat.decay_rate();
   std::vector<double> C0(g.size()), ref(g.size());
@@ -63,6 +72,7 @@ SlabRun run_slab(Stencil stencil, int m) {
     const double yc = (y + 0.5) * h;
     int j = 0;
     while (j + 1 < int(L.size()) && yc > exact.interfaces()[std::size_t(j) + 1]) ++j;
+    D[std::size_t(y)] = units.diffusivity(L[std::size_t(j)].D);
     q[std::size_t(y)] = units.source(L[std::size_t(j)].q);
     k[std::size_t(y)] = units.rate(L[std::size_t(j)].k);
     ref[std::size_t(y)] = C0[std::size_t(y)] = exact.concentration(yc);
@@ -82,7 +92,10 @@ SlabRun run_slab(Stencil stencil, int m) {
   for (std::size_t i = 1; i + 1 < exact.interfaces().size(); ++i) {
     const double yi = exact.interfaces()[i];
     const int below = static_cast<int>(std::lround(yi / h)) - 1;  // row just below the interface
-    const double c_num = 0.5 * (C[std::size_t(below)] + C[std::size_t(below) + 1]);
+    // Flux-continuous interpolation: D_a (C_i − C_a) = D_b (C_b − C_i) over equal half
+    // spacings ⇒ C_i = (D_a C_a + D_b C_b)/(D_a + D_b) (the mean when D is continuous).
+    const double Da = L[i - 1].D, Db = L[i].D;
+    const double c_num = (Da * C[std::size_t(below)] + Db * C[std::size_t(below) + 1]) / (Da + Db);
     const double f_num = north[std::size_t(below)] * h / units.dt_s;  // amount per step → µM µm/s
     err_c = std::max(err_c, std::fabs(c_num - exact.concentration(yi)) / cmax);
     err_f = std::max(err_f, std::fabs(f_num - exact.flux(yi)) / fmax);
@@ -90,14 +103,16 @@ SlabRun run_slab(Stencil stencil, int m) {
   return {vv::relative_l2(C, ref), err_c, err_f, run, rows};
 }
 
-void layered_slab_case(const std::string& case_name, const std::vector<int>& refinements) {
+void layered_slab_case(const std::string& case_name, const std::vector<int>& refinements, bool contrast = false) {
   vv::Stopwatch total;
   io::ResultRecord record(case_name, "transport");
   record.set_requirement(
-      "Steady NO across lumen (25 um, 382.5 1/s) / EC (2.5 um, eNOS source at 70 Torr) / SM (10 um, 1 1/s) / tissue "
-      "(100 um, 1 1/s) with interfaces midway between node rows converges at second order (2 +- 0.15, D2Q5 and "
-      "D2Q9) to the exact piecewise solution; the interface concentration and interface flux converge with a finest "
-      "local order 2 +- 0.15; mass balance closes to <= 1e-13 relative in every step.");
+      std::string("Steady NO across lumen (25 um, 382.5 1/s) / EC (2.5 um, eNOS source at 70 Torr) / SM (10 um, "
+                  "1 1/s) / tissue (100 um, 1 1/s)") +
+      (contrast ? ", with D_NO x {1, 1/3, 1, 2} per layer (a diffusivity jump at every interface)," : "") +
+      " interfaces midway between node rows, converges at second order (2 +- 0.15, D2Q5 and D2Q9) to the exact "
+      "piecewise solution; the interface concentration (flux-continuous interpolation) and the interface flux "
+      "converge with a finest local order 2 +- 0.15; mass balance closes to <= 1e-13 relative in every step.");
   record.set_reference(
       "Piecewise exact solution of D C'' - k C + q = 0 with C and D C' continuous at interfaces, zero flux at the "
       "lumen centre and tissue edge (exp basis per layer, 8x8 linear system; docs/verification-transport.md); "
@@ -107,6 +122,7 @@ void layered_slab_case(const std::string& case_name, const std::vector<int>& ref
   record.set_parameter("refinements", "h = 2.5 um / m, m = " + levels + " (55 m rows)");
   record.set_parameter("tau", kTau);
   record.set_parameter("R_NO_uM_per_s", no_production(70.0, 50.0, 4.7));
+  record.set_parameter("D_factors", std::string(contrast ? "1, 1/3, 1, 2" : "1, 1, 1, 1"));
   double worst_balance = 0.0;
   for (auto stencil : {Stencil::d2q5, Stencil::d2q9}) {
     const std::string name = stencil == Stencil::d2q5 ? "D2Q5" : "D2Q9";
@@ -117,7 +133,7 @@ void layered_slab_case(const std::string& case_name, const std::vector<int>& ref
                               0.0, 0.15, false, ""};
     io::SpeedErrorSeries speed{name, {}, {}, {}};
     for (int m : refinements) {
-      const SlabRun r = run_slab(stencil, m);
+      const SlabRun r = run_slab(stencil, m, contrast);
       EXPECT_TRUE(r.run.converged) << name << " m=" << m;
       worst_balance = std::max(worst_balance, r.run.worst_mass_residual);
       record.add_run({{"stencil", name}, {"m", double(m)}, {"rows", double(r.rows)},
@@ -167,4 +183,10 @@ TEST(TransportLayeredSlab, PiecewiseExactSolutionSecondOrder) {
 // Full tier: adds m = 8 (440 rows, ~9e5 steps per stencil; about 30 s on 2 cores).
 TEST(TransportLayeredSlabFull, PiecewiseExactSolutionSecondOrder) {
   layered_slab_case("verification.transport_layered_slab_full", {1, 2, 4, 8});
+}
+
+// CI tier: the same stack with a diffusivity jump at every interface, D × {1, 1/3, 1, 2}
+// (τ 0.83 … 2.5 across the stack).
+TEST(TransportLayeredSlabContrast, PiecewiseExactSolutionSecondOrder) {
+  layered_slab_case("verification.transport_layered_slab_contrast", {1, 2, 4}, true);
 }

@@ -116,6 +116,11 @@ TEST(MorseUnits, FlatContactGap) {
   // The matching pair density reproduces the surface energy.
   const double De = pair_density_for(0.02, sharp);
   EXPECT_NEAR(De * std::abs(flat_contact_integral(sharp, fc.gap)), 0.02, 1e-14);
+  // De* = γ/E_S: De* = 4 at E_S = 0.005 is γ = 0.02.
+  EXPECT_DOUBLE_EQ(pair_density_for_de_star(4.0, 0.005, sharp), De);
+  EXPECT_THROW(pair_density_for_de_star(-1.0, 0.005, sharp), std::invalid_argument);
+  EXPECT_THROW(pair_density_for_de_star(1.0, 0.0, sharp), std::invalid_argument);
+  EXPECT_THROW(pair_density_for(-0.1, sharp), std::invalid_argument);
 }
 
 TEST(MorseAggregation, TwoTrianglesMatchHandSum) {
@@ -206,4 +211,29 @@ TEST(MorseAggregation, ImmersedCellsWrapperMatchesRawPath) {
   // A model built for another domain is refused.
   MorseAggregation other(ib::Domain{Grid{64, 64}, true, true}, p);
   EXPECT_THROW(other.add_forces(cells), std::invalid_argument);
+}
+
+TEST(MorseAggregation, NonFiniteMarkerIsReported) {
+  const std::vector<double> x{0, 1, 0.5, 5, 6, NAN}, y{0, 0, 1, 0, 0, 1};
+  const std::vector<std::size_t> off{0, 3, 6};
+  MorseAggregation agg(ib::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
+  std::vector<double> fx(6, 0.0), fy(6, 0.0);
+  EXPECT_THROW(agg.add_forces(MarkerView{x, y, off}, fx, fy), std::domain_error);
+}
+
+TEST(MorseAggregation, FarOutsideWallsStillBinned) {
+  // Markers far beyond the walls of a non-periodic box join the edge bins: same result as
+  // the brute force.
+  const std::vector<double> x{-1e6, -1e6 + 1, -1e6 + 0.5, -1e6 + 3, -1e6 + 4, -1e6 + 3.5},
+      y{0, 0, 1, 0.2, 0.1, 1.3};
+  const std::vector<std::size_t> off{0, 3, 6};
+  const ib::Domain dom{Grid{40, 40}, false, false};
+  const MorseParameters p{0.3, 2.5, 0.8, 6.0};
+  MorseAggregation agg(dom, p);
+  std::vector<double> fx(6, 0.0), fy(6, 0.0), bx(6, 0.0), by(6, 0.0);
+  const auto a = agg.add_forces(MarkerView{x, y, off}, fx, fy);
+  const auto b = add_forces_brute_force(dom, p, MarkerView{x, y, off}, bx, by);
+  EXPECT_EQ(a.energy, b.energy);
+  EXPECT_GT(a.pairs, 0u);
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(fx[i], bx[i]);
 }

@@ -5,6 +5,7 @@
 
 #include "transport/compartments.hpp"
 #include "transport/reactions.hpp"
+#include "transport/time_coupling.hpp"
 #include "transport/transport_units.hpp"
 
 using namespace erythro;
@@ -56,4 +57,34 @@ TEST(Compartments, DiffusivitiesAndReactionsPerNode) {
   EXPECT_NEAR(no.decay_rate()[3], u.rate(1.0), 1e-18);
   EXPECT_NEAR(o2.decay_rate()[3] * o2.concentration()[3], u.source(o2_consumption(4.7, 0.027, 5.0)), 1e-15);
   EXPECT_NEAR(o2.decay_rate()[4] * o2.concentration()[4], u.source(o2_consumption(4.7, 0.027, 50.0)), 1e-15);
+}
+
+TEST(TimeCoupling, SubcyclesTheFluidForThesisParameters) {
+  // h = 0.15 µm, plasma ν = 1.2 cP / 1.025 g/cm³ ≈ 1.17e6 µm²/s at τ_f = 1.
+  const double h = 0.15, nu = 1.2e-3 / 1025.0 * 1e12, dt_f = 0.5 / 3.0 * h * h / nu;
+  const TimeCoupling c = plan_time_coupling(dt_f, h, 3300.0, 1.0);
+  EXPECT_EQ(c.transport_per_fluid, 1);
+  EXPECT_GT(c.fluid_per_transport, 300);  // ν/D ≈ 355
+  EXPECT_LE(c.tau_max, 1.0);
+  EXPECT_GT(c.tau_max, 0.99);
+  EXPECT_NEAR(c.velocity_scale, c.fluid_per_transport, 1e-9);
+  // D ≫ ν: several transport steps per fluid step.
+  const TimeCoupling d = plan_time_coupling(1e-5, 0.2, 1e4, 1.0);
+  EXPECT_GT(d.transport_per_fluid, 1);
+  EXPECT_LE(d.tau_max, 1.0 + 1e-12);
+  EXPECT_NEAR(d.velocity_scale, 1.0 / d.transport_per_fluid, 1e-15);
+}
+
+TEST(TimeCoupling, VelocityAveragerHandsTheScaledMean) {
+  VelocityAverager avg(2);
+  const std::vector<double> a = {0.01, 0.0}, b = {0.03, -0.02}, zero = {0.0, 0.0};
+  avg.add(a, zero);
+  avg.add(b, a);
+  TransportLattice lat(Grid{2, 1}, Stencil::d2q5, {});
+  avg.apply(lat, 3.0);
+  EXPECT_NEAR(lat.velocity_x()[0], 3.0 * 0.02, 1e-15);
+  EXPECT_NEAR(lat.velocity_x()[1], 3.0 * -0.01, 1e-15);
+  EXPECT_NEAR(lat.velocity_y()[0], 3.0 * 0.005, 1e-15);
+  EXPECT_EQ(avg.samples(), 0);
+  EXPECT_THROW(avg.apply(lat, 1.0), std::logic_error);
 }
