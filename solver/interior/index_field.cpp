@@ -169,6 +169,7 @@ void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stat
     const std::size_t b = a + 1 == n ? 0 : a + 1;
     if (len_[a] < margin * (theta_[a] + theta_[b]) + 0.1) wedges = false;
   }
+  if (wedges) ++report_.wedge_cells;
   constexpr double kWedgeTol = 0.25;
   for (std::size_t a = 0; a < n; ++a) {
     const std::size_t b = a + 1 == n ? 0 : a + 1;
@@ -186,7 +187,18 @@ void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stat
     const double tbx = wedges ? vtx_[b] : 0.0, tby = wedges ? vty_[b] : 0.0;
     const double inv_tax = tax != 0.0 ? 1.0 / tax : 0.0, inv_tbx = tbx != 0.0 ? 1.0 / tbx : 0.0;
     int j0, j1;
-    node_range(std::min(ay, p.y[b]) - margin, std::max(ay, p.y[b]) + margin, j0, j1);
+    if (wedges) {
+      // Rows of the wedge ∩ {|distance to the edge's line| < margin}: the parallelogram with
+      // corners V ± margin·N_V/(N_V·n_e) on the bisector lines (N_V the unit pseudo-normal).
+      const double nax = vty_[a] * orient, nay = -vtx_[a] * orient;  // unit pseudo-normal at A
+      const double nbx = vty_[b] * orient, nby = -vtx_[b] * orient;  // unit pseudo-normal at B
+      const double sa = margin / (nax * nex + nay * ney), sb = margin / (nbx * nex + nby * ney);
+      const double ylo = std::min(ay - std::abs(sa * nay), by - std::abs(sb * nby)) - kWedgeTol;
+      const double yhi = std::max(ay + std::abs(sa * nay), by + std::abs(sb * nby)) + kWedgeTol;
+      node_range(ylo, yhi, j0, j1);
+    } else {
+      node_range(std::min(ay, by) - margin, std::max(ay, by) + margin, j0, j1);
+    }
     for (int j = j0; j <= j1; ++j) {
       const int jj = wrap_node(j, g.ny, domain_.periodic_y);
       if (jj < 0) continue;
@@ -259,7 +271,7 @@ void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stat
   for (std::size_t k : touched_) {
     const double d = sd_[k];
     if (std::abs(d) < w) {  // eq 26 in the band; overlapping bands keep the minimum I
-      const double h = smoothed_heaviside(d, w);
+      const double h = eq26(d, w);
       stats.band_area += 1.0 - h;
       if (mark_[k] == kFree) {
         mark_[k] = kBand;

@@ -9,17 +9,18 @@
 //    (cytoplasm wins; a node inside any cell is interior);
 //  - periodic wrap: polygons may be unwrapped past a periodic side; node indices wrap mod n.
 //    Across a wall (non-periodic side) band nodes beyond the wall are dropped;
-//  - start nodes: free nodes with w ≤ −d < w + 1 (thesis: 2h < −d < 3h). The thesis's rule
-//    (a start node in the 4h × 4h window of a marker) is applied first; then every start
-//    node still free starts a further fill (completion_starts): an interior pinched into
-//    several parts by the band, or one whose start nodes all lie outside the windows (a
-//    flat membrane), is filled completely;
-//  - small cells: when a cell has no start node at all its interior is set by ray casting
-//    instead (there is then at most a node with −d = w exactly) and counted in
-//    FillReport::fallback_cells;
-//  - leaks: a fill that sets more nodes than the cell's bounding box (plus band) holds, or
-//    whose interior count disagrees with the enclosed area beyond a bound, throws
-//    interior::FillLeakError naming the cell and the node where it was detected.
+//  - start nodes: free nodes next to an inside band node, hence w ≤ −d < w + 1 (thesis:
+//    2h < −d < 3h). The thesis's rule (the first start node in the 4h × 4h window of a
+//    marker) is applied first; then every start node still free starts a further fill
+//    (completion_starts): an interior pinched into several parts by the band, or one whose
+//    start nodes all lie outside the windows (a flat membrane), is filled completely;
+//  - small cells: when a cell has no start node at all (all of it within the band) its
+//    interior is set by ray casting instead (which then finds nothing unless the interior
+//    touches walls only) and the cell is counted in FillReport::fallback_cells;
+//  - leaks: a fill that sets more nodes than the nodes of the cell's marker bounding box, or
+//    an interior whose Σ(1 − I) differs from the enclosed (wall-clipped) area by more than
+//    0.5·perimeter + 4 h², throws interior::FillLeakError naming the cell, its marker box
+//    and where the fill was.
 #include <array>
 #include <cstdint>
 #include <span>
@@ -54,6 +55,8 @@ struct FillReport {
   int completion_starts = 0;  // flood_fill: fills started from a start node outside every window
                               // (an interior part the window rule misses, e.g. behind a flat membrane)
   long overlap_nodes = 0;   // band nodes of more than one cell (the minimum I is kept)
+  int wedge_cells = 0;      // cells whose band pass used per-edge wedges (smooth polygons; the
+                            // others, e.g. few markers or sharp corners, use whole capsules)
   double max_area_mismatch = 0.0;  // max over cells of |Σ(1 − H) + interior − area| (lattice units²)
   double max_area_mismatch_allowed = 0.0;  // the leak bound at that cell (0.5·perimeter + 4)
 };

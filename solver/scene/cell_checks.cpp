@@ -160,13 +160,15 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     aggregation::MorsePhysical p;
     p.r0_m = a.zero_force_distance_um * 1e-6;
     p.beta_per_m = a.decay_per_um * 1e6;
-    p.cutoff_m = a.cutoff_um * 1e-6;
+    p.cutoff_m = a.cutoff_um.value_or(a.zero_force_distance_um + 5.0 / a.decay_per_um) * 1e-6;
     try {
-      // The thesis's D_e is a surface energy: the pair density whose flat contact has that
-      // adhesion energy (aggregation/morse_units.hpp); or the pair density directly.
-      p.De_Pa = a.pair_density_Pa ? *a.pair_density_Pa
-                                  : aggregation::pair_density_for(*a.surface_energy_uJ_um2 * aggregation::kMicroJoulePerMicron2,
-                                                                  aggregation::MorseParameters{1.0, p.r0_m, p.beta_per_m, p.cutoff_m});
+      // De* = γ/E_S and γ are fitted through the flat contact (aggregation/morse_units.hpp:
+      // D_e = γ/|J(d*)|); SI throughout, then the layer's own conversion.
+      const aggregation::MorseParameters shape{1.0, p.r0_m, p.beta_per_m, p.cutoff_m};
+      const double Es_N_m = spec.shear_modulus_dyn_cm * membrane::kDynPerCm;
+      if (a.pair_density_Pa) p.De_Pa = *a.pair_density_Pa;
+      if (a.surface_energy_J_m2) p.De_Pa = aggregation::pair_density_for(*a.surface_energy_J_m2, shape);
+      if (a.de_star) p.De_Pa = aggregation::pair_density_for_de_star(*a.de_star, Es_N_m, shape);
       M.aggregation = aggregation::to_lattice(p, ms);
       M.aggregation_flat_gap = aggregation::flat_contact(*M.aggregation).gap;
     } catch (const std::invalid_argument& e) {
@@ -174,7 +176,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     }
     for (int axis = 0; axis < 2; ++axis)
       if (periodic[axis] && M.aggregation->cutoff >= 0.5 * n[axis])
-        reject(s, "aggregation.cutoff_um = " + num(a.cutoff_um) + " µm is not below half the periodic domain (" +
+        reject(s, "aggregation.cutoff_um = " + num(p.cutoff_m * 1e6) + " µm is not below half the periodic domain (" +
                       num(0.5 * n[axis] * h_um) + " µm): the minimum-image separation would be ambiguous");
   }
 

@@ -105,15 +105,17 @@ struct CellSpec {
 };
 
 // [aggregation]: Morse aggregation between the membranes of different cells (model.md
-// §4; docs/verification-aggregation.md). The strength is given as exactly one of the
-// thesis's surface energy (the flat-contact adhesion energy the pair density is fitted
-// to) or the 2D pair density itself.
+// §4; docs/verification-aggregation.md). The strength is exactly one of: the
+// dimensionless surface energy De* = γ/E_S (the thesis's levels 1…5), the adhesion
+// energy γ of a flat contact, or the 2D pair density D_e itself; the first two are
+// turned into D_e by fitting the flat contact (aggregation/morse_units.hpp).
 struct AggregationSpec {
-  std::optional<double> surface_energy_uJ_um2;  // thesis D_e: 1.3e-7 (ch. IV), Zhang et al. 5.2e-8
-  std::optional<double> pair_density_Pa;        // D_e of the 2D pair model (J/m³)
-  double zero_force_distance_um = 0.49;         // r0 (Zhang et al. 2008; parameters.md)
-  double decay_per_um = 3.84;                   // β (parameters.md, R)
-  double cutoff_um = 1.5;                       // r_c > r0
+  std::optional<double> de_star;               // De* = γ / E_S ([membrane] shear modulus)
+  std::optional<double> surface_energy_J_m2;   // γ
+  std::optional<double> pair_density_Pa;       // D_e of the 2D pair model (J/m³)
+  double zero_force_distance_um = 0.49;        // r0 (Zhang et al. 2008; parameters.md)
+  double decay_per_um = 3.84;                  // β (parameters.md, R)
+  std::optional<double> cutoff_um;             // r_c > r0; default r0 + 5/β
 };
 
 // [transport]: how the NO/O2 transport is coupled to the flow (docs/architecture.md

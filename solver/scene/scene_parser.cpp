@@ -436,16 +436,22 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   }
   if (r.has("aggregation")) {
     AggregationSpec a;
-    if (exactly_one(r, "aggregation", "surface_energy_uJ_um2", "pair_density_Pa",
-                    "surface_energy_uJ_um2: the thesis's D_e, µJ/µm²; or pair_density_Pa: the 2D pair density") == 0)
-      a.surface_energy_uJ_um2 = r.number("aggregation.surface_energy_uJ_um2", 0.0);
-    else
-      a.pair_density_Pa = r.number("aggregation.pair_density_Pa", 0.0);
+    const char* strengths[] = {"aggregation.de_star", "aggregation.surface_energy_J_m2", "aggregation.pair_density_Pa"};
+    const int given = static_cast<int>(r.has(strengths[0])) + static_cast<int>(r.has(strengths[1])) +
+                      static_cast<int>(r.has(strengths[2]));
+    if (given != 1)
+      throw InputError(r.where_table("aggregation") + ": give exactly one of aggregation.de_star (γ/E_S, the thesis's "
+                       "levels 1-5), aggregation.surface_energy_J_m2 (γ) or aggregation.pair_density_Pa (D_e); " +
+                       std::to_string(given) + " given");
+    if (r.has(strengths[0])) a.de_star = r.number(strengths[0], 0.0);
+    if (r.has(strengths[1])) a.surface_energy_J_m2 = r.number(strengths[1], 0.0);
+    if (r.has(strengths[2])) a.pair_density_Pa = r.number(strengths[2], 0.0);
     a.zero_force_distance_um = r.number("aggregation.zero_force_distance_um", a.zero_force_distance_um);
     a.decay_per_um = r.number("aggregation.decay_per_um", a.decay_per_um);
-    a.cutoff_um = r.number("aggregation.cutoff_um", a.cutoff_um);
-    if (a.cutoff_um <= a.zero_force_distance_um)
-      throw InputError(r.where_table("aggregation") + ": aggregation.cutoff_um = " + format_number(a.cutoff_um) +
+    const double cutoff = r.number("aggregation.cutoff_um", a.zero_force_distance_um + 5.0 / a.decay_per_um);
+    if (r.has("aggregation.cutoff_um")) a.cutoff_um = cutoff;
+    if (cutoff <= a.zero_force_distance_um)
+      throw InputError(r.where_table("aggregation") + ": aggregation.cutoff_um = " + format_number(cutoff) +
                        " µm must exceed aggregation.zero_force_distance_um = " +
                        format_number(a.zero_force_distance_um) + " µm (the potential is cut beyond r_c)");
     s.aggregation = a;

@@ -20,7 +20,7 @@ namespace {
 
 // Transport steps of small grids take tens of microseconds: forking threads (and
 // waiting for a descheduled worker on a shared machine) costs more than it saves
-// below 128² nodes (measured: a 64² D2Q5 step was 10× slower with two threads on a
+// below 128² nodes (measured: a 64² D2Q5 run was over 10× slower with two threads on a
 // loaded 2-core machine). Larger than the fluid's threshold for that reason.
 constexpr std::size_t kThreadingThreshold = 128 * 128;
 

@@ -88,10 +88,16 @@ void TransportLattice::initialize(std::span<const double> concentration) {
     throw std::invalid_argument("TransportLattice::initialize: field size does not match the grid");
   }
   std::copy(concentration.begin(), concentration.end(), C_.begin());
+  // Stored populations are post-collision: with reactions set, Σ g* = C + ½ q_tot (T4),
+  // so the first step starts time-centred (without this the source lags half a step).
+  std::vector<double> shifted(C_);
+  if (has_reaction()) {
+    for (std::size_t n = 0; n < shifted.size(); ++n) shifted[n] += 0.5 * (source_[n] - decay_[n] * C_[n]);
+  }
   if (stencil_ == Stencil::d2q5) {
-    fill_equilibrium<D2Q5>(grid_, C_, ux_, uy_, g_);
+    fill_equilibrium<D2Q5>(grid_, shifted, ux_, uy_, g_);
   } else {
-    fill_equilibrium<D2Q9>(grid_, C_, ux_, uy_, g_);
+    fill_equilibrium<D2Q9>(grid_, shifted, ux_, uy_, g_);
   }
   balance_ = MassBalance{};
   balance_.amount = stored_amount();

@@ -73,8 +73,10 @@ class TransportLattice {
   TransportBoundaries& boundaries() { return boundaries_; }  // values may change between steps
   int q() const;  // populations per node
 
-  // Equilibrium populations of the given concentration (and the current velocity),
-  // zero source. The concentration() before the first step is this field.
+  // Equilibrium populations of the given concentration and the current velocity;
+  // if source()/decay_rate() are already set, of C + ½ q_tot (the stored state is
+  // post-collision, T4), so that a source acts time-centred from the first step: set
+  // reactions first, then initialize. The concentration() before the first step is C.
   void initialize(std::span<const double> concentration);
   void initialize_uniform(double c);
 

@@ -160,11 +160,13 @@ TEST(AggregationEquilibrium, SettledSeparation) {
                                    0.5 * ell, 0.0, io::Comparison::at_most,
                                    "corrugation-driven counter-rotation stops within half a marker spacing of arc"}))
         << r.com_drift;
-    EXPECT_TRUE(record.add_metric({"discrete_vs_continuum " + n,
-                                   "|rigid-circle gap of the discrete marker sums - continuum quadrature|", "h",
-                                   std::abs(r.discrete_rigid_gap - dstar), 1e-3, 0.0, io::Comparison::at_most,
-                                   "marker spacing 0.79 h < 1/beta = 1.74 h: the l-weighted pair sum is a smooth "
-                                   "quadrature of the continuum integral (measured ~1e-6)"}));
+    if (run.De == runs[0].De) {  // the initial polygons are the same in every run
+      EXPECT_TRUE(record.add_metric({"discrete_vs_continuum",
+                                     "|rigid-circle gap of the discrete marker sums - continuum quadrature|", "h",
+                                     std::abs(r.discrete_rigid_gap - dstar), 1e-3, 0.0, io::Comparison::at_most,
+                                     "marker spacing 0.79 h < 1/beta = 1.74 h: the l-weighted pair sum is a smooth "
+                                     "quadrature of the continuum integral (measured ~1e-6)"}));
+    }
   }
   // Linear extrapolation of the settled gap to D_e → 0 (least squares over the three runs).
   double mx = 0, my = 0;

@@ -79,6 +79,7 @@ TEST(InteriorFillAgreement, FloodFillEqualsRayCasting) {
                                             "horseshoe scenes (seeds 11-14); periodic crossings; 24 small cells; "
                                             "close pairs gap 0.3-3.45 h; near walls"));
   long mismatch_fill_ray = 0, mismatch_fill_rule = 0, compared = 0, fallbacks = 0, overlaps = 0, total_cells = 0;
+  long wedge_cells = 0;
   double band_dev = 0.0, worst_area = 0.0;
   for (const vv::CellScene& s : vv::agreement_suite()) {
     vv::Stopwatch clock;
@@ -101,12 +102,12 @@ TEST(InteriorFillAgreement, FloodFillEqualsRayCasting) {
     }
     std::cout << s.name << ": cells " << s.cells.size() << " interior " << rf.interior_nodes << " band "
               << rf.band_nodes << " starts " << rf.fill_starts << " completion " << rf.completion_starts << " fallback "
-              << rf.fallback_cells << " overlap " << rf.overlap_nodes << " | mismatch fill-ray " << m_ray
+              << rf.fallback_cells << " wedge " << rf.wedge_cells << " overlap " << rf.overlap_nodes << " | mismatch fill-ray " << m_ray
               << " fill-rule " << m_rule << " band dev " << dev << " area " << rf.max_area_mismatch << "\n";
     record.add_run({{"scene", s.name}, {"cells", double(s.cells.size())}, {"nx", double(s.domain.grid.nx)},
                     {"ny", double(s.domain.grid.ny)}, {"interior_nodes", double(rf.interior_nodes)},
                     {"band_nodes", double(rf.band_nodes)}, {"fill_starts", double(rf.fill_starts)},
-                    {"completion_starts", double(rf.completion_starts)}, {"fallback_cells", double(rf.fallback_cells)},
+                    {"completion_starts", double(rf.completion_starts)}, {"fallback_cells", double(rf.fallback_cells)}, {"wedge_cells", double(rf.wedge_cells)},
                     {"overlap_nodes", double(rf.overlap_nodes)}, {"nodes_away_from_band", double(away)},
                     {"mismatch_fill_vs_ray_casting", double(m_ray)}, {"mismatch_fill_vs_even_odd", double(m_rule)},
                     {"max_band_deviation", dev}, {"max_area_mismatch", rf.max_area_mismatch},
@@ -118,6 +119,7 @@ TEST(InteriorFillAgreement, FloodFillEqualsRayCasting) {
     fallbacks += rf.fallback_cells;
     overlaps += rf.overlap_nodes;
     total_cells += rf.cells;
+    wedge_cells += rf.wedge_cells;
     worst_area = std::max(worst_area, rf.max_area_mismatch);
   }
   EXPECT_TRUE(record.add_metric({"mismatch flood fill vs ray casting method", "nodes where I = 0 differs between "
@@ -136,6 +138,12 @@ TEST(InteriorFillAgreement, FloodFillEqualsRayCasting) {
                                  "the suite covers about 1.4e5 nodes; fewer would mean scenes were skipped"}));
   record.set_parameter("cells_total", double(total_cells));
   record.set_parameter("fallback_cells_total", double(fallbacks));
+  record.set_parameter("wedge_cells_total", double(wedge_cells));
+  // Both band-pass paths (per-edge wedges and whole capsules) must be exercised.
+  EXPECT_TRUE(record.add_metric({"cells on each band-pass path", "min(cells using wedges, cells using capsules)",
+                                 "cells", double(std::min(wedge_cells, total_cells - wedge_cells)), 5.0, 0.0,
+                                 io::Comparison::at_least,
+                                 "the agreement must cover both paths of the band pass; 5 cells each at least"}));
   record.set_parameter("overlap_nodes_total", double(overlaps));
   record.set_parameter("max_area_mismatch_h2", worst_area);
   record.set_wall_time(total.seconds());

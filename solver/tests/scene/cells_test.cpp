@@ -287,26 +287,31 @@ const std::string two_cells =
     "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [12.3, 5]\nmarkers = 64\n";
 
 // [aggregation] → lattice Morse parameters: r0 = 0.49 µm / 0.25 µm = 1.96 h, β = 3.84 µm⁻¹ × 0.25 µm
-// = 0.96 /h; the surface energy becomes a positive pair density and a flat-contact gap below r0.
-TEST(SceneAggregation, ConvertsTheThesisSurfaceEnergy) {
-  const LatticeSetup L = derive(pair_channel + "[aggregation]\nsurface_energy_uJ_um2 = 1.3e-7\n" + two_cells);
+// = 0.96 /h, default r_c = r0 + 5/β = 1.96 + 5.208 h; De* = γ/E_S is linear in γ, so De* = 2 gives
+// the pair density of γ = 2 E_S = 1.2e-5 J/m² (E_S = 6e-3 dyn/cm), and the flat-contact gap lies below r0.
+TEST(SceneAggregation, ConvertsTheSurfaceEnergy) {
+  const LatticeSetup L = derive(pair_channel + "[aggregation]\nde_star = 2.0\n" + two_cells);
   ASSERT_TRUE(L.membrane && L.membrane->aggregation);
   const auto& a = *L.membrane->aggregation;
   EXPECT_NEAR(a.r0, 1.96, 1e-12);
   EXPECT_NEAR(a.beta, 0.96, 1e-12);
-  EXPECT_NEAR(a.cutoff, 6.0, 1e-12);
+  EXPECT_NEAR(a.cutoff, 1.96 + 5.0 / 0.96, 1e-9);
   EXPECT_GT(a.De, 0.0);
   EXPECT_GT(L.membrane->aggregation_flat_gap, 0.0);
   EXPECT_LT(L.membrane->aggregation_flat_gap, a.r0);
+  const LatticeSetup G = derive(pair_channel + "[aggregation]\nsurface_energy_J_m2 = 1.2e-5\n" + two_cells);
+  EXPECT_NEAR(G.membrane->aggregation->De, a.De, 1e-12 * a.De);
   const LatticeSetup P = derive(pair_channel + "[aggregation]\npair_density_Pa = 2.0\n" + two_cells);
   EXPECT_GT(P.membrane->aggregation->De, 0.0);
 }
 
 TEST(SceneAggregation, RejectsBadInput) {
   EXPECT_CONTAINS(error_of([] { derive(pair_channel + "[aggregation]\nzero_force_distance_um = 0.5\n" + two_cells); }),
-                  "surface_energy_uJ_um2");
+                  "give exactly one of aggregation.de_star");
+  EXPECT_CONTAINS(error_of([] { derive(pair_channel + "[aggregation]\nde_star = 1\npair_density_Pa = 3\n" + two_cells); }),
+                  "2 given");
   EXPECT_CONTAINS(error_of([] {
-                    derive(pair_channel + "[aggregation]\nsurface_energy_uJ_um2 = 1e-7\ncutoff_um = 0.3\n" + two_cells);
+                    derive(pair_channel + "[aggregation]\nde_star = 1\ncutoff_um = 0.3\n" + two_cells);
                   }),
                   "must exceed aggregation.zero_force_distance_um");
 }

@@ -93,6 +93,22 @@ TEST(TransportLattice, ImplicitDecayIsCrankNicolson) {
   }
 }
 
+TEST(TransportLattice, SourceIsTimeCentredFromTheFirstStep) {
+  // Uniform C0, q and k set before initialize(): C_n = q/k + (C0 − q/k) r^n exactly,
+  // r = (1 − k/2)/(1 + k/2) (eq T4), within O(k³) per step of the ODE's e^{−kn}.
+  TransportLattice lat(Grid{3, 3}, Stencil::d2q5, {});
+  const double C0 = 1.0, q = 0.01, k = 0.02, r = (1.0 - 0.5 * k) / (1.0 + 0.5 * k);
+  for (auto& v : lat.source()) v = q;
+  for (auto& v : lat.decay_rate()) v = k;
+  lat.initialize_uniform(C0);
+  EXPECT_DOUBLE_EQ(lat.concentration()[4], C0);
+  for (int n = 1; n <= 50; ++n) {
+    lat.step();
+    EXPECT_NEAR(lat.concentration()[4], q / k + (C0 - q / k) * std::pow(r, n), 1e-14);
+    EXPECT_NEAR(lat.concentration()[4], q / k + (C0 - q / k) * std::exp(-k * n), 2e-5);
+  }
+}
+
 TEST(TransportLattice, MassBalanceClosesToRoundOff) {
   // Random field, random sources and sinks, a velocity field, every kind of side.
   std::mt19937 rng(7);

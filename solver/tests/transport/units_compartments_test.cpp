@@ -1,6 +1,8 @@
 // Transport units (transport_units.hpp) and compartments (compartments.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "transport/compartments.hpp"
@@ -87,4 +89,52 @@ TEST(TimeCoupling, VelocityAveragerHandsTheScaledMean) {
   EXPECT_NEAR(lat.velocity_y()[0], 3.0 * 0.005, 1e-15);
   EXPECT_EQ(avg.samples(), 0);
   EXPECT_THROW(avg.apply(lat, 1.0), std::logic_error);
+}
+
+TEST(Compartments, CoupledNoO2ColumnReachesSteadyStateWithOneToOneEcCoupling) {
+  // 1D column (grid 1 × 60, h = 0.5 µm, Δt from τ = 1 for D_NO): an RBC-compartment
+  // layer 10 µm (NO scavenging; O2 fed at 70 Torr from the bottom side), EC 2.5 µm,
+  // SM 7.5 µm, tissue 10 µm, zero flux on top; NO zero flux at both ends;
+  // update_reactions() every step, 4 s of physical time. At steady state the EC's NO
+  // production equals its O2 use (1:1), NO production = NO consumption, concentrations
+  // stay non-negative, and both lattices' mass balances close in every step.
+  const Grid g{1, 60};
+  std::vector<std::uint8_t> ids(g.size());
+  for (int y = 0; y < g.ny; ++y) {
+    const double yc = (y + 0.5) * 0.5;
+    ids[std::size_t(y)] = yc < 10.0 ? 1 : yc < 12.5 ? 2 : yc < 20.0 ? 3 : 4;
+  }
+  const NoO2Model m = NoO2Model::arteriole_defaults();
+  const TransportUnits u{0.5, dt_for_tau(0.5, 3300.0, 1.0)};
+  TransportBoundaries bo2, bno;
+  bo2.bottom = {SideKind::fixed_concentration, 70.0 * m.alpha};
+  bo2.top = {SideKind::zero_flux, 0.0};
+  bno.bottom = bno.top = {SideKind::zero_flux, 0.0};
+  TransportLattice no(g, Stencil::d2q5, bno), o2(g, Stencil::d2q5, bo2);
+  apply_diffusivities(m, ids, u, no, o2);
+  no.initialize_uniform(0.0);
+  o2.initialize_uniform(70.0 * m.alpha);
+  double worst = 0.0;
+  const long steps = std::lround(4.0 / u.dt_s);
+  for (long s = 0; s < steps; ++s) {
+    update_reactions(m, ids, u, no, o2);
+    no.step();
+    o2.step();
+    worst = std::max({worst, no.mass_balance().relative_residual(), o2.mass_balance().relative_residual()});
+  }
+  EXPECT_LT(worst, 1e-13);
+  // Steady: NO produced in the EC = NO consumed (RBC layer, SM, tissue).
+  const auto& nb = no.mass_balance();
+  // EC: NO production q_NO = O2 use k C (the same R1 at the same P).
+  double produced = 0.0, used = 0.0;
+  for (std::size_t n = 0; n < ids.size(); ++n) {
+    if (ids[n] != 2) continue;
+    produced += no.source()[n];
+    used += o2.decay_rate()[n] * o2.concentration()[n];
+  }
+  EXPECT_GT(produced, 0.0);
+  EXPECT_LT(std::fabs(nb.source), 1e-9 * produced);
+  EXPECT_NEAR(produced, used, 1e-9 * produced);
+  for (double c : o2.concentration()) EXPECT_GT(c, 0.0);
+  for (double c : no.concentration()) EXPECT_GE(c, 0.0);
 }
