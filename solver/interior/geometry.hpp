@@ -37,7 +37,7 @@ inline double eq26(double d, double half_width) {
                                  1.0 / 6227020800.0, 1.0 / 39916800.0, 1.0 / 362880.0, 1.0 / 5040.0, 1.0 / 120.0,
                                  1.0 / 6.0, 1.0};  // 1/19! … 1/1!
   for (double c : kInvFact) p = c - x2 * p;
-  return 0.5 * (1.0 + r + x * p / std::numbers::pi);
+  return 0.5 * (1.0 + r + rr * p);  // x·p/π = rr·p
 }
 
 // x at which the edges cross the horizontal line y = py, sorted ascending (even–odd

@@ -52,8 +52,8 @@ struct FillReport {
   long band_nodes = 0;      // nodes within the band |d| < w of at least one cell (I = H(d), eq 26)
   int fallback_cells = 0;   // flood_fill: cells with no start node at all, filled by ray casting
   int fill_starts = 0;      // flood_fill: fills started from a start node in a marker's 2w × 2w window
-  int completion_starts = 0;  // flood_fill: fills started from a start node outside every window
-                              // (an interior part the window rule misses, e.g. behind a flat membrane)
+  int completion_starts = 0;  // flood_fill: fills started by the completion pass (start nodes still
+                              // free after the thesis fill: pinched-off parts, flat membranes)
   long overlap_nodes = 0;   // band nodes of more than one cell (the minimum I is kept)
   int wedge_cells = 0;      // cells whose band pass used per-edge wedges (smooth polygons; the
                             // others, e.g. few markers or sharp corners, use whole capsules)
@@ -82,7 +82,8 @@ class IndexField {
 
   // Rebuilds I from the cells' polygons in lattice units (counter-clockwise; coordinates
   // may be unwrapped past a periodic side). Throws FillLeakError naming the cell and
-  // where when a fill leaks; never silently accepted.
+  // where when a fill leaks (never silently accepted), std::domain_error for a non-finite
+  // marker (a diverged membrane) and InputError for a polygon of fewer than 3 markers.
   const FillReport& update(std::span<const membrane::Polygon> cells);
   std::span<const double> values() const { return index_; }  // I per node, index y*nx + x
   const FillReport& report() const { return report_; }
@@ -91,6 +92,11 @@ class IndexField {
 
   // Eq 27 with ν ∝ μ at ρ0 = 1: τ = ½ + 3[ν_in + (ν_ex − ν_in) I] per node (lattice units).
   void write_relaxation_times(std::span<double> tau, double nu_in, double nu_ex) const;
+  // The same, but only on the nodes this update or the previous one changed: bitwise equal
+  // to write_relaxation_times when `tau` holds what write_relaxation_times (or this) wrote
+  // after the previous update (write the full field once, after the first update).
+  // O(band + interior) instead of O(grid).
+  void write_changed_relaxation_times(std::span<double> tau, double nu_in, double nu_ex) const;
 
  private:
   struct CellStats {
@@ -117,6 +123,7 @@ class IndexField {
   std::vector<std::size_t> touched_;    // per-cell scratch: nodes with a finite sd_
   std::vector<std::array<int, 2>> touched_xy_;  // … and their (x, y)
   std::vector<std::size_t> dirty_;      // nodes changed by the last update (reset by the next)
+  std::vector<std::size_t> previous_dirty_;  // those of the update before
   std::vector<std::size_t> stack_;      // scan-line seeds
   std::vector<double> crossings_;       // ray-casting scratch
   std::vector<double> enx_, eny_;       // band-pass scratch: outward edge normals

@@ -152,7 +152,7 @@ struct HemoglobinSpec {
   double solubility_uM_per_torr = 1.3;
   double p50_torr = 26.8;
   double hill_n = 2.7;
-  double rate_modifier = 1.0;         // M ≥ 1 in the rate's denominator (calibrated)
+  double rate_modifier = 1.0;         // M > 0 in the rate's denominator (calibrated; M < 1 is faster)
   std::optional<double> initial_saturation;  // default: Hill at the cells' initial PO2
 };
 

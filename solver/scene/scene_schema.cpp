@@ -88,7 +88,7 @@ const std::vector<KeySpec>& known_keys() {
         {"hemoglobin.solubility_uM_per_torr", Kind::number, "µM/Torr", positive, {}},
         {"hemoglobin.p50_torr", Kind::number, "Torr", positive, {}},
         {"hemoglobin.hill_n", Kind::number, "", positive, {}},
-        {"hemoglobin.rate_modifier", Kind::number, "", Bound{1.0, false}, {}},
+        {"hemoglobin.rate_modifier", Kind::number, "", positive, {}},
         {"hemoglobin.initial_saturation", Kind::number, "", Bound{0.0, false, 1.0, false}, {}},
     };
     for (const char* side : {"left", "right", "bottom", "top"}) {

@@ -17,19 +17,24 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
     index_.emplace(ib::Domain::from(lattice.grid(), lattice.boundaries()), interior::IndexFieldOptions{setup.indicator});
     polygons_.resize(static_cast<std::size_t>(cells_.cell_count()));
     lattice.enable_tau_field();
-    refresh_viscosity(lattice);
+    index_->update(polygons_from_cells());
+    index_->write_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);  // every node once
   }
 }
 
-void CellPhysics::refresh_viscosity(fluid::FluidLattice& lattice) {
+std::span<const membrane::Polygon> CellPhysics::polygons_from_cells() {
   for (int c = 0; c < cells_.cell_count(); ++c) {
     membrane::Polygon& p = polygons_[static_cast<std::size_t>(c)];
     p.x.assign(cells_.x(c).begin(), cells_.x(c).end());  // capacity kept: no allocation after the first step
     p.y.assign(cells_.y(c).begin(), cells_.y(c).end());
   }
-  index_->update(polygons_);
-  // Eq 27: τ(x) = ½ + 3[ν_in + (ν_ex − ν_in) I(x)].
-  index_->write_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);
+  return polygons_;
+}
+
+void CellPhysics::refresh_viscosity(fluid::FluidLattice& lattice) {
+  index_->update(polygons_from_cells());
+  // Eq 27: τ(x) = ½ + 3[ν_in + (ν_ex − ν_in) I(x)], rewritten only where I changed.
+  index_->write_changed_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);
 }
 
 void CellPhysics::advance(fluid::FluidLattice& lattice, long step) {

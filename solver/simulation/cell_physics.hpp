@@ -36,6 +36,7 @@ class CellPhysics {
 
  private:
   void refresh_viscosity(fluid::FluidLattice& lattice);
+  std::span<const membrane::Polygon> polygons_from_cells();
 
   membrane::ImmersedCells cells_;
   std::optional<interior::IndexField> index_;

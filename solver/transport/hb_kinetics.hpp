@@ -16,7 +16,7 @@ struct HbParameters {
   double alpha = 1.3;      // O2 solubility, µM/Torr
   double P50 = 26.8;       // Torr
   double n = 2.7;          // Hill exponent
-  double M = 1.0;          // calibrated rate modifier (≥ 1) in the rate's denominator
+  double M = 1.0;          // calibrated rate modifier (> 0) in the rate's denominator (M < 1: faster)
   double sigma = 1.0;      // shear-stress coefficient σ(τ_RBC) multiplying the rate (ch. VI; 1 = off)
 };
 
@@ -37,6 +37,17 @@ struct HbStep {
 // — unconditionally stable, monotone, never overshoots S_eq however stiff λ dt is.
 // released is computed from the same two numbers, so bound + free O2 balance exactly.
 HbStep advance_saturation(const HbParameters& p, double S, double P_mean_torr, double dt);
+
+// Cell-implicit variant (H3): the P of the update is that at the END of the step, with
+// the cell's own release kept in its interior, P_end = P + C_heme (S − S_new)/α:
+//   S_new = S_eq(P_end) + (S − S_eq(P_end)) e^{−λ(P_end) dt},
+// solved by bisection between S and S_eq(P) (the residual is monotone) to round-off.
+// Why: the released O2 raises P, which raises S_eq; through the steep Hill curve the
+// coupled relaxation runs at λ_eff ≈ λ (1 + C_heme S_eq'(P)/α), ~80 λ at 10–90 Torr.
+// Lagging P by a step (advance_saturation with the previous P) is then stable only for
+// λ_eff dt ≲ 2 (measured: verification.transport_hb_coupling); this variant is stable
+// for any dt. Both are first order in dt when coupled to transport.
+HbStep advance_saturation_cell_implicit(const HbParameters& p, double S, double P_mean_torr, double dt);
 
 // Mean partial pressure C/α over the given nodes (concentration field in µM).
 double mean_partial_pressure(std::span<const std::size_t> nodes, std::span<const double> concentration,

@@ -13,6 +13,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
@@ -23,7 +25,6 @@ using namespace erythro;
 using namespace erythro::transport;
 
 namespace {
-constexpr int kResolutions[] = {16, 32, 64};
 constexpr double kC0 = 1.0, kA = 0.5, kD0 = 0.25, kPeclet = 10.0;
 
 struct MmsRun {
@@ -62,11 +63,10 @@ MmsRun run_mms(Stencil stencil, int N, bool alt_source = false) {
   for (std::size_t n = 0; n < g.size(); ++n) varying[n] = lat.concentration()[n] - kC0;
   return {vv::relative_l2(varying, exact), vv::relative_linf(varying, exact), run};
 }
-}  // namespace
 
-TEST(TransportManufactured, SecondOrderWithVariableDiffusivity) {
+void manufactured_case(const std::string& case_name, const std::vector<int>& resolutions) {
   vv::Stopwatch total;
-  io::ResultRecord record("verification.transport_manufactured", "transport");
+  io::ResultRecord record(case_name, "transport");
   record.set_requirement(
       "Steady advection-diffusion with per-node D(x,y) (0.5..1.5 D0), a divergence-free advecting field, a "
       "manufactured source and fixed-concentration walls converges at second order (observed order 2 +- 0.15, D2Q5 "
@@ -76,7 +76,9 @@ TEST(TransportManufactured, SecondOrderWithVariableDiffusivity) {
       "Manufactured solution C = C0 + A sin(pi y/L)[1 + cos(2 pi x/L)/2], D = D0[1 + sin(2 pi x/L) cos(pi y/L)/2], "
       "psi = U L/(2 pi) sin(2 pi x/L) sin^2(pi y/L); q = div(Cu) - div(D grad C) derived by sympy "
       "(verification/transport/mms/derive_source.py); method: Roache 2002.");
-  record.set_parameter("resolutions", std::string("N = 16, 32, 64 (N x N, periodic in x, walls y = 0, N)"));
+  std::string levels;
+  for (int N : resolutions) levels += (levels.empty() ? "" : ", ") + std::to_string(N);
+  record.set_parameter("resolutions", "N = " + levels + " (N x N, periodic in x, walls y = 0, N)");
   record.set_parameter("scaling", std::string("diffusive: D0 = 0.25 (lattice), Peclet U L/D0 = 10, U = 2.5/N"));
   record.set_parameter("C0", kC0);
   record.set_parameter("A", kA);
@@ -91,7 +93,7 @@ TEST(TransportManufactured, SecondOrderWithVariableDiffusivity) {
     series.formal_order = 2.0;
     series.order_tolerance = 0.15;
     io::SpeedErrorSeries speed{name, {}, {}, {}};
-    for (int N : kResolutions) {
+    for (int N : resolutions) {
       const MmsRun r = run_mms(stencil, N);
       EXPECT_TRUE(r.run.converged) << name << " N=" << N;
       worst_balance = std::max(worst_balance, r.run.worst_mass_residual);
@@ -132,4 +134,15 @@ TEST(TransportManufactured, SecondOrderWithVariableDiffusivity) {
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();
   EXPECT_TRUE(record.passed());
+}
+}  // namespace
+
+// CI tier: N = 16, 32, 64 (about 3 s).
+TEST(TransportManufactured, SecondOrderWithVariableDiffusivity) {
+  manufactured_case("verification.transport_manufactured", {16, 32, 64});
+}
+
+// Full tier: up to N = 128 (about a minute on 2 cores).
+TEST(TransportManufacturedFull, SecondOrderWithVariableDiffusivity) {
+  manufactured_case("verification.transport_manufactured_full", {16, 32, 64, 128});
 }

@@ -8,6 +8,8 @@
 // Reference: D C'' = Q, C(0) = C_b, C'(H) = 0 ⇒ C(y) = C_b − (Q/D)(H y − y²/2),
 // valid while C(H) = C_b − Q H²/(2D) > 0 (Krogh-type slab; parameters.md: D_O2 =
 // 2800 µm²/s, tissue Q_max = 50 µM/s in its zero-order limit P ≫ K_m, α = 1.3 µM/Torr).
+// Variant "flux-fed" (D2Q5): bottom fixed_flux J = Q H/2, top C = C_b; exact
+// C = C_b + (Q/(2D))(y² − H²) − (J/D)(y − H) (checks the fixed-flux side on a curved profile).
 // Set-up: C_b = 70 Torr × α = 91 µM, H = 90 µm so that C(H) = 0.2 C_b; physical
 // units converted by TransportUnits with τ = 1 at every resolution (Δt ∝ h²).
 #include <gtest/gtest.h>
@@ -33,18 +35,33 @@ const double kH = std::sqrt(1.6 * kCb * kD / kQ);
 
 double exact(double y) { return kCb - (kQ / kD) * (kH * y - 0.5 * y * y); }
 
+// Flux-fed variant: half the consumption enters through the bottom as a fixed inward
+// flux J = Q H/2, C = C_b on the top: D C'' = Q, −D C'(0) = J, C(H) = C_b ⇒
+// C = C_b + (Q/(2D))(y² − H²) − (J/D)(y − H); minimum 0.8 C_b at y = H/2.
+constexpr double kFluxFraction = 0.5;
+double exact_flux_fed(double y) {
+  const double J = kFluxFraction * kQ * kH;
+  return kCb + (kQ / (2.0 * kD)) * (y * y - kH * kH) - (J / kD) * (y - kH);
+}
+
 struct SlabRun {
   double error_l2, error_linf, inflow_vs_consumption;
   vv::TransportRun run;
   double dt;
 };
 
-SlabRun run_slab(Stencil stencil, int N) {
+SlabRun run_slab(Stencil stencil, int N, bool flux_fed = false) {
   const double h = kH / N;
   const TransportUnits units{h, dt_for_tau(h, kD, kTau)};
+  auto profile = [&](double y) { return flux_fed ? exact_flux_fed(y) : exact(y); };
   TransportBoundaries b;
-  b.bottom = {SideKind::fixed_concentration, kCb};
-  b.top = {SideKind::zero_flux, 0.0};
+  if (flux_fed) {
+    b.bottom = {SideKind::fixed_flux, units.flux(kFluxFraction * kQ * kH)};  // µM µm/s → lattice
+    b.top = {SideKind::fixed_concentration, kCb};
+  } else {
+    b.bottom = {SideKind::fixed_concentration, kCb};
+    b.top = {SideKind::zero_flux, 0.0};
+  }
   const Grid g{1, N};
   TransportLattice lat(g, stencil, b);
   lat.set_uniform_diffusivity(units.diffusivity(kD));
@@ -52,14 +69,14 @@ SlabRun run_slab(Stencil stencil, int N) {
   // Start at the exact profile: the steady state is unique, so only the discrete
   // error (O(h²)) has to settle, which halves the steps.
   std::vector<double> start(g.size());
-  for (int y = 0; y < N; ++y) start[std::size_t(y)] = exact((y + 0.5) * h);
+  for (int y = 0; y < N; ++y) start[std::size_t(y)] = profile((y + 0.5) * h);
   lat.initialize(start);
   // Slowest mode (quarter wave): e-fold N² (2/π)²/D_lat steps; check every N² steps.
   const auto run = vv::run_to_steady(lat, long(N) * N, 1e-11 * kCb, 2000L * N * N);
   std::vector<double> C(g.size()), ref(g.size());
   for (int y = 0; y < N; ++y) {
     C[std::size_t(y)] = lat.concentration()[std::size_t(y)];
-    ref[std::size_t(y)] = exact((y + 0.5) * h);
+    ref[std::size_t(y)] = profile((y + 0.5) * h);
   }
   const auto& mb = lat.mass_balance();
   return {vv::relative_l2(C, ref), vv::relative_linf(C, ref), std::fabs(mb.boundary_in + mb.source) / -mb.source,
@@ -72,7 +89,8 @@ TEST(TransportZeroOrderSlab, QuadraticProfileAndMassBalance) {
   io::ResultRecord record("verification.transport_zero_order_slab", "transport");
   record.set_requirement(
       "Zero-order O2 consumption (50 uM/s) in a 90 um tissue slab fed at 91 uM on one side and closed on the other "
-      "converges at second order (2 +- 0.1, D2Q5 and D2Q9) to the exact quadratic profile; the mass balance "
+      "converges at second order (2 +- 0.1, D2Q5 and D2Q9) to the exact quadratic profile, and so does the "
+      "variant fed by a fixed inward flux (half the consumption) against a fixed concentration; the mass balance "
       "closes to <= 1e-13 relative in every step and at steady state inflow = consumption to 1e-9.");
   record.set_reference(
       "C(y) = C_b - (Q/D)(H y - y^2/2) (exact solution of D C'' = Q, C(0) = C_b, C'(H) = 0, valid while C > 0); "
@@ -83,12 +101,19 @@ TEST(TransportZeroOrderSlab, QuadraticProfileAndMassBalance) {
   record.set_parameter("tau", kTau);
   record.set_parameter("C_min_over_C_b", exact(kH) / kCb);
   double worst_balance = 0.0, worst_inflow = 0.0;
-  for (auto stencil : {Stencil::d2q5, Stencil::d2q9}) {
-    const std::string name = stencil == Stencil::d2q5 ? "D2Q5" : "D2Q9";
+  struct Variant {
+    Stencil stencil;
+    bool flux_fed;
+    std::string name;
+  };
+  for (const Variant& v : {Variant{Stencil::d2q5, false, "D2Q5"}, Variant{Stencil::d2q9, false, "D2Q9"},
+                           Variant{Stencil::d2q5, true, "D2Q5 flux-fed"}}) {
+    const Stencil stencil = v.stencil;
+    const std::string& name = v.name;
     io::ConvergenceSeries series{name, "relative L2 error of C", {}, {}, {}, 2.0, 0.0, 0.1, false, ""};
     io::SpeedErrorSeries speed{name, {}, {}, {}};
     for (int N : kResolutions) {
-      const SlabRun r = run_slab(stencil, N);
+      const SlabRun r = run_slab(stencil, N, v.flux_fed);
       EXPECT_TRUE(r.run.converged) << name << " N=" << N;
       worst_balance = std::max(worst_balance, r.run.worst_mass_residual);
       worst_inflow = std::max(worst_inflow, r.inflow_vs_consumption);

@@ -1,11 +1,12 @@
 // Leak detection of the index field: a fill that escapes its cell, or an interior that
 // disagrees with the enclosed area, throws FillLeakError naming the cell; bad markers
-// throw InputError.
+// throw std::domain_error (a diverged membrane); too few markers InputError.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 
 #include "interior/index_field.hpp"
 #include "membrane/shapes.hpp"
@@ -64,14 +65,14 @@ TEST(Leak, DoublyTraversedPolygonThrows) {
   EXPECT_NE(message_of(f, {twice}).find("cell 0"), std::string::npos);
 }
 
-TEST(Leak, NonFiniteMarkerIsAnInputError) {
+TEST(Leak, NonFiniteMarkerIsADomainError) {
   auto c = membrane::transformed(membrane::circle(50, 6.0), 1.0, 0.0, 10.0, 10.0);
   c.x[7] = std::numeric_limits<double>::quiet_NaN();
   IndexField f(ib::Domain{Grid{20, 20}}, {});
   try {
     f.update(std::vector<membrane::Polygon>{c});
     FAIL() << "no throw";
-  } catch (const InputError& e) {
+  } catch (const std::domain_error& e) {  // a diverged membrane (simulation: diverged)
     EXPECT_NE(std::string(e.what()).find("marker 7"), std::string::npos) << e.what();
   }
 }
@@ -89,4 +90,9 @@ TEST(Leak, ValidCellsDoNotThrowAndReportSmallMismatch) {
   EXPECT_EQ(r.fill_starts, 4);
   EXPECT_EQ(r.completion_starts, 4);
   EXPECT_EQ(r.fallback_cells, 0);
+}
+
+TEST(Leak, TooFewMarkersIsAnInputError) {
+  IndexField f(ib::Domain{Grid{20, 20}}, {});
+  EXPECT_THROW(f.update(std::vector<membrane::Polygon>{membrane::Polygon{{1, 2}, {1, 2}}}), InputError);
 }

@@ -61,7 +61,9 @@ TEST(HbKinetics, StiffStepLandsOnEquilibriumWithoutOvershoot) {
   HbParameters fast = p;
   fast.sigma = 4.0;
   EXPECT_NEAR(hb_relaxation_rate(slow, P) * 16.0, hb_relaxation_rate(fast, P), 1e-9);
-  EXPECT_THROW(advance_saturation(slow = HbParameters{.M = 0.5}, 0.5, 10.0, 1.0), std::invalid_argument);
+  // M must be positive (M < 1 is allowed: a faster release than plain kinetics).
+  EXPECT_THROW(advance_saturation(HbParameters{.M = 0.0}, 0.5, 10.0, 1.0), std::invalid_argument);
+  EXPECT_NO_THROW(advance_saturation(HbParameters{.M = 0.5}, 0.5, 10.0, 1.0));
 }
 
 TEST(HbKinetics, CoupledReleaseClosesMassInAClosedBox) {
@@ -95,4 +97,21 @@ TEST(HbKinetics, CoupledReleaseClosesMassInAClosedBox) {
   }
   EXPECT_LT(worst, 1e-14);
   EXPECT_LT(S, 0.97);  // the cell did release
+}
+
+TEST(HbKinetics, CellImplicitSolvesItsEquation) {
+  // S_new = H2(S, P + C_heme (S − S_new)/α): the returned value satisfies it to
+  // round-off, releases C_heme (S − S_new), and keeps an equilibrium stationary.
+  HbParameters p;
+  for (double dt : {1e-6, 1e-4, 1e-2}) {
+    const double S = 0.97, P = 10.0;
+    const HbStep r = advance_saturation_cell_implicit(p, S, P, dt);
+    const double P_end = P + p.C_heme * (S - r.saturation) / p.alpha;
+    EXPECT_NEAR(r.saturation, advance_saturation(p, S, P_end, dt).saturation, 1e-13) << dt;
+    EXPECT_NEAR(r.released, p.C_heme * (S - r.saturation), 1e-9);
+    EXPECT_LE(r.saturation, S);
+    EXPECT_GE(r.saturation, hill_saturation(P));
+  }
+  const double Seq = hill_saturation(40.0);
+  EXPECT_NEAR(advance_saturation_cell_implicit(p, Seq, 40.0, 1e-3).saturation, Seq, 1e-15);
 }
