@@ -56,9 +56,10 @@ void TransportPhysics::apply_compartments() {
   }
 }
 
-// Hb–O2 release (docs/transport.md §4.2, eq H1–H2): per cell, the mean PO2 over its
-// interior drives the exact update of the cell-averaged saturation over Δt_T; the O2
-// released, C_heme (S_old − S_new), is the source of this step on every interior node.
+// Hb–O2 release (docs/transport.md §4.2, eqs H1–H3): per cell, the cell-implicit update
+// of the cell-averaged saturation over Δt_T from the mean PO2 over its interior (stable
+// for any Δt_T: the release's own feedback on P is implicit); the O2 released,
+// C_heme (S_old − S_new), is the source of this step on every interior node.
 void TransportPhysics::release_oxygen() {
   transport::TransportLattice& o2 = lattices_[static_cast<std::size_t>(setup_.hemoglobin_species)];
   std::span<double> q = o2.source();
@@ -67,7 +68,7 @@ void TransportPhysics::release_oxygen() {
   for (std::size_t c = 0; c < interior_.size(); ++c) {
     if (interior_[c].empty()) continue;
     const double P = transport::mean_partial_pressure(interior_[c], o2.concentration(), hb.alpha);
-    const transport::HbStep r = transport::advance_saturation(hb, saturation_[c], P, setup_.time_step_s);
+    const transport::HbStep r = transport::advance_saturation_cell_implicit(hb, saturation_[c], P, setup_.time_step_s);
     saturation_[c] = r.saturation;
     transport::distribute_release(interior_[c], r.released, q);
   }
