@@ -344,27 +344,3 @@ TEST(Deoxygenation, FullStudy) {
   for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
 }
 
-// TEMPORARY probe (removed before hand-off): DEOXY_PROBE="h dt_us M1 M2 ..."
-#include <cstdlib>
-#include <sstream>
-TEST(Deoxygenation, Probe) {
-  const char* e = std::getenv("DEOXY_PROBE");
-  if (!e) GTEST_SKIP();
-  std::istringstream in(e);
-  double h, dt_us;
-  in >> h >> dt_us;
-  const auto ref = planar_reference(), cell = cell_reference();
-  double M;
-  while (in >> M) {
-    deoxy::Setup s;
-    s.h_um = h;
-    s.dt_s = dt_us * 1e-6;
-    s.t_end_s = ref.t.back();
-    s.hb.M = M;
-    const auto r = deoxy::run(s);
-    const auto a = vv::curve_misfit(r.S, ref), b = vv::curve_misfit(r.S, cell);
-    std::printf("PROBE h %.2f dt %.2f M %.4f planar max %.5f rms %.5f | 3D max %.5f rms %.5f | %.1f s\n", h, dt_us, M,
-                a.max_abs, a.rms, b.max_abs, b.rms, r.wall_s);
-    std::fflush(stdout);
-  }
-}
