@@ -17,28 +17,6 @@ namespace erythro::deoxy {
 
 double diffusive_dt(double h_um) { return 1e-5 * (h_um / 0.2) * (h_um / 0.2); }
 
-double implicit_saturation(const transport::HbParameters& hb, double S, double P, double dt) {
-  // Root of F(x) = x − advance_saturation(S, P + C_heme (S − x)/α).saturation on the
-  // interval between S and S_eq(P), where F changes sign (F(S) has the sign of S − S_eq(P),
-  // F(S_eq(P)) the opposite one); bisection to round-off.
-  const auto F = [&](double x) {
-    return x - transport::advance_saturation(hb, S, P + hb.C_heme * (S - x) / hb.alpha, dt).saturation;
-  };
-  double lo = std::min(S, transport::hill_saturation(P, hb.P50, hb.n));
-  double hi = std::max(S, transport::hill_saturation(P, hb.P50, hb.n));
-  double flo = F(lo);
-  for (int it = 0; it < 60 && hi - lo > 1e-15; ++it) {
-    const double mid = 0.5 * (lo + hi), fm = F(mid);
-    if ((fm < 0.0) == (flo < 0.0)) {
-      lo = mid;
-      flo = fm;
-    } else {
-      hi = mid;
-    }
-  }
-  return 0.5 * (lo + hi);
-}
-
 Result run(const Setup& s) {
   vv::Stopwatch clock;
   Result res;
@@ -80,7 +58,8 @@ Result run(const Setup& s) {
   for (long k = 1; k <= steps; ++k) {
     // eq H1/H2 with P the mean over the interior nodes of the current C (explicit coupling)
     const double P = transport::mean_partial_pressure(nodes, o2.concentration(), s.hb.alpha);
-    const double S_new = s.implicit_coupling ? implicit_saturation(s.hb, S, P, s.dt_s)
+    // Setup::implicit_coupling: the layer's cell-implicit update (eq H3), else the lagged P.
+    const double S_new = s.implicit_coupling ? transport::advance_saturation_cell_implicit(s.hb, S, P, s.dt_s).saturation
                                              : transport::advance_saturation(s.hb, S, P, s.dt_s).saturation;
     const double released = s.hb.C_heme * (S - S_new);  // −C_heme ΔS, µM
     S = S_new;

@@ -51,9 +51,6 @@ struct Result {
 
 Result run(const Setup& s);
 
-// Cell-implicit saturation update (Setup::implicit_coupling).
-double implicit_saturation(const transport::HbParameters& hb, double S, double P_mean_torr, double dt);
-
 // Time step for spacing h keeping D_lat = DΔt/h² of the base level (10 µs at 0.2 µm).
 double diffusive_dt(double h_um);
 
