@@ -125,6 +125,17 @@ SpeedSource fastest(const std::vector<SpeedSource>& sources) {
 }
 
 
+// The four sides in lattice units (moving-wall velocities × u_scale), checked for consistency.
+fluid::BoundaryConfig make_boundaries(const Scene& s, double u_scale) {
+  fluid::BoundaryConfig b;
+  b.left = make_side(s, s.boundaries.left, "left", u_scale);
+  b.right = make_side(s, s.boundaries.right, "right", u_scale);
+  b.bottom = make_side(s, s.boundaries.bottom, "bottom", u_scale);
+  b.top = make_side(s, s.boundaries.top, "top", u_scale);
+  if (const std::string why = b.inconsistency(); !why.empty()) reject(s, "boundaries: " + why);
+  return b;
+}
+
 // The run's length in steps of `dt`: run.steps, or ⌈duration / Δt⌉ (a ratio within
 // 1e-9 of a whole number is that number).
 long run_steps(const Scene& s, double dt) {
@@ -175,11 +186,7 @@ LatticeSetup derive_still_medium(const Scene& s) {
       reject(s, std::string("boundaries.") + name + ".type = \"moving_wall\" needs a fluid, but transport.coupling = "
                 "\"none\" builds none (use \"wall\")");
   }
-  L.boundaries.left = make_side(s, s.boundaries.left, "left", 0.0);
-  L.boundaries.right = make_side(s, s.boundaries.right, "right", 0.0);
-  L.boundaries.bottom = make_side(s, s.boundaries.bottom, "bottom", 0.0);
-  L.boundaries.top = make_side(s, s.boundaries.top, "top", 0.0);
-  if (const std::string why = L.boundaries.inconsistency(); !why.empty()) reject(s, "boundaries: " + why);
+  L.boundaries = make_boundaries(s, 0.0);
   L.total_steps = run_steps(s, dt);
   if (!s.cells.empty()) L.membrane = derive_membrane(s, L, /*mechanics=*/false);
   L.transport = derive_transport(s, L);
@@ -230,11 +237,7 @@ LatticeSetup derive_lattice(const Scene& s) {
 
   // --- boundaries: u_lat = u Δt / h
   const double u_scale = 1e-6 * dt / h;  // µm/s → lattice
-  L.boundaries.left = make_side(s, s.boundaries.left, "left", u_scale);
-  L.boundaries.right = make_side(s, s.boundaries.right, "right", u_scale);
-  L.boundaries.bottom = make_side(s, s.boundaries.bottom, "bottom", u_scale);
-  L.boundaries.top = make_side(s, s.boundaries.top, "top", u_scale);
-  if (const std::string why = L.boundaries.inconsistency(); !why.empty()) reject(s, "boundaries: " + why);
+  L.boundaries = make_boundaries(s, u_scale);
 
   const int min_nodes = s.limits.min_nodes_across_channel;
   for (int a = 0; a < 2; ++a) {

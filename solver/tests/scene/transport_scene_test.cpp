@@ -154,6 +154,17 @@ TEST(TransportScene, SubcyclingFollowsTheFluid) {
   Record rec;
   EXPECT_EQ(sim.run(rec).status, RunStatus::completed);
   EXPECT_EQ(sim.transport()->lattice(0).steps_done(), 5);
+  // The last transport step (after fluid step 100) advected with u_T = 20 u_F of that step.
+  const fluid::Moments m = sim.fluid()->moments();
+  const auto ux = sim.transport()->lattice(0).velocity_x(), uy = sim.transport()->lattice(0).velocity_y();
+  ASSERT_EQ(ux.size(), m.ux.size());
+  double largest = 0.0;
+  for (std::size_t n = 0; n < m.ux.size(); ++n) {
+    ASSERT_EQ(ux[n], 20.0 * m.ux[n]) << "node " << n;
+    ASSERT_EQ(uy[n], 20.0 * m.uy[n]) << "node " << n;
+    largest = std::max(largest, std::abs(ux[n]));
+  }
+  EXPECT_GT(largest, 0.0);  // the capsule scene is sheared: the check is not 0 = 0
   // A uniform tracer in a divergence-free flow with zero-flux walls stays uniform.
   for (const auto& d : rec.samples) EXPECT_NEAR(d.mean_concentration[0], 1.0, 1e-12);
 }
