@@ -41,7 +41,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <numbers>
 
 #include "aggregation/morse_units.hpp"
@@ -82,6 +81,18 @@ io::Series gap_series(const std::string& name, const vv::DoubletResult& r, doubl
   sr.y = r.gap;
   sr.y_reference.assign(r.step.size(), dstar);
   return sr;
+}
+
+// One /runs row of a doublet run: the set-up's name, kernel and D_e, then the result.
+void add_run_row(io::ResultRecord& record, const std::string& run, const std::string& kernel, double De,
+                 const vv::DoubletResult& r, double dstar) {
+  record.add_run({{"run", run}, {"kernel", kernel}, {"De", De},
+                  {"steps", double(r.steps_done)}, {"final_gap", r.final_gap}, {"error", r.final_gap - dstar},
+                  {"gap_change_last_10pc", r.gap_change_last_10pc}, {"balance_shift", r.balance_shift},
+                  {"com_drift", r.com_drift}, {"rotation_arc0", r.rotation_arc0}, {"rotation_arc1", r.rotation_arc1},
+                  {"max_deformation", r.max_deformation}, {"contact_area0", r.contact_area0},
+                  {"contact_area1", r.contact_area1}, {"discrete_rigid_gap", r.discrete_rigid_gap},
+                  {"wall_time_s", r.wall_time_s}});
 }
 
 }  // namespace
@@ -137,13 +148,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
     des.push_back(run.De);
     gaps.push_back(r.final_gap);
     if (run.De == 4e-4) gap_cosine4_4e4 = r.final_gap;
-    record.add_run({{"run", std::string(name)}, {"kernel", std::string("cosine4")}, {"De", run.De},
-                    {"steps", double(r.steps_done)}, {"final_gap", r.final_gap}, {"error", r.final_gap - dstar},
-                    {"gap_change_last_10pc", r.gap_change_last_10pc}, {"balance_shift", r.balance_shift},
-                    {"com_drift", r.com_drift}, {"rotation_arc0", r.rotation_arc0}, {"rotation_arc1", r.rotation_arc1},
-                    {"max_deformation", r.max_deformation}, {"contact_area0", r.contact_area0},
-                    {"contact_area1", r.contact_area1}, {"discrete_rigid_gap", r.discrete_rigid_gap},
-                    {"wall_time_s", r.wall_time_s}});
+    add_run_row(record, std::string(name), "cosine4", run.De, r, dstar);
     record.add_series(gap_series(name, r, dstar));
     const std::string n(name);
     EXPECT_TRUE(record.add_metric({"settled " + n, "|gap(T) - gap(0.9 T)|", "h", r.gap_change_last_10pc, 2e-3, 0.0,
@@ -212,13 +217,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
     kin.kernel = k.kernel;
     ASSERT_TRUE(membrane::estimate_stability(kin).acceptable());
     const vv::DoubletResult r = vv::run_doublet(k);
-    record.add_run({{"run", std::string("peskin4 De=4e-4")}, {"kernel", std::string("peskin4")}, {"De", k.morse.De},
-                    {"steps", double(r.steps_done)}, {"final_gap", r.final_gap}, {"error", r.final_gap - dstar},
-                    {"gap_change_last_10pc", r.gap_change_last_10pc}, {"balance_shift", r.balance_shift},
-                    {"com_drift", r.com_drift}, {"rotation_arc0", r.rotation_arc0}, {"rotation_arc1", r.rotation_arc1},
-                    {"max_deformation", r.max_deformation}, {"contact_area0", r.contact_area0},
-                    {"contact_area1", r.contact_area1}, {"discrete_rigid_gap", r.discrete_rigid_gap},
-                    {"wall_time_s", r.wall_time_s}});
+    add_run_row(record, std::string("peskin4 De=4e-4"), "peskin4", k.morse.De, r, dstar);
     EXPECT_TRUE(record.add_metric({"kernel_independence", "|settled gap peskin4 - cosine4| at D_e = 4e-4", "h",
                                    std::abs(r.final_gap - gap_cosine4_4e4), 0.01, 0.0, io::Comparison::at_most,
                                    "a static state does not depend on the kernel; only the residual creep of the runs "
@@ -234,13 +233,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
     m.y0 = 32.0;
     m.steps = 6000;
     const vv::DoubletResult r = vv::run_doublet(m);
-    record.add_run({{"run", std::string("symmetric De=4e-4")}, {"kernel", std::string("cosine4")}, {"De", m.morse.De},
-                    {"steps", double(r.steps_done)}, {"final_gap", r.final_gap}, {"error", r.final_gap - dstar},
-                    {"gap_change_last_10pc", r.gap_change_last_10pc}, {"balance_shift", r.balance_shift},
-                    {"com_drift", r.com_drift}, {"rotation_arc0", r.rotation_arc0}, {"rotation_arc1", r.rotation_arc1},
-                    {"max_deformation", r.max_deformation}, {"contact_area0", r.contact_area0},
-                    {"contact_area1", r.contact_area1}, {"discrete_rigid_gap", r.discrete_rigid_gap},
-                    {"wall_time_s", r.wall_time_s}});
+    add_run_row(record, std::string("symmetric De=4e-4"), "cosine4", m.morse.De, r, dstar);
     EXPECT_TRUE(record.add_metric({"drift symmetric", "displacement of the pair's centre, mirror-symmetric doublet", "h",
                                    r.com_drift, 1e-9, 0.0, io::Comparison::at_most,
                                    "zero net force and mirror symmetry: only round-off (~1e-12 measured) can move it"}))
@@ -249,35 +242,4 @@ TEST(AggregationEquilibrium, SettledSeparation) {
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();
   EXPECT_TRUE(record.passed());
-}
-
-// Exploration driver (disabled): AGG_* environment variables override the set-up.
-TEST(AggregationEquilibrium, DISABLED_Explore) {
-  vv::DoubletSetup s = base_setup();
-  if (const char* e = std::getenv("AGG_DE")) s.morse.De = std::atof(e);
-  if (const char* e = std::getenv("AGG_STEPS")) s.steps = std::atol(e);
-  if (const char* e = std::getenv("AGG_ES")) s.model.tension.modulus = std::atof(e);
-  if (const char* e = std::getenv("AGG_GAP0")) s.initial_gap = std::atof(e);
-  if (const char* e = std::getenv("AGG_TAU")) s.tau = std::atof(e);
-  if (const char* e = std::getenv("AGG_EB")) s.model.bending = std::atof(e);
-  if (const char* e = std::getenv("AGG_KA")) s.model.area_modulus = std::atof(e);
-  if (const char* e = std::getenv("AGG_A")) s.radius = std::atof(e);
-  if (const char* e = std::getenv("AGG_N")) s.markers = std::atoi(e);
-  if (const char* e = std::getenv("AGG_ANG0")) s.angle0 = std::atof(e);
-  if (const char* e = std::getenv("AGG_ANG1")) s.angle1 = std::atof(e);
-  if (const char* e = std::getenv("AGG_Y0")) s.y0 = std::atof(e);
-  if (const char* e = std::getenv("AGG_KERNEL")) ib::parse_kernel(e, s.kernel);
-  const double dstar = vv::circle_pair_gap(s.morse, s.radius, s.radius, 1500);
-  const FlatContact fc = flat_contact(s.morse);
-  std::printf("continuum circle gap %.6f  flat gap %.6f (J = %.6f)\n", dstar, fc.gap, fc.integral);
-  membrane::StabilityInput in;
-  in.model = s.model;
-  in.viscosity = (s.tau - 0.5) / 3.0;
-  const auto est = membrane::estimate_stability(in);
-  std::printf("stability factor %.3f limits T %.4g B %.4g A %.4g %s\n", est.max_dt_factor, est.tension_limit, est.bending_limit, est.area_limit, est.problem.c_str());
-  const vv::DoubletResult r = vv::run_doublet(s, true);
-  std::printf("balance shift %.3e arcs %.4f %.4f\n", r.balance_shift, r.rotation_arc0, r.rotation_arc1);
-  std::printf("final gap %.6f discrete rigid %.6f change %.2e drift %.3e deform %.4f contact %.3f %.3f vmax %.2e wall %.2f\n",
-              r.final_gap, r.discrete_rigid_gap, r.gap_change_last_10pc, r.com_drift, r.max_deformation, r.contact_area0,
-              r.contact_area1, r.max_marker_speed, r.wall_time_s);
 }
