@@ -34,4 +34,13 @@ io::Metric asymptotic_metric(const io::ConvergenceSeries& s) {
           "the fitted order means something only when the finest levels are in the asymptotic range"};
 }
 
+void add_convergence_point(io::ConvergenceSeries& series, io::SpeedErrorSeries& speed, double h, double error,
+                           double wall_time_s, const std::string& label) {
+  series.h.push_back(h);
+  series.error.push_back(error);
+  speed.wall_time_s.push_back(wall_time_s);
+  speed.error.push_back(error);
+  speed.label.push_back(label);
+}
+
 }  // namespace erythro::vv

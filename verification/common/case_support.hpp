@@ -22,6 +22,11 @@ double relative_l2(const std::vector<double>& a, const std::vector<double>& b);
 // max |a − b| / max |b|.
 double relative_linf(const std::vector<double>& a, const std::vector<double>& b);
 
+// One resolution of a study: its point (h, error) in the convergence series and its
+// (wall time, error, label) in the speed-against-error series.
+void add_convergence_point(io::ConvergenceSeries& series, io::SpeedErrorSeries& speed, double h, double error,
+                           double wall_time_s, const std::string& label);
+
 // Metric asserting an observed order: |p − formal| ≤ tolerance.
 io::Metric order_metric(const io::ConvergenceSeries& series, const std::string& reason);
 // Metric asserting the asymptotic-range check of a series (1 = in range).

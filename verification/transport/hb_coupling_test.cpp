@@ -114,11 +114,7 @@ TEST(TransportHbCoupling, FirstOrderInTimeAndExactClosure) {
                       {"mass_residual", r.worst_mass_residual}, {"wall_time_s", r.wall_time_s}});
       auto& series = implicit ? imp : lag;
       auto& speed = implicit ? speed_imp : speed_lag;
-      series.h.push_back(kTEnd / K);
-      series.error.push_back(r.error);
-      speed.wall_time_s.push_back(r.wall_time_s);
-      speed.error.push_back(r.error);
-      speed.label.push_back("K=" + std::to_string(K));
+      vv::add_convergence_point(series, speed, kTEnd / K, r.error, r.wall_time_s, "K=" + std::to_string(K));
     }
     worst_ratio = std::max(worst_ratio, imp.error.back() / lag.error.back());
   }

@@ -240,11 +240,7 @@ TEST(TransportLayeredSlabOnNodes, InterfaceThroughNodes) {
       record.add_run({{"variant", v.name}, {"m", double(m)}, {"rows", double(r.rows)},
                       {"steps", double(r.run.steps)}, {"error_l2", r.error_l2},
                       {"mass_residual", r.run.worst_mass_residual}, {"wall_time_s", r.run.wall_time_s}});
-      series.h.push_back(2.5 / m);
-      series.error.push_back(r.error_l2);
-      speed.wall_time_s.push_back(r.run.wall_time_s);
-      speed.error.push_back(r.error_l2);
-      speed.label.push_back("m=" + std::to_string(m));
+      vv::add_convergence_point(series, speed, 2.5 / m, r.error_l2, r.run.wall_time_s, "m=" + std::to_string(m));
       if (m == 8 && v.contrast) (v.placement == Placement::on_nodes_arithmetic ? finest_arith : finest_harm) = r.error_l2;
     }
     vv::fit_order(series);

@@ -100,11 +100,7 @@ void manufactured_case(const std::string& case_name, const std::vector<int>& res
       record.add_run({{"stencil", name}, {"N", double(N)}, {"steps", double(r.run.steps)},
                       {"error_l2", r.error_l2}, {"error_linf", r.error_linf},
                       {"mass_residual", r.run.worst_mass_residual}, {"wall_time_s", r.run.wall_time_s}});
-      series.h.push_back(1.0 / N);
-      series.error.push_back(r.error_l2);
-      speed.wall_time_s.push_back(r.run.wall_time_s);
-      speed.error.push_back(r.error_l2);
-      speed.label.push_back("N=" + std::to_string(N));
+      vv::add_convergence_point(series, speed, 1.0 / N, r.error_l2, r.run.wall_time_s, "N=" + std::to_string(N));
     }
     vv::fit_order(series);
     record.add_convergence(series);
