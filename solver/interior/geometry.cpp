@@ -86,9 +86,17 @@ double signed_distance(const membrane::Polygon& p, double px, double py) {
 }
 
 std::vector<std::uint8_t> ray_cast_inside(const membrane::Polygon& p, const ib::Domain& d) {
+  std::vector<std::uint8_t> mask(d.grid.size(), 0);
+  std::vector<std::size_t> nodes;
+  ray_cast_inside_nodes(p, d, nodes);
+  for (std::size_t k : nodes) mask[k] = 1;
+  return mask;
+}
+
+void ray_cast_inside_nodes(const membrane::Polygon& p, const ib::Domain& d, std::vector<std::size_t>& nodes) {
   const Grid& g = d.grid;
-  std::vector<std::uint8_t> mask(g.size(), 0);
-  if (p.size() < 3) return mask;
+  nodes.clear();
+  if (p.size() < 3) return;
   const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
   int j0 = 0, j1 = 0;
   node_range(*ymin, *ymax, j0, j1);
@@ -103,11 +111,16 @@ std::vector<std::uint8_t> ray_cast_inside(const membrane::Polygon& p, const ib::
       const int i1 = static_cast<int>(std::ceil(xs[k + 1] - 0.5)) - 1;
       for (int i = i0; i <= i1; ++i) {
         const int ii = wrap_node(i, g.nx, d.periodic_x);
-        if (ii >= 0) mask[g.index(ii, jj)] = 1;
+        if (ii >= 0) nodes.push_back(g.index(ii, jj));
       }
     }
   }
-  return mask;
+  // Rows in order give ascending indices; a wrap across a periodic side does not, and
+  // a node reached through two images must be listed once.
+  if (!std::is_sorted(nodes.begin(), nodes.end())) {
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  }
 }
 
 }  // namespace erythro::interior

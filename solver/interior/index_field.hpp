@@ -136,5 +136,9 @@ class IndexField {
 // Even–odd ray-casting interior mask (1 inside) of one polygon on a domain (periodic
 // wrap aware: a node is inside when any of its periodic images lies inside).
 std::vector<std::uint8_t> ray_cast_inside(const membrane::Polygon& p, const ib::Domain& d);
+// The same as a list of node indices (row by row over the polygon's rows), without a
+// full-grid mask: O(rows spanned + interior nodes), ascending, each node once. `nodes`
+// is cleared first.
+void ray_cast_inside_nodes(const membrane::Polygon& p, const ib::Domain& d, std::vector<std::size_t>& nodes);
 
 }  // namespace erythro::interior

@@ -34,14 +34,10 @@ TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const ib:
 }
 
 void TransportPhysics::place_cells(std::span<const membrane::Polygon> cells) {
-  const std::size_t N = domain_.grid.size();
-  interior_.assign(cells.size(), {});
-  for (std::size_t c = 0; c < cells.size(); ++c) {
+  interior_.resize(cells.size());  // the lists keep their capacity from one call to the next
+  for (std::size_t c = 0; c < cells.size(); ++c)
     // Interior = nodes whose centre lies inside the membrane polygon (even–odd rule).
-    const std::vector<std::uint8_t> inside = interior::ray_cast_inside(cells[c], domain_);
-    for (std::size_t n = 0; n < N; ++n)
-      if (inside[n]) interior_[c].push_back(n);
-  }
+    interior::ray_cast_inside_nodes(cells[c], domain_, interior_[c]);
   apply_compartments();
 }
 

@@ -26,10 +26,8 @@ Result run(const Setup& s) {
   const transport::TransportUnits units{s.h_um, s.dt_s};
   // Cell centred in the box; lattice units, node (i, j) at (i + ½, j + ½).
   const auto cell = membrane::transformed(membrane::biconcave(s.markers, s.a_um), 1.0 / s.h_um, 0.0, 0.5 * n, 0.5 * n);
-  const auto inside = interior::ray_cast_inside(cell, ib::Domain{grid, false, false});
   std::vector<std::size_t> nodes;
-  for (std::size_t k = 0; k < inside.size(); ++k)
-    if (inside[k]) nodes.push_back(k);
+  interior::ray_cast_inside_nodes(cell, ib::Domain{grid, false, false}, nodes);
   if (nodes.empty()) throw InputError("deoxy::run: no interior node (h too coarse)");
   res.interior_nodes = static_cast<long>(nodes.size());
   res.interior_area_um2 = static_cast<double>(nodes.size()) * s.h_um * s.h_um;

@@ -78,3 +78,18 @@ TEST(ClippedArea, ClipsOnlyNonPeriodicAxes) {
   EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{10, 10}, false, false}), 12.0, 1e-12);
   EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{4, 10}, false, true}), 8.0, 1e-12);
 }
+
+// The node list is the mask's set, ascending and without repeats, also across a periodic side.
+TEST(RayCast, NodeListEqualsTheMask) {
+  for (double cx : {20.0, 2.0}) {  // inside, and wrapping across x = 0
+    const ib::Domain d{Grid{40, 30}, true, true};
+    const membrane::Polygon p = membrane::transformed(membrane::biconcave(120, 16.0), 1.0, 0.3, cx, 15.0);
+    const std::vector<std::uint8_t> mask = ray_cast_inside(p, d);
+    std::vector<std::size_t> nodes, expected;
+    ray_cast_inside_nodes(p, d, nodes);
+    for (std::size_t k = 0; k < mask.size(); ++k)
+      if (mask[k]) expected.push_back(k);
+    EXPECT_EQ(nodes, expected) << "centre x = " << cx;
+    EXPECT_GT(nodes.size(), 200u);  // area 13.627 (16/3.91)² ≈ 228 h²
+  }
+}
