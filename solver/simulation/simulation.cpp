@@ -130,11 +130,19 @@ double taylor_deformation(const membrane::Polygon& p) {
   return (ratio - 1.0) / (ratio + 1.0);
 }
 
-std::string describe_divergence(long step, const HealthReport& r, const scene::LatticeSetup& setup) {
-  std::ostringstream out;
+namespace {
+// "diverged at step S: quantity = value at node (i, j) [x = … um, y = … um]"
+void describe_where(std::ostream& out, long step, const HealthReport& r, const scene::LatticeSetup& setup) {
   const double h_um = setup.scales.length_m * 1e6;
   out << "diverged at step " << step << ": " << r.quantity << " = " << r.value << " at node (" << r.node_x << ", "
-      << r.node_y << ") [x = " << (static_cast<double>(r.node_x) + 0.5) * h_um << " um, y = " << (static_cast<double>(r.node_y) + 0.5) * h_um << " um]";
+      << r.node_y << ") [x = " << (static_cast<double>(r.node_x) + 0.5) * h_um
+      << " um, y = " << (static_cast<double>(r.node_y) + 0.5) * h_um << " um]";
+}
+}  // namespace
+
+std::string describe_divergence(long step, const HealthReport& r, const scene::LatticeSetup& setup) {
+  std::ostringstream out;
+  describe_where(out, step, r, setup);
   if (std::isnan(r.limit)) {
     out << " is not finite";
   } else if (r.quantity == "density") {
@@ -149,10 +157,7 @@ std::string describe_divergence(long step, const HealthReport& r, const scene::L
 
 std::string describe_transport_divergence(long step, const HealthReport& r, const scene::LatticeSetup& setup) {
   std::ostringstream out;
-  const double h_um = setup.scales.length_m * 1e6;
-  out << "diverged at step " << step << ": " << r.quantity << " = " << r.value << " at node (" << r.node_x << ", "
-      << r.node_y << ") [x = " << (static_cast<double>(r.node_x) + 0.5) * h_um
-      << " um, y = " << (static_cast<double>(r.node_y) + 0.5) * h_um << " um]";
+  describe_where(out, step, r, setup);
   out << (std::isnan(r.limit) ? " is not finite" : " is outside its limit " + std::to_string(r.limit))
       << ". Lower transport.time_step_s or the diffusivity (docs/transport.md).";
   return out.str();
