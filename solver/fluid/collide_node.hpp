@@ -19,7 +19,7 @@ inline Rates rates_for(CollisionModel model, double tau, double magic) {
 // f: the nine streamed populations of the node, stored as deviations from the rest
 // weights, f̃_i = f_i − w_i (see fluid_lattice.hpp), overwritten with post-collision ones.
 // Moments (model.md §1): ρ = 1 + Σf̃, ρu = Σ f̃ c + F/2.
-//  BGK (eq 14, 17): f' = f − ω(f − f^eq) + (1 − ω/2) S,
+//  BGK (eq 14, 17): f' = f − ω(f − f^eq) + (1 − ω/2) S = (1 − ω) f + ω f^eq + (1 − ω/2) S,
 //  TRT: f' = f − ω+(f⁺ − f^eq⁺) − ω−(f⁻ − f^eq⁻) + (1 − ω+/2) S⁺ + (1 − ω−/2) S⁻,
 //  S_i = w_i [ (c_i − u)·F/c_s² + (c_i·u)(c_i·F)/c_s⁴ ]  (Guo et al. 2002),
 //  split S⁺_i = w_i[(c_i·u)(c_i·F)/c_s⁴ − u·F/c_s²], S⁻_i = w_i (c_i·F)/c_s².
@@ -53,18 +53,33 @@ inline void collide_node(double* f, Rates r, double Fx, double Fy) {
   const double uF = HasForce ? ux * Fx + uy * Fy : 0.0;
 
   if constexpr (Model == CollisionModel::bgk) {
+    // Written per pair (i, ī) of opposite directions, like TRT below: f^eq_i = E⁺ ± E⁻
+    // with E⁺ = w_i [ (ρ − 1) + ρ (4.5 (c·u)² − 1.5 u·u) ] and E⁻ = 3 w_i ρ (c·u), and
+    // f' = (1 − ω) f + ω f^eq (eq 14) — a third fewer operations than direction by
+    // direction; the same for the Guo source, S_i = S⁺ ± S⁻ (eq 17).
     const double om = r.omega_plus;
+    const double keep = 1.0 - om;
     const double force_pref = 1.0 - 0.5 * om;
-#pragma GCC unroll 9
-    for (int i = 0; i < Q; ++i) {
+    f[0] = keep * f[0] + om * (w[0] * (drho + rho * uu_term));
+    if constexpr (HasForce) f[0] += force_pref * w[0] * (-3.0 * uF);
+    constexpr int pos[4] = {1, 2, 5, 6};
+#pragma GCC unroll 4
+    for (int k = 0; k < 4; ++k) {
+      const int i = pos[k], j = opposite[i];
       const double cu = cx[i] * ux + cy[i] * uy;
-      const double feq = w[i] * (drho + rho * (uu_term + 3.0 * cu + 4.5 * cu * cu));
-      double fi = f[i] - om * (f[i] - feq);
+      const double e_plus = om * (w[i] * (drho + rho * (uu_term + 4.5 * cu * cu)));
+      const double e_minus = om * (w[i] * rho * 3.0 * cu);
+      double fi = keep * f[i] + (e_plus + e_minus);
+      double fj = keep * f[j] + (e_plus - e_minus);
       if constexpr (HasForce) {
         const double cF = cx[i] * Fx + cy[i] * Fy;
-        fi += force_pref * w[i] * (3.0 * (cF - uF) + 9.0 * cu * cF);
+        const double s_plus = force_pref * w[i] * (9.0 * cu * cF - 3.0 * uF);
+        const double s_minus = force_pref * w[i] * 3.0 * cF;
+        fi += s_plus + s_minus;
+        fj += s_plus - s_minus;
       }
       f[i] = fi;
+      f[j] = fj;
     }
   } else if constexpr (Model == CollisionModel::regularized) {
     const double om = r.omega_plus;

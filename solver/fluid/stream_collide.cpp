@@ -14,7 +14,7 @@
 //  - When the two lattices do not fit in the last-level cache, each row is done in
 //    chunks of kChunk nodes collided into a per-thread buffer and streamed out with
 //    non-temporal stores: no write-allocate read of the destination (216 → 144 B per
-//    node update). A single thread also prefetches its nine source streams.
+//    node update). A single thread also prefetches its nine source streams into L2.
 //  - Smaller lattices stay in cache: ordinary stores, whole rows.
 //
 // Rounding: floating-point contraction is off project-wide (-ffp-contract=off in
@@ -45,8 +45,9 @@ using namespace d2q9;
 // Nodes per row chunk with streaming stores: the chunk's nine buffered output rows
 // (9 × 64 × 8 B = 4.5 KiB) stay in L1 until streamed out.
 constexpr int kChunk = 64;
-// Software prefetch distance along each source stream, in nodes (8 KiB ahead).
-constexpr std::size_t kPrefetchDistance = 1024;
+// Software prefetch distance along each source stream, in nodes (6 KiB ahead; 512,
+// 768, 1024 and 2048 measured, 768 best on the reference machine, docs/performance.md).
+constexpr std::size_t kPrefetchDistance = 768;
 
 // Value streamed into node (x, y) along direction i, following the boundary rules
 // of fluid/boundary.hpp. A wall on the bottom/top takes precedence at corners.
@@ -185,15 +186,17 @@ inline void stream_out(double* __restrict dst, const double* __restrict src, int
   for (; k < len; ++k) dst[k] = src[k];
 }
 
-// Software prefetch, non-temporal hint, used when a single thread streams a lattice
+// Software prefetch into L2 (prefetcht1), used when a single thread streams a lattice
 // that does not fit in cache: with nine source streams the hardware prefetcher alone
-// leaves one core waiting on memory, and requesting each stream kPrefetchDistance
-// nodes ahead gains 15–20 % at 1024² on the reference machine. With both cores
-// streaming the memory bus is already saturated and the extra requests cost 20 %
-// (measured; docs/performance.md), so then it is off.
-inline void prefetch_nta(const double* p) {
+// leaves one core waiting on memory. Requesting each stream kPrefetchDistance nodes
+// ahead into L2 gains 25–50 % at 1024² over no prefetch; the non-temporal hint
+// (prefetchnta) gained less and prefetcht0 nothing: nine streams 6 KiB ahead do not
+// fit in L1 beside the collision's working set (measured; docs/performance.md). With
+// both cores streaming the memory bus is already saturated and the extra requests
+// cost 20 %, so then it is off.
+inline void prefetch_l2(const double* p) {
 #if defined(__GNUC__)
-  __builtin_prefetch(p, 0, 0);
+  __builtin_prefetch(p, 0, 2);
 #else
   (void)p;
 #endif
@@ -245,7 +248,7 @@ void update_chunk(const KernelArgs& a, const NodeInputs& in, int y, int x0, int 
       dst[i] = out[i] + (begin - x0);
       if (prefetch) {  // the same span kPrefetchDistance nodes further on, one request per line
         const std::size_t stop = std::min(N, from + kPrefetchDistance + static_cast<std::size_t>(end - begin));
-        for (std::size_t k = from + kPrefetchDistance; k < stop; k += 8) prefetch_nta(a.src + i * N + k);
+        for (std::size_t k = from + kPrefetchDistance; k < stop; k += 8) prefetch_l2(a.src + i * N + k);
       }
     }
     interior_span<Model, TauField, HasForce, ForceField>(in, src, dst, g.index(begin, y), end - begin);
