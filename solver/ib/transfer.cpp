@@ -1,8 +1,10 @@
 #include "ib/transfer.hpp"
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 namespace erythro::ib {
 
@@ -26,7 +28,19 @@ void check_finite(std::span<const double> X, std::span<const double> Y) {
 template <class K>
 inline void weights_1d(double X, int& i0, double* w) {
   i0 = support_start(X, K::width);
-  for (int b = 0; b < K::width; ++b) w[b] = K::phi(X - (i0 + b + 0.5));
+  if constexpr (std::is_same_v<K, Cosine4>) {
+    // φ(r) = ¼[1 + cos(πr/2)] (kernel.hpp) at r_b = r₀ − b, r₀ = X − (i0 + ½) ∈ [1, 2):
+    // cos(θ − bπ/2) with θ = πr₀/2 is cos θ, sin θ, −cos θ, −sin θ for b = 0…3, so one
+    // sine and one cosine give the four weights (instead of four cosines).
+    const double theta = 0.5 * std::numbers::pi * (X - (i0 + 0.5));
+    const double c = std::cos(theta), s = std::sin(theta);
+    w[0] = 0.25 * (1.0 + c);
+    w[1] = 0.25 * (1.0 + s);
+    w[2] = 0.25 * (1.0 - c);
+    w[3] = 0.25 * (1.0 - s);
+  } else {
+    for (int b = 0; b < K::width; ++b) w[b] = K::phi(X - (i0 + b + 0.5));
+  }
 }
 
 template <class K>
