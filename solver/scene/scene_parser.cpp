@@ -228,6 +228,33 @@ std::vector<std::string> split_dots(const std::string& path) {
   return parts;
 }
 
+bool is_array_of_tables(const std::string& name) { return name == "cells" || name == "species"; }
+
+// The table of "name[i]" (cells[1], species[0]) for --set: the entry must exist in the
+// scene file (--set changes values; it does not add cells or species).
+toml::table* array_entry(toml::table& root, const std::string& part, const std::string& text,
+                         const std::string& origin) {
+  const auto open = part.find('[');
+  const std::string name = part.substr(0, open);
+  const std::string entries = "[[" + name + "]] entries";
+  std::size_t index = 0;
+  const bool well_formed = open != std::string::npos && part.back() == ']' && part.size() > open + 2 &&
+                           part.find_first_not_of("0123456789", open + 1) == part.size() - 1;
+  if (!well_formed)
+    throw InputError(origin + ": --set " + text + ": " + entries + " are addressed by index, e.g. --set " + name +
+                     "[0]." + text.substr(text.find('.') == std::string::npos ? 0 : text.find('.') + 1));
+  index = std::stoul(part.substr(open + 1, part.size() - open - 2));
+  toml::array* array = root.get(name) ? root.get(name)->as_array() : nullptr;
+  const std::size_t count = array ? array->size() : 0;
+  if (index >= count)
+    throw InputError(origin + ": --set " + text + ": the scene has " + std::to_string(count) + " " + entries +
+                     (count ? " (index 0 … " + std::to_string(count - 1) + ")" : "") +
+                     "; --set changes an entry the file has, it does not add one");
+  toml::table* t = (*array)[index].as_table();
+  if (!t) throw InputError(origin + ": --set " + text + ": " + name + "[" + std::to_string(index) + "] is not a table");
+  return t;
+}
+
 // "--set a.b.c=value": the value is TOML ("v = <value>"), or else a bare string.
 void apply_override(toml::table& root, const std::string& text, const std::string& origin) {
   const auto eq = text.find('=');
@@ -237,8 +264,6 @@ void apply_override(toml::table& root, const std::string& text, const std::strin
     throw InputError(origin + ": malformed --set '" + text + "': expected KEY=VALUE, e.g. --set fluid.viscosity_cP=1.2");
   if (!find_key(key) && !is_known_table(key))
     throw InputError(origin + ": --set " + text + ": unknown key '" + key + "'" + suggestion(key));
-  if (key.rfind("cells", 0) == 0)
-    throw InputError(origin + ": --set " + text + ": [[cells]] entries cannot be set with --set; edit the scene file");
 
   const std::string source = "--set " + text;  // recorded as the node's source, for messages
   toml::table parsed;
@@ -265,6 +290,10 @@ void apply_override(toml::table& root, const std::string& text, const std::strin
   const std::vector<std::string> parts = split_dots(key);
   toml::table* t = &root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    if (const auto open = parts[i].find('['); open != std::string::npos || is_array_of_tables(parts[i])) {
+      t = array_entry(root, parts[i], text, origin);  // "cells[1]": an entry the file already has
+      continue;
+    }
     toml::node* n = t->get(parts[i]);
     if (!n) n = &t->insert(parts[i], toml::table{}).first->second;
     t = n->as_table();

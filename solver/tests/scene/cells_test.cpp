@@ -150,7 +150,26 @@ TEST(SceneCells, UnknownAndMistypedKeysAreErrors) {
   EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2")); }),
                   "missing key 'cells[0].center_um'");
   EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells.radius_um=3"}); }),
-                  "cannot be set with --set");
+                  "addressed by index, e.g. --set cells[0].radius_um=3");
+  EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells[1].radius_um=3"}); }),
+                  "the scene has 1 [[cells]] entries (index 0 … 0)");
+  EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells[x].radius_um=3"}); }),
+                  "addressed by index");
+  // An override goes through the same checks as the file: range, then overlap.
+  EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells[0].radius_um=-1"}); }),
+                  "cells[0].radius_um");
+}
+
+TEST(SceneCells, SetOverridesAnEntryByIndex) {
+  const std::string two = channel + circle_at_centre + cell("shape = \"circle\"\nradius_um = 1.5\ncenter_um = [4, 5]\nmarkers = 32");
+  const std::vector<std::string> set = {"cells[1].radius_um=1.6", "cells[0].center_um=[12, 5]"};
+  const Scene s = parse_scene(two, "c.toml", set);
+  ASSERT_EQ(s.cells.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.cells[1].radius_um, 1.6);
+  EXPECT_DOUBLE_EQ(s.cells[1].center_um[0], 4.0);  // untouched
+  EXPECT_DOUBLE_EQ(s.cells[0].center_um[0], 12.0);
+  EXPECT_DOUBLE_EQ(s.cells[0].radius_um, 2.0);
+  EXPECT_NO_THROW(derive(two, set));
 }
 
 TEST(SceneCells, RejectsOverlappingCells) {
