@@ -43,6 +43,23 @@ void centroid(const Polygon& p, double& cx, double& cy) {
   cy = oy + sy / (3.0 * a);
 }
 
+AreaMoments area_moments(const Polygon& p, double ox, double oy) {
+  AreaMoments m;
+  const std::size_t n = p.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t j = (i + 1) % n;
+    const double xi = p.x[i] - ox, yi = p.y[i] - oy, xj = p.x[j] - ox, yj = p.y[j] - oy;
+    const double c = xi * yj - xj * yi;
+    m.A += 0.5 * c;
+    m.Sx += (xi + xj) * c / 6.0;
+    m.Sy += (yi + yj) * c / 6.0;
+    m.Sxx += (xi * xi + xi * xj + xj * xj) * c / 12.0;
+    m.Syy += (yi * yi + yi * yj + yj * yj) * c / 12.0;
+    m.Sxy += (xi * yj + 2.0 * xi * yi + 2.0 * xj * yj + xj * yi) * c / 24.0;
+  }
+  return m;
+}
+
 void taylor_deformation(const Polygon& p, double& D, double& theta_deg) {
   const std::vector<double>& x = p.x;
   const std::vector<double>& y = p.y;
@@ -52,21 +69,7 @@ void taylor_deformation(const Polygon& p, double& D, double& theta_deg) {
   for (std::size_t i = 0; i < n; ++i) { mx += x[i]; my += y[i]; }
   mx /= static_cast<double>(n);
   my /= static_cast<double>(n);
-  // Polygon area moments (Green's theorem, c_i = x_i y_{i+1} − x_{i+1} y_i):
-  //  A = ½Σc, ∫x dA = Σ(x_i + x_{i+1})c/6, ∫x² dA = Σ(x_i² + x_i x_{i+1} + x_{i+1}²)c/12,
-  //  ∫xy dA = Σ(x_i y_{i+1} + 2x_i y_i + 2x_{i+1} y_{i+1} + x_{i+1} y_i)c/24.
-  double A = 0, Sx = 0, Sy = 0, Sxx = 0, Syy = 0, Sxy = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t j = (i + 1) % n;
-    const double xi = x[i] - mx, yi = y[i] - my, xj = x[j] - mx, yj = y[j] - my;
-    const double c = xi * yj - xj * yi;
-    A += 0.5 * c;
-    Sx += (xi + xj) * c / 6.0;
-    Sy += (yi + yj) * c / 6.0;
-    Sxx += (xi * xi + xi * xj + xj * xj) * c / 12.0;
-    Syy += (yi * yi + yi * yj + yj * yj) * c / 12.0;
-    Sxy += (xi * yj + 2.0 * xi * yi + 2.0 * xj * yj + xj * yi) * c / 24.0;
-  }
+  const auto [A, Sx, Sy, Sxx, Syy, Sxy] = area_moments(p, mx, my);
   const double cx = Sx / A, cy = Sy / A;
   const double Ixx = Sxx - A * cx * cx, Iyy = Syy - A * cy * cy, Ixy = Sxy - A * cx * cy;
   // Eigenvalues of the moment tensor; an ellipse with semi-axes L, B has I1/I2 = L²/B².

@@ -1,0 +1,61 @@
+#include "doublet_cases.hpp"
+
+namespace erythro::vv {
+
+DoubletShearConfig study_config() {
+  DoubletShearConfig c;
+  c.h_m = 0.3e-6;
+  c.reynolds = 0.1;
+  c.strain = 14.0;
+  c.stop_theta_deg = -92.0;          // half a revolution of the pair done (θ: +90° → −90°)
+  c.stop_after_dissociation = 0.5;
+  return c;
+}
+
+DoubletShearConfig ci_config() {
+  DoubletShearConfig c = study_config();
+  c.h_m = 0.5e-6;
+  c.area_modulus = 50.0;  // k_A ∝ E_S/a ∝ 1/a²: 100 E_S/a exceeds the explicit IB limit at a/h = 7.8
+  return c;
+}
+
+std::vector<double> surface_energy_levels() { return {0.0, 0.25, 0.5, 1.0}; }
+
+std::vector<DeformabilityCase> deformability_cases() {
+  return {{"I", 0.0}, {"II", 3.0}, {"III", 4.5}, {"IV", 12.0}};
+}
+
+double deformability_de_star() { return 0.5; }
+
+DoubletShearConfig deformability_config(const DeformabilityCase& cs) {
+  DoubletShearConfig c = study_config();
+  c.shear_rate = 50.0;
+  c.de_star = deformability_de_star();
+  c.Es1_N_m = c.Es0_N_m + cs.delta_Es * 1e-6;  // 1e-3 dyn/cm = 1e-6 N/m
+  c.initial_gap_m = 1.0e-6;  // rims 1 µm apart (within r_c = 1.79 µm): the approach is part of the run
+  return c;
+}
+
+std::vector<RigidLevel> rigid_levels() { return {{0.005, 5.0}, {0.0025, 6.5}, {0.00125, 8.0}}; }
+
+DoubletShearConfig rigid_config(const RigidLevel& level) {
+  DoubletShearConfig c = study_config();
+  c.cells = 1;
+  c.shape = CellShape::ellipse;
+  c.ellipse_axis_ratio = 2.0;
+  c.theta0_deg = 30.0;
+  c.viscosity_ratio = level.viscosity_ratio;
+  // E_S from Ca = μγ̇a/E_S; E_B scaled with it (E_B* fixed at the thesis value 0.0039).
+  c.Es0_N_m = c.Es1_N_m = c.mu_Pa_s * c.shear_rate * c.a_m / level.capillary;
+  c.Eb_J = 3.6e-19 * c.Es0_N_m / 6e-6;
+  // k_A in units of E_S/a lowered in proportion to Ca (k_A fixed in lattice units at the
+  // value of the thesis cell, 100 E_S/a at Ca = 0.0782): 100 E_S/a of a 60× stiffer
+  // membrane exceeds the explicit IB limit; a stiff membrane keeps its area by tension.
+  c.area_modulus = 100.0 * level.capillary / 0.0782;
+  c.de_star = 0.0;
+  c.strain = 12.0;
+  c.stop_theta_deg = -92.0;
+  return c;
+}
+
+}  // namespace erythro::vv

@@ -1,0 +1,34 @@
+#pragma once
+// The configurations of the doublet cases (one place, shared by the tests and the
+// documentation's figures): docs/validation-doublet.md.
+#include <vector>
+
+#include "doublet_shear_run.hpp"
+
+namespace erythro::vv {
+
+// Study lattice: h = 0.3 µm (a/h = 13.0, 100 × 100 nodes for 30 × 30 µm), lattice
+// Re = γ̇a²/ν = 0.1 (≈ 10 100 steps per strain unit); 100 markers per cell (thesis).
+DoubletShearConfig study_config();
+// CI lattice: h = 0.5 µm (a/h = 7.8, 60 × 60 nodes), same groups.
+DoubletShearConfig ci_config();
+
+// Item 5: surface-energy levels at 100 1/s.
+std::vector<double> surface_energy_levels();
+// Item 6: cases I–IV at 50 1/s, E_S of the second cell (dyn/cm ×1e-3); the first keeps 6.0.
+struct DeformabilityCase {
+  const char* name;
+  double delta_Es;  // ×1e-3 dyn/cm
+};
+std::vector<DeformabilityCase> deformability_cases();
+double deformability_de_star();
+// The run of one case: 50 1/s, De* above, second cell E_S0 + ΔE_S, start gap below.
+DoubletShearConfig deformability_config(const DeformabilityCase& c);
+// Item 7: rigid-limit sequence for one ellipse (a/b = 2): capillary number and viscosity ratio.
+struct RigidLevel {
+  double capillary, viscosity_ratio;
+};
+std::vector<RigidLevel> rigid_levels();
+DoubletShearConfig rigid_config(const RigidLevel& level);
+
+}  // namespace erythro::vv

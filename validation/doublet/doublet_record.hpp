@@ -1,0 +1,26 @@
+#pragma once
+// The ResultRecord parts every doublet case shares: the mapping of the physical inputs
+// to lattice units, the per-run histories (series), the run-table row and the
+// run-health metrics.
+#include <string>
+
+#include "doublet_shear_run.hpp"
+#include "io/result_record.hpp"
+
+namespace erythro::vv {
+
+std::string fmt(const char* f, double v);
+
+// Case-wide parameters: lattice, mapping and model (from the first run of the case).
+void add_mapping(io::ResultRecord& rec, const DoubletShearConfig& c, const DoubletShearResult& r);
+// Series of one run: θ, contact area per cell, separation, D per cell (doublet), or θ and
+// the axis ratio (single cell), and outline snapshots (first and last).
+void add_histories(io::ResultRecord& rec, const std::string& label, const DoubletShearResult& r);
+// One /runs row.
+void add_row(io::ResultRecord& rec, const std::string& label, const DoubletShearConfig& c, const DoubletShearResult& r);
+// Run health: finished without divergence; max |A/A0 − 1| ≤ 0.5 % (the rbc case's bound).
+void add_health_metrics(io::ResultRecord& rec, const std::string& label, const DoubletShearResult& r);
+// One summary line and a coarse history on stdout.
+void print_run(const std::string& label, const DoubletShearResult& r);
+
+}  // namespace erythro::vv

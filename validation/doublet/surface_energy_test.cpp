@@ -1,0 +1,161 @@
+// validation.doublet_surface_energy (full): issue 6 item 5. The doublet at 100 1/s over
+// surface-energy levels De*: outcome (rotates as one / dissociates), contact mode, contact
+// area, the tumbling period against Jeffery's period of the doublet's equivalent
+// ellipse, and a resolution check of the membrane gap. docs/validation-doublet.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "common/case_support.hpp"
+#include "doublet_cases.hpp"
+#include "doublet_outcome.hpp"
+#include "doublet_record.hpp"
+
+using namespace erythro;
+
+namespace {
+// Membrane gap (µm) at the first sample with γ̇t ≥ t.
+double gap_at(const vv::DoubletShearResult& r, double t) {
+  for (std::size_t i = 0; i < r.strain_h.size(); ++i)
+    if (r.strain_h[i] >= t) return r.gap_h[i];
+  return r.gap_h.empty() ? 0.0 : r.gap_h.back();
+}
+constexpr double kGapTime = 4.0;  // γ̇t of the gap comparison (the extensional quadrant ends near γ̇t ≈ 4.5)
+}  // namespace
+
+TEST(DoubletShear, SurfaceEnergy100) {
+  vv::Stopwatch total;
+  io::ResultRecord rec("validation.doublet_surface_energy", "doublet");
+  rec.set_requirement(
+      "At 100 1/s (thesis set-up mapped to h = 0.3 um, lattice Re = 0.1) each surface-energy level De* = 0, 0.25, "
+      "0.5, 1 is classified (rotates as one / dissociates); the outcome is monotone in De*; the contact area grows "
+      "with De*; an aggregated pair tumbles with a period within 30 % of Jeffery's for its equivalent ellipse; the "
+      "non-adhering pair's membrane gap opens more on the thesis lattice (h = 0.15 um) than on the study lattice.");
+  rec.set_reference(
+      "Thesis ch. III (model.md section 6; De* = 1..5 at 100 1/s; contact modes flat / sigmoid / relaxed sigmoid); "
+      "Zhang, Johnson & Popel 2008 J Biomech 41:47 (a rouleau rotates or separates depending on the relative "
+      "strength of the intercellular interaction and the viscous forces) and Bagchi, Johnson & Popel 2005 J Biomech "
+      "Eng 127:1070; Jeffery 1922: gamma T = 2 pi (a/b + b/a) (parameters.md).");
+  const std::vector<double> levels = vv::surface_energy_levels();
+  std::vector<vv::DoubletShearResult> runs;
+  for (double de : levels) {
+    vv::DoubletShearConfig c = vv::study_config();
+    c.de_star = de;
+    runs.push_back(vv::run_doublet_shear(c));
+    const std::string label = vv::fmt("De*=%.2g", de);
+    vv::print_run(label, runs.back());
+    if (runs.size() == 1) vv::add_mapping(rec, c, runs.back());
+    vv::add_row(rec, label, c, runs.back());
+    vv::add_histories(rec, label, runs.back());
+    vv::add_health_metrics(rec, label, runs.back());
+  }
+  rec.set_parameter("capillary_number", runs.front().capillary0);
+  // Classification table (parameters), monotonicity, contact and period.
+  int undetermined = 0, inversions = 0, contact_drops = 0;
+  double worst = 0;
+  int periods = 0;
+  std::string dissociating, holding;
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const vv::DoubletShearResult& r = runs[i];
+    const std::string o = vv::doublet_outcome(r);
+    const double Tq = vv::quadrant_period(r);
+    const double TJ = r.aspect_quadrant > 0 ? vv::jeffery_period(r.aspect_quadrant) : -1;
+    rec.set_parameter(vv::fmt("classification De*=%.2g", levels[i]),
+                      o + ", contact " + vv::contact_mode(r) + vv::fmt(", Ca/De* = %.3g", r.capillary0 / levels[i]) +
+                          vv::fmt(", mean contact %.3f", vv::mean_contact(r, 1.0)) +
+                          vv::fmt(", max S %.2f um", vv::max_sigmoid(r)) + vv::fmt(", gamma T = %.2f", Tq) +
+                          vv::fmt(" vs Jeffery %.2f", TJ) + vv::fmt(" (a/b = %.3f)", r.aspect_quadrant));
+    if (o == "dissociates") dissociating += vv::fmt(" %.2g", levels[i]);
+    else if (o == "rotates as one") holding += vv::fmt(" %.2g", levels[i]);
+    else ++undetermined;
+    for (std::size_t j = i + 1; j < levels.size(); ++j)  // a higher level must not dissociate when a lower one holds
+      if (o == "rotates as one" && vv::doublet_outcome(runs[j]) == "dissociates") ++inversions;
+    if (i > 0 && !(vv::mean_contact(r, 1.0) > vv::mean_contact(runs[i - 1], 1.0))) ++contact_drops;
+    if (levels[i] > 0 && o == "rotates as one" && Tq > 0 && TJ > 0) {
+      worst = std::max(worst, std::abs(Tq / TJ - 1.0));
+      ++periods;
+    }
+  }
+  rec.set_parameter("levels dissociating", dissociating.empty() ? std::string("none") : dissociating);
+  rec.set_parameter("levels rotating as one", holding.empty() ? std::string("none") : holding);
+  rec.set_parameter("transition",
+                    dissociating.empty()
+                        ? std::string("not in De* = 0..1 on this lattice: every level, even De* = 0, stays together "
+                                      "(see the resolution check)")
+                        : std::string("between the highest dissociating and the lowest rotating level"));
+  rec.add_metric({"all_classified", "runs neither dissociated nor completed half a turn within gamma t = 14", "",
+                  static_cast<double>(undetermined), 0.0, 0.0, io::Comparison::at_most,
+                  "a pair that rotates as one turns half a revolution in ~T_J/2 ~ 7-9 strain units; 14 leaves room"});
+  rec.add_metric({"monotone_in_De", "pairs of levels where the higher one dissociates and the lower one holds", "",
+                  static_cast<double>(inversions), 0.0, 0.0, io::Comparison::at_most,
+                  "adhesion grows with De* at fixed shear: dissociation can only become less likely"});
+  rec.add_metric({"contact_grows_with_De", "steps up in De* where the mean contact area (gt >= 1) does not grow", "",
+                  static_cast<double>(contact_drops), 0.0, 0.0, io::Comparison::at_most,
+                  "a larger surface energy pulls more membrane within the Morse range (flattening the faces)"});
+  rec.add_metric({"period_vs_jeffery",
+                  "max over aggregated runs (De* > 0) of |T/T_J - 1|, T = 4 x time of the quadrant theta: 0 -> -90 deg",
+                  "", periods > 0 ? worst : 1e9, 0.3, 0.0, io::Comparison::at_most,
+                  "the pair is no rigid ellipse: its a/b swings between ~1.1 and ~1.9 during the turn (series "
+                  "'axis ratio'), the contact slides (sigmoid), and the box (H = 7.7a) and Re = 0.1 lengthen the "
+                  "period; the rigid-limit case gives the gap of a stiff ellipse (~6 %)"});
+  // Resolution check on the thesis lattice h = 0.15 µm (a/h = 26, 200 × 200, ≈ 41 000 steps per
+  // strain unit): the non-adhering pair (membrane gap, outcome) and De* = 0.5 (outcome, period).
+  vv::DoubletShearConfig fine = vv::study_config();
+  fine.h_m = 0.15e-6;
+  fine.de_star = 0.0;
+  const vv::DoubletShearResult rf = vv::run_doublet_shear(fine);
+  vv::print_run("De*=0 h=0.15", rf);
+  vv::add_row(rec, "De*=0 h=0.15", fine, rf);
+  vv::add_health_metrics(rec, "De*=0_h0.15", rf);
+  vv::DoubletShearConfig fine5 = fine;
+  fine5.de_star = 0.5;
+  const vv::DoubletShearResult rf5 = vv::run_doublet_shear(fine5);
+  vv::print_run("De*=0.5 h=0.15", rf5);
+  vv::add_row(rec, "De*=0.5 h=0.15", fine5, rf5);
+  vv::add_histories(rec, "De*=0.5 h=0.15", rf5);
+  vv::add_health_metrics(rec, "De*=0.5_h0.15", rf5);
+  for (auto [label, rr] : {std::pair{"De*=0 h=0.15", &rf}, std::pair{"De*=0.5 h=0.15", &rf5}}) {
+    const double Tq = vv::quadrant_period(*rr);
+    const double TJ = rr->aspect_quadrant > 0 ? vv::jeffery_period(rr->aspect_quadrant) : -1;
+    rec.set_parameter(std::string("classification ") + label,
+                      vv::doublet_outcome(*rr) + ", contact " + vv::contact_mode(*rr) +
+                          vv::fmt(", mean contact %.3f", vv::mean_contact(*rr, 1.0)) +
+                          vv::fmt(", max gap %.3f um", *std::max_element(rr->gap_h.begin(), rr->gap_h.end())) +
+                          vv::fmt(", gamma T = %.2f", Tq) + vv::fmt(" vs Jeffery %.2f", TJ) +
+                          vv::fmt(" (a/b = %.3f)", rr->aspect_quadrant) + " (not asserted)");
+  }
+  {
+    io::Series s;
+    s.name = "De*=0 h=0.15 separation";
+    s.title = s.name;
+    s.xlabel = "gamma t";
+    s.ylabel = "separation of centres (um), thesis lattice";
+    s.x = rf.strain_h;
+    s.y = rf.separation_h;
+    rec.add_series(s);
+    s.name = "De*=0 membrane gap, h=0.15 (y) and h=0.3 (reference)";
+    s.title = s.name;
+    s.ylabel = "smallest membrane gap (um)";
+    s.y = rf.gap_h;
+    s.y_reference = runs.front().gap_h;
+    s.y_reference.resize(std::min(s.y_reference.size(), s.x.size()));
+    s.x.resize(std::min(s.x.size(), runs.front().gap_h.size()));
+    s.y.resize(s.x.size());
+    rec.add_series(s);
+  }
+  const double g_fine = gap_at(rf, kGapTime), g_coarse = gap_at(runs.front(), kGapTime);
+  rec.set_parameter("resolution check", vv::fmt("De* = 0 gap at gamma t = 4: %.3f um (h = 0.15)", g_fine) +
+                                            vv::fmt(" vs %.3f um (h = 0.3)", g_coarse) +
+                                            vv::fmt("; Morse cut-off %.2f um", fine.r0_m * 1e6 + fine.cutoff_k / fine.beta_per_m * 1e6));
+  rec.add_metric({"gap_opens_when_resolved", "De* = 0: membrane gap at gamma t = 4, h = 0.15 um over h = 0.3 um", "",
+                  g_coarse > 0 ? g_fine / g_coarse : 0.0, 1.5, 0.0, io::Comparison::at_least,
+                  "the IB kernel spans 4h: two membranes closer than ~2h interpolate nearly the same velocity, so the "
+                  "fluid film between them is not resolved and the pair cannot separate; the start gap d* = 0.41 um is "
+                  "1.4h at h = 0.3 but 2.7h at h = 0.15, where the extensional quadrant opens it (measured x2.2 in "
+                  "the exploration); 1.5 separates the two behaviours"});
+  rec.set_wall_time(total.seconds());
+  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
+  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+}
