@@ -10,7 +10,9 @@
 #
 #   erythro_add_test(NAME n COMMAND cmd... LABELS unit [CI] [NO_FULL] [TIMEOUT s] [ENVIRONMENT k=v...])
 #   (NO_FULL: not in `full`, e.g. benchmarks)
-#   vv_add_case(CASE c COMMAND cmd... LABELS verification [CI] [TIMEOUT s])
+#   vv_add_case(CASE c COMMAND cmd... LABELS verification [CI] [TIMEOUT s] [ENVIRONMENT k=v...])
+#   (ENVIRONMENT entries come after the defaults and override them, e.g. OMP_NUM_THREADS=1
+#   for a long run on a small grid, where thread start-up per step costs more than it gains)
 
 set_property(GLOBAL PROPERTY ERYTHRO_VV_MANIFEST "")
 
@@ -35,12 +37,16 @@ function(erythro_add_test)
 endfunction()
 
 function(vv_add_case)
-  cmake_parse_arguments(V "CI" "CASE;TIMEOUT" "COMMAND;LABELS" ${ARGN})
+  cmake_parse_arguments(V "CI" "CASE;TIMEOUT" "COMMAND;LABELS;ENVIRONMENT" ${ARGN})
   set(ci_flag "")
   if(V_CI)
     set(ci_flag CI)
   endif()
-  erythro_add_test(NAME ${V_CASE} COMMAND ${V_COMMAND} LABELS ${V_LABELS} ${ci_flag} TIMEOUT ${V_TIMEOUT})
+  set(env "")
+  if(V_ENVIRONMENT)
+    set(env ENVIRONMENT ${V_ENVIRONMENT})
+  endif()
+  erythro_add_test(NAME ${V_CASE} COMMAND ${V_COMMAND} LABELS ${V_LABELS} ${ci_flag} TIMEOUT ${V_TIMEOUT} ${env})
   get_test_property(${V_CASE} LABELS labels)  # as erythro_add_test completed them (full, ci)
   list(JOIN labels "," label_text)
   set_property(GLOBAL APPEND PROPERTY ERYTHRO_VV_MANIFEST "${V_CASE}\t${label_text}")

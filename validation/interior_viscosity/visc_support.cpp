@@ -20,6 +20,15 @@ RbcConfig thesis_config(double h_um, interior::Method method, double ratio, doub
   return c;
 }
 
+RbcConfig stability_map_config(double h_um, double tau_ex, double ca_factor, double strain) {
+  RbcConfig c = thesis_config(h_um, interior::Method::flood_fill, 5.0, strain);
+  c.tau = tau_ex;
+  c.Es_N_m /= ca_factor;                                     // Ca = μγ̇a/E_S: × ca_factor
+  c.reynolds = 0.05 * (0.5 / 3.0) / ((tau_ex - 0.5) / 3.0);  // γ̇_lattice = Re ν/a² fixed
+  c.require_stability_estimate = false;
+  return c;
+}
+
 std::string run_label(const RbcConfig& c) {
   std::string s(interior::to_string(c.indicator));
   if (c.indicator != interior::Method::indexless) s += fmt(" x%g", c.viscosity_ratio);

@@ -20,6 +20,13 @@ std::string fmt(const char* format, double value);
 // μ_in = ratio·1.2 cP marked by `method` (indexless: one fluid).
 RbcConfig thesis_config(double h_um, interior::Method method, double ratio, double strain);
 
+// Set-up of the item-9 stability map (validation.rbc_viscosity_stability and
+// validation.rbc_viscosity_long_runs): thesis_config with the flood-filled cytoplasm at
+// ratio 5, τ_ex = tau_ex, E_S / ca_factor (Ca × ca_factor), and the lattice shear rate fixed
+// at its τ_ex = 1, Re = 0.05 value (Re = 0.05·(1/6)/ν_ex), so the step count and the wall
+// speed do not change with τ_ex; the membrane stability estimate is recorded, not enforced.
+RbcConfig stability_map_config(double h_um, double tau_ex, double ca_factor, double strain);
+
 // "flood_fill x5 h=0.25" and the like.
 std::string run_label(const RbcConfig& c);
 
