@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <span>
 #include <sstream>
 #include <vector>
 
@@ -15,7 +16,79 @@
 
 namespace erythro::deoxy {
 
-double diffusive_dt(double h_um) { return 1e-5 * (h_um / 0.2) * (h_um / 0.2); }
+double diffusive_dt(double h_um, double dt_at_0p2_s) { return dt_at_0p2_s * (h_um / 0.2) * (h_um / 0.2); }
+
+namespace {
+
+// Sutherland–Hodgman: the part of polygon (x, y) on the side keep(x, y) ≥ 0 of a line,
+// keep linear in (x, y).
+template <class Keep>
+void clip_half_plane(std::vector<double>& x, std::vector<double>& y, Keep keep) {
+  std::vector<double> ox, oy;
+  const std::size_t m = x.size();
+  for (std::size_t a = 0; a < m; ++a) {
+    const std::size_t b = (a + 1) % m;
+    const double fa = keep(x[a], y[a]), fb = keep(x[b], y[b]);
+    if (fa >= 0.0) {
+      ox.push_back(x[a]);
+      oy.push_back(y[a]);
+    }
+    if ((fa >= 0.0) != (fb >= 0.0)) {
+      const double s = fa / (fa - fb);
+      ox.push_back(x[a] + s * (x[b] - x[a]));
+      oy.push_back(y[a] + s * (y[b] - y[a]));
+    }
+  }
+  x.swap(ox);
+  y.swap(oy);
+}
+
+double shoelace(const std::vector<double>& x, const std::vector<double>& y) {
+  double a = 0.0;
+  for (std::size_t k = 0, m = x.size(); k < m; ++k) {
+    const std::size_t l = (k + 1) % m;
+    a += x[k] * y[l] - x[l] * y[k];
+  }
+  return 0.5 * a;
+}
+
+struct Weighted {
+  std::size_t node;
+  double w;  // heme weight: φ (area fraction) or 1 (ray casting)
+};
+
+// Heme-weighted mean P = Σ w_n C_n / (α Σ w_n) (w = 1: transport::mean_partial_pressure).
+double weighted_mean_P(const std::vector<Weighted>& cell, std::span<const double> C, double alpha, double w_sum) {
+  double s = 0.0;
+  for (const auto& c : cell) s += c.w * C[c.node];
+  return s / (w_sum * alpha);
+}
+
+}  // namespace
+
+std::vector<NodeFraction> area_fractions(const membrane::Polygon& p, int nx, int ny) {
+  const auto [xmin, xmax] = std::minmax_element(p.x.begin(), p.x.end());
+  const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
+  const int i0 = std::max(0, static_cast<int>(std::floor(*xmin))), i1 = std::min(nx - 1, static_cast<int>(*xmax));
+  const int j0 = std::max(0, static_cast<int>(std::floor(*ymin))), j1 = std::min(ny - 1, static_cast<int>(*ymax));
+  const double sign = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;
+  std::vector<NodeFraction> out;
+  std::vector<double> x, y;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      x = p.x;
+      y = p.y;
+      const double xl = i, xr = i + 1.0, yb = j, yt = j + 1.0;
+      clip_half_plane(x, y, [xl](double u, double) { return u - xl; });
+      if (x.size() >= 3) clip_half_plane(x, y, [xr](double u, double) { return xr - u; });
+      if (x.size() >= 3) clip_half_plane(x, y, [yb](double, double v) { return v - yb; });
+      if (x.size() >= 3) clip_half_plane(x, y, [yt](double, double v) { return yt - v; });
+      if (x.size() < 3) continue;
+      const double phi = std::clamp(sign * shoelace(x, y), 0.0, 1.0);
+      if (phi > 0.0) out.push_back({static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + i, phi});
+    }
+  return out;
+}
 
 Result run(const Setup& s) {
   vv::Stopwatch clock;
@@ -26,43 +99,56 @@ Result run(const Setup& s) {
   const transport::TransportUnits units{s.h_um, s.dt_s};
   // Cell centred in the box; lattice units, node (i, j) at (i + ½, j + ½).
   const auto cell = membrane::transformed(membrane::biconcave(s.markers, s.a_um), 1.0 / s.h_um, 0.0, 0.5 * n, 0.5 * n);
-  std::vector<std::size_t> nodes;
-  interior::ray_cast_inside_nodes(cell, ib::Domain{grid, false, false}, nodes);
-  if (nodes.empty()) throw InputError("deoxy::run: no interior node (h too coarse)");
-  res.interior_nodes = static_cast<long>(nodes.size());
-  res.interior_area_um2 = static_cast<double>(nodes.size()) * s.h_um * s.h_um;
+  res.polygon_area_um2 = std::abs(membrane::signed_area(cell)) * s.h_um * s.h_um;
+  // The cell's nodes and heme weights (Setup::representation).
+  std::vector<Weighted> heme;
+  if (s.representation == Representation::ray_cast) {
+    std::vector<std::size_t> nodes;
+    interior::ray_cast_inside_nodes(cell, ib::Domain{grid, false, false}, nodes);
+    for (std::size_t k : nodes) heme.push_back({k, 1.0});
+  } else {
+    for (const auto& f : area_fractions(cell, n, n)) heme.push_back({f.node, f.phi});
+  }
+  if (heme.empty()) throw InputError("deoxy::run: no interior node (h too coarse)");
+  double w_sum = 0.0;
+  for (const auto& c : heme) w_sum += c.w;
+  res.interior_nodes = static_cast<long>(heme.size());
+  res.interior_area_um2 = w_sum * s.h_um * s.h_um;
 
   const transport::Side held{transport::SideKind::fixed_concentration, s.C_b_uM};
   transport::TransportLattice o2(grid, transport::Stencil::d2q5, {held, held, held, held});
   o2.set_uniform_diffusivity(units.diffusivity(s.D_out));
   auto D = o2.diffusivity();
   std::vector<double> C0(grid.size(), s.C_b_uM);
-  for (std::size_t k : nodes) {
-    D[k] = units.diffusivity(s.D_in);
-    C0[k] = s.hb.alpha * s.P0_torr;  // cell in equilibrium at P0
+  for (const auto& c : heme) {
+    // mixed node: series resistance 1/D = φ/D_in + (1 − φ)/D_out (as reference_rbc.py);
+    // cell in equilibrium at P0 over its area fraction, medium C_b over the rest
+    D[c.node] = units.diffusivity(1.0 / (c.w / s.D_in + (1.0 - c.w) / s.D_out));
+    C0[c.node] = c.w * s.hb.alpha * s.P0_torr + (1.0 - c.w) * s.C_b_uM;
   }
   o2.initialize(C0);
   auto q = o2.source();
   double S = transport::hill_saturation(s.P0_torr, s.hb.P50, s.hb.n);
   const double S0 = S;
   const double M0 = o2.stored_amount();
-  const double cell_nodes = static_cast<double>(nodes.size());
 
-  const long steps = std::lround(s.t_end_s / s.dt_s);
+  // at least t_end (a Δt that does not divide t_end overshoots by < Δt; never stops short of it)
+  const long steps = static_cast<long>(std::ceil(s.t_end_s / s.dt_s - 1e-9));
   const long stride = std::max(1L, std::lround(2e-4 / s.dt_s));  // 0.2 ms samples after 2 ms
   res.S.t.push_back(0.0);
   res.S.y.push_back(S);
   double boundary_in = 0.0;
   for (long k = 1; k <= steps; ++k) {
-    // eq H1/H2 with P the mean over the interior nodes of the current C (explicit coupling)
-    const double P = transport::mean_partial_pressure(nodes, o2.concentration(), s.hb.alpha);
+    // eq H1/H2 with P the heme-weighted mean of the current C over the cell's nodes
+    const double P = weighted_mean_P(heme, o2.concentration(), s.hb.alpha, w_sum);
     // Setup::implicit_coupling: the layer's cell-implicit update (eq H3), else the lagged P.
     const double S_new = s.implicit_coupling ? transport::advance_saturation_cell_implicit(s.hb, S, P, s.dt_s).saturation
                                              : transport::advance_saturation(s.hb, S, P, s.dt_s).saturation;
     const double released = s.hb.C_heme * (S - S_new);  // −C_heme ΔS, µM
     S = S_new;
     std::fill(q.begin(), q.end(), 0.0);
-    transport::distribute_release(nodes, released, q);  // µM per step = lattice source
+    for (const auto& c : heme) q[c.node] = c.w * released;  // µM per step = lattice source (w = 1:
+                                                            // transport::distribute_release)
     o2.step();
     boundary_in += o2.mass_balance().boundary_in;
     res.max_step_residual = std::max(res.max_step_residual, std::abs(o2.mass_balance().relative_residual()));
@@ -74,7 +160,7 @@ Result run(const Setup& s) {
   }
   res.steps = steps;
   const double area = s.h_um * s.h_um;  // lattice amount (µM per node) → µM·µm²
-  res.released_uM_um2 = s.hb.C_heme * (S0 - S) * cell_nodes * area;
+  res.released_uM_um2 = s.hb.C_heme * (S0 - S) * w_sum * area;
   res.medium_change_uM_um2 = (o2.stored_amount() - M0) * area;
   res.boundary_in_uM_um2 = boundary_in * area;
   res.balance_residual = (res.medium_change_uM_um2 - res.boundary_in_uM_um2 - res.released_uM_um2) / res.released_uM_um2;

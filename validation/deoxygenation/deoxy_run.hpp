@@ -3,15 +3,32 @@
 // a still Evans–Fung biconcave section (membrane::biconcave) centred in a square box of
 // half-width L held at C_b on all four sides (fixed_concentration), D2Q5 O2 transport
 // (transport::TransportLattice, no fluid lattice), interior nodes by ray casting
-// (interior::ray_cast_inside) with D_in, D_out elsewhere, and ONE cell-averaged
-// saturation S driven by the mean P over the interior nodes (transport/hb_kinetics.hpp):
-//   dS/dt = −(k_off/M)[S − (1 − S)(P/P50)ⁿ],  release −C_heme dS/dt spread uniformly.
+// (Setup::representation) and ONE cell-averaged saturation S driven by the mean P over
+// the cell's nodes (transport/hb_kinetics.hpp):
+//   dS/dt = −(k_off/M)[S − (1 − S)(P/P50)ⁿ],  release −C_heme dS/dt spread over the cell.
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include "common/calibration.hpp"
+#include "membrane/polygon.hpp"
 #include "transport/hb_kinetics.hpp"
 
 namespace erythro::deoxy {
+
+// How the cell is put on the lattice (docs/validation-deoxygenation.md, "Representation").
+enum class Representation {
+  // Nodes inside the polygon by ray casting (interior::ray_cast_inside_nodes), each a full
+  // heme node (weight 1), D_in there, D_out elsewhere. The cell's area is N_int h²: a
+  // first-order staircase (13.44 / 13.64 µm² at h = 0.2 / 0.1 µm, exact 13.627).
+  ray_cast,
+  // Area fraction φ_n ∈ [0, 1] of each node's square (x ± h/2, y ± h/2) inside the polygon
+  // (exact polygon–square clipping): heme weight φ_n (release −C_heme φ_n ΔS, mean P
+  // weighted by φ_n), D_n = 1/(φ_n/D_in + (1 − φ_n)/D_out), initial C = φ_n αP0 + (1 − φ_n) C_b
+  // — the lattice counterpart of the reference's volume-fraction mask (reference_rbc.py).
+  // Σ φ_n h² equals the polygon's area to round-off at every h.
+  area_fraction,
+};
 
 struct Setup {
   double h_um = 0.2;          // lattice spacing
@@ -33,14 +50,16 @@ struct Setup {
   //         (the released O2 still in the cell), S_new = advance_saturation(S, P_new)
   //         solved by bisection: unconditionally stable.
   bool implicit_coupling = true;
+  Representation representation = Representation::area_fraction;
 };
 
 struct Result {
   vv::Curve S;                 // cell-averaged saturation vs t (s)
   long steps = 0;
   int nodes = 0;               // per side
-  long interior_nodes = 0;
-  double interior_area_um2 = 0.0;
+  long interior_nodes = 0;             // nodes carrying heme (φ > 0, or inside by ray casting)
+  double interior_area_um2 = 0.0;      // Σ φ_n h² (ray casting: N_int h²)
+  double polygon_area_um2 = 0.0;       // area of the marker polygon (exact section: 13.627)
   double released_uM_um2 = 0.0;       // Σ O2 released by Hb (per unit depth)
   double medium_change_uM_um2 = 0.0;  // M(end) − M(0) of the transport lattice
   double boundary_in_uM_um2 = 0.0;    // Σ boundary_in (negative: outflow)
@@ -51,8 +70,19 @@ struct Result {
 
 Result run(const Setup& s);
 
-// Time step for spacing h keeping D_lat = DΔt/h² of the base level (10 µs at 0.2 µm).
-double diffusive_dt(double h_um);
+// Time step for spacing h keeping D_lat = DΔt/h² of the base level: Δt = dt_at_0p2 (h/0.2 µm)².
+// dt_at_0p2 = 10 µs: the thesis point (τ_out = 2.6); 2.5 µs: τ_out = 1.025, τ_in = 0.678.
+double diffusive_dt(double h_um, double dt_at_0p2_s = 1e-5);
+
+// Area fraction of each lattice node's unit square [i, i+1] × [j, j+1] inside the polygon
+// p (lattice units), for the nodes of an nx × ny grid whose square meets p's bounding box;
+// exact for the polygon (Sutherland–Hodgman clipping against the convex square; a
+// non-convex polygon clips to the correct area). Returns (node index, φ > 0) pairs.
+struct NodeFraction {
+  std::size_t node = 0;
+  double phi = 0.0;
+};
+std::vector<NodeFraction> area_fractions(const membrane::Polygon& p, int nx, int ny);
 
 // Reads reference_data/deoxygenation/reference_S.csv (columns t_s, S_fine, ...):
 // the curve of column `column` (1 = S_fine). Throws InputError when missing.

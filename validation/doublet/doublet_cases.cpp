@@ -21,6 +21,9 @@ DoubletShearConfig ci_config() {
 
 std::vector<double> surface_energy_levels() { return {0.0, 0.25, 0.5, 1.0}; }
 
+double wide_start_gap_m() { return 1.0e-6; }
+std::vector<double> wide_start_levels() { return {0.0, 0.25}; }
+
 std::vector<DeformabilityCase> deformability_cases() {
   return {{"I", 0.0}, {"II", 3.0}, {"III", 4.5}, {"IV", 12.0}};
 }

@@ -15,6 +15,11 @@ DoubletShearConfig ci_config();
 
 // Item 5: surface-energy levels at 100 1/s.
 std::vector<double> surface_energy_levels();
+// Item 5, second start: rims 1.0 µm apart (3.3 h on the study lattice: the film between the
+// membranes resolved) instead of d*, at the levels that bracket the transition from it
+// (docs/validation-doublet.md §3 "Longer runs and other starts").
+double wide_start_gap_m();
+std::vector<double> wide_start_levels();
 // Item 6: cases I–IV at 50 1/s, E_S of the second cell (dyn/cm ×1e-3); the first keeps 6.0.
 struct DeformabilityCase {
   const char* name;
