@@ -63,6 +63,15 @@ double clipped_area(const membrane::Polygon& p, const ib::Domain& d) {
   return q.size() < 3 ? 0.0 : membrane::signed_area(q);
 }
 
+double area_in_box(const membrane::Polygon& p, double x0, double x1, double y0, double y1) {
+  membrane::Polygon q = p;
+  clip(q.x, q.y, true, x0, 1.0);
+  if (q.size() >= 3) clip(q.x, q.y, true, x1, -1.0);
+  if (q.size() >= 3) clip(q.x, q.y, false, y0, 1.0);
+  if (q.size() >= 3) clip(q.x, q.y, false, y1, -1.0);
+  return q.size() < 3 ? 0.0 : membrane::signed_area(q);
+}
+
 double smoothed_heaviside(double d, double half_width) { return eq26(d, half_width); }
 
 double signed_distance(const membrane::Polygon& p, double px, double py) {

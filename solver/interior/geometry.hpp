@@ -60,5 +60,10 @@ inline void node_range(double lo, double hi, int& first, int& last) {
 // counter-clockwise polygon). Periodic axes are not clipped.
 double clipped_area(const membrane::Polygon& p, const ib::Domain& d);
 
+// Area of the polygon inside the box [x0, x1] × [y0, y1] (Sutherland–Hodgman), with the
+// polygon's orientation (positive for a counter-clockwise polygon); 0 when they miss.
+// E.g. the area fraction of node (i, j)'s square: area_in_box(p, i, i + 1, j, j + 1).
+double area_in_box(const membrane::Polygon& p, double x0, double x1, double y0, double y1);
+
 }  // namespace erythro::interior
 

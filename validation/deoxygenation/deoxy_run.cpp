@@ -9,6 +9,7 @@
 
 #include "common/case_support.hpp"
 #include "common/error.hpp"
+#include "interior/geometry.hpp"
 #include "interior/index_field.hpp"
 #include "membrane/shapes.hpp"
 #include "transport/transport_lattice.hpp"
@@ -19,38 +20,6 @@ namespace erythro::deoxy {
 double diffusive_dt(double h_um, double dt_at_0p2_s) { return dt_at_0p2_s * (h_um / 0.2) * (h_um / 0.2); }
 
 namespace {
-
-// Sutherland–Hodgman: the part of polygon (x, y) on the side keep(x, y) ≥ 0 of a line,
-// keep linear in (x, y).
-template <class Keep>
-void clip_half_plane(std::vector<double>& x, std::vector<double>& y, Keep keep) {
-  std::vector<double> ox, oy;
-  const std::size_t m = x.size();
-  for (std::size_t a = 0; a < m; ++a) {
-    const std::size_t b = (a + 1) % m;
-    const double fa = keep(x[a], y[a]), fb = keep(x[b], y[b]);
-    if (fa >= 0.0) {
-      ox.push_back(x[a]);
-      oy.push_back(y[a]);
-    }
-    if ((fa >= 0.0) != (fb >= 0.0)) {
-      const double s = fa / (fa - fb);
-      ox.push_back(x[a] + s * (x[b] - x[a]));
-      oy.push_back(y[a] + s * (y[b] - y[a]));
-    }
-  }
-  x.swap(ox);
-  y.swap(oy);
-}
-
-double shoelace(const std::vector<double>& x, const std::vector<double>& y) {
-  double a = 0.0;
-  for (std::size_t k = 0, m = x.size(); k < m; ++k) {
-    const std::size_t l = (k + 1) % m;
-    a += x[k] * y[l] - x[l] * y[k];
-  }
-  return 0.5 * a;
-}
 
 struct Weighted {
   std::size_t node;
@@ -73,18 +42,9 @@ std::vector<NodeFraction> area_fractions(const membrane::Polygon& p, int nx, int
   const int j0 = std::max(0, static_cast<int>(std::floor(*ymin))), j1 = std::min(ny - 1, static_cast<int>(*ymax));
   const double sign = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;
   std::vector<NodeFraction> out;
-  std::vector<double> x, y;
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
-      x = p.x;
-      y = p.y;
-      const double xl = i, xr = i + 1.0, yb = j, yt = j + 1.0;
-      clip_half_plane(x, y, [xl](double u, double) { return u - xl; });
-      if (x.size() >= 3) clip_half_plane(x, y, [xr](double u, double) { return xr - u; });
-      if (x.size() >= 3) clip_half_plane(x, y, [yb](double, double v) { return v - yb; });
-      if (x.size() >= 3) clip_half_plane(x, y, [yt](double, double v) { return yt - v; });
-      if (x.size() < 3) continue;
-      const double phi = std::clamp(sign * shoelace(x, y), 0.0, 1.0);
+      const double phi = std::clamp(sign * interior::area_in_box(p, i, i + 1.0, j, j + 1.0), 0.0, 1.0);
       if (phi > 0.0) out.push_back({static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + i, phi});
     }
   return out;

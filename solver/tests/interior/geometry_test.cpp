@@ -2,11 +2,13 @@
 // distance sign and accuracy, even–odd ray casting with periodic wrap, clipped area.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
 #include "interior/geometry.hpp"
 #include "interior/index_field.hpp"
+#include "membrane/polygon.hpp"
 #include "membrane/shapes.hpp"
 
 using namespace erythro;
@@ -92,4 +94,26 @@ TEST(RayCast, NodeListEqualsTheMask) {
     EXPECT_EQ(nodes, expected) << "centre x = " << cx;
     EXPECT_GT(nodes.size(), 200u);  // area 13.627 (16/3.91)² ≈ 228 h²
   }
+}
+
+TEST(AreaInBox, CoverFractionsOfNodeSquares) {
+  // Square [0.5, 2.5]² (counter-clockwise): node squares fully in, half in, a quarter in, out.
+  membrane::Polygon sq;
+  sq.x = {0.5, 2.5, 2.5, 0.5};
+  sq.y = {0.5, 0.5, 2.5, 2.5};
+  EXPECT_DOUBLE_EQ(area_in_box(sq, 1, 2, 1, 2), 1.0);
+  EXPECT_DOUBLE_EQ(area_in_box(sq, 0, 1, 1, 2), 0.5);
+  EXPECT_DOUBLE_EQ(area_in_box(sq, 2, 3, 2, 3), 0.25);
+  EXPECT_DOUBLE_EQ(area_in_box(sq, 3, 4, 0, 1), 0.0);
+  // Fractions over the covering node squares sum to the polygon's area; a clockwise
+  // polygon gives negative areas.
+  const membrane::Polygon c = membrane::transformed(membrane::circle(400, 2.3), 1.0, 0.0, 3.1, 2.9);
+  double sum = 0.0;
+  for (int j = 0; j < 7; ++j)
+    for (int i = 0; i < 7; ++i) sum += area_in_box(c, i, i + 1, j, j + 1);
+  EXPECT_NEAR(sum, membrane::signed_area(c), 1e-12);
+  membrane::Polygon cw = sq;
+  std::reverse(cw.x.begin(), cw.x.end());
+  std::reverse(cw.y.begin(), cw.y.end());
+  EXPECT_DOUBLE_EQ(area_in_box(cw, 1, 2, 1, 2), -1.0);
 }
