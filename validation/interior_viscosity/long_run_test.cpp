@@ -133,26 +133,22 @@ std::map<std::string, io::Value> row_of(const StudyRun& m, const Drift& d) {
 
 void add_long_series(io::ResultRecord& rec, const StudyRun& m, const Drift& d) {
   const std::string p = label(m);
-  io::Series s;
-  s.name = p + " area drift";
-  s.title = p + ": A/A0 - 1 against shear strain (h = 0.4 um)";
-  s.xlabel = "gamma t";
-  s.ylabel = "A/A0 - 1";
-  s.x = m.r.strain_h;
-  s.y = m.r.area_h;
-  rec.add_series(s);
-  io::Series t = s;
-  t.name = p + " theta";
-  t.title = p + ": inclination theta (unwrapped) against shear strain";
-  t.ylabel = "theta (deg)";
-  t.y = m.r.theta_h;
-  rec.add_series(t);
-  io::Series e = s;
-  e.name = p + " edge strain";
-  e.title = p + ": largest edge strain |l/l0 - 1| against shear strain";
-  e.ylabel = "max edge strain";
-  e.y = m.r.estrain_h;
-  rec.add_series(e);
+  // One series per history, all against shear strain.
+  auto against_strain = [&](const std::string& name, const std::string& title, const std::string& ylabel,
+                            const std::vector<double>& y) {
+    io::Series s;
+    s.name = p + " " + name;
+    s.title = p + ": " + title;
+    s.xlabel = "gamma t";
+    s.ylabel = ylabel;
+    s.x = m.r.strain_h;
+    s.y = y;
+    rec.add_series(s);
+  };
+  against_strain("area drift", "A/A0 - 1 against shear strain (h = 0.4 um)", "A/A0 - 1", m.r.area_h);
+  against_strain("theta", "inclination theta (unwrapped) against shear strain", "theta (deg)", m.r.theta_h);
+  against_strain("edge strain", "largest edge strain |l/l0 - 1| against shear strain", "max edge strain",
+                 m.r.estrain_h);
   io::Series w;
   w.name = p + " area drift per period";
   w.title = p + ": mean of A/A0 - 1 over each tumbling period (180 deg of the axis)";
