@@ -24,6 +24,9 @@
 namespace erythro::scene {
 namespace {
 
+// The scene's arrays of tables: [[cells]] and [[species]].
+bool is_array_of_tables(std::string_view name) { return name == "cells" || name == "species"; }
+
 using namespace detail;  // the schema: Kind, KeySpec, find_key, range_text, ...
 
 // ---------------------------------------------------------------- messages
@@ -101,7 +104,7 @@ class Reader {
       const std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
       // A quoted key holding a dot ("fluid.viscosity_cP" = 1) is not the nested key.
       const bool plain = key.str().find_first_of(".[") == std::string_view::npos;
-      if (plain && (path == "cells" || path == "species")) {  // [[cells]], [[species]]: arrays of tables
+      if (plain && is_array_of_tables(path)) {
         const auto* arr = node.as_array();
         if (!arr || !arr->is_array_of_tables())
           fail(node, path, "has the wrong type (" + kind_of(node) + "): expected an array of tables ([[" + path + "]])");
@@ -228,8 +231,6 @@ std::vector<std::string> split_dots(const std::string& path) {
   return parts;
 }
 
-bool is_array_of_tables(const std::string& name) { return name == "cells" || name == "species"; }
-
 // The table of "name[i]" (cells[1], species[0]) for --set: the entry must exist in the
 // scene file (--set changes values; it does not add cells or species).
 toml::table* array_entry(toml::table& root, const std::string& part, const std::string& text,
@@ -237,13 +238,12 @@ toml::table* array_entry(toml::table& root, const std::string& part, const std::
   const auto open = part.find('[');
   const std::string name = part.substr(0, open);
   const std::string entries = "[[" + name + "]] entries";
-  std::size_t index = 0;
   const bool well_formed = open != std::string::npos && part.back() == ']' && part.size() > open + 2 &&
                            part.find_first_not_of("0123456789", open + 1) == part.size() - 1;
   if (!well_formed)
     throw InputError(origin + ": --set " + text + ": " + entries + " are addressed by index, e.g. --set " + name +
                      "[0]." + text.substr(text.find('.') == std::string::npos ? 0 : text.find('.') + 1));
-  index = std::stoul(part.substr(open + 1, part.size() - open - 2));
+  const std::size_t index = std::stoul(part.substr(open + 1, part.size() - open - 2));
   toml::array* array = root.get(name) ? root.get(name)->as_array() : nullptr;
   const std::size_t count = array ? array->size() : 0;
   if (index >= count)
@@ -290,7 +290,7 @@ void apply_override(toml::table& root, const std::string& text, const std::strin
   const std::vector<std::string> parts = split_dots(key);
   toml::table* t = &root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
-    if (const auto open = parts[i].find('['); open != std::string::npos || is_array_of_tables(parts[i])) {
+    if (parts[i].find('[') != std::string::npos || is_array_of_tables(parts[i])) {
       t = array_entry(root, parts[i], text, origin);  // "cells[1]": an entry the file already has
       continue;
     }
