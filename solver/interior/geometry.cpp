@@ -45,12 +45,15 @@ void clip(std::vector<double>& x, std::vector<double>& y, bool along_x, double c
 }
 }  // namespace
 
+bool within_walls(const ib::Domain& d, double x0, double x1, double y0, double y1) {
+  return (d.periodic_x || (x0 >= 0.0 && x1 <= d.grid.nx)) && (d.periodic_y || (y0 >= 0.0 && y1 <= d.grid.ny));
+}
+
 double clipped_area(const membrane::Polygon& p, const ib::Domain& d) {
   // Nothing to clip (the usual case): no copy.
   const auto [x0, x1] = std::minmax_element(p.x.begin(), p.x.end());
   const auto [y0, y1] = std::minmax_element(p.y.begin(), p.y.end());
-  if ((d.periodic_x || (*x0 >= 0.0 && *x1 <= d.grid.nx)) && (d.periodic_y || (*y0 >= 0.0 && *y1 <= d.grid.ny)))
-    return membrane::signed_area(p);
+  if (within_walls(d, *x0, *x1, *y0, *y1)) return membrane::signed_area(p);
   membrane::Polygon q = p;
   if (!d.periodic_x) {
     clip(q.x, q.y, true, 0.0, 1.0);

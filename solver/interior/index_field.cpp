@@ -60,7 +60,6 @@ IndexField::IndexField(const ib::Domain& domain, IndexFieldOptions options) : do
   mark_.assign(n, kFree);
   owner_.assign(n, -1);
   candidate_.assign(n, 0);
-  sd_.assign(n, std::numeric_limits<double>::infinity());
 }
 
 const FillReport& IndexField::update(std::span<const membrane::Polygon> cells) {
@@ -117,9 +116,9 @@ void IndexField::check_area(const membrane::Polygon& p, int cell, const CellStat
   // Σ(1 − I) of the cell against its enclosed area (clipped at walls). A valid fill agrees
   // to O(h²) (docs/verification-interior.md); the bound allows a band cut by a wall
   // (0.30 h per unit length, ∫₀^w (1 − H) = w(¼ − 1/π²)) and pinched bands with a margin.
-  const double area = std::abs(clipped_area(p, domain_));
+  const double area = std::abs(stats.within_walls ? stats.signed_area : clipped_area(p, domain_));
   const double mismatch = std::abs(stats.band_area + static_cast<double>(stats.filled) - area);
-  const double allowed = 0.5 * membrane::perimeter(p) + 4.0;
+  const double allowed = 0.5 * stats.perimeter + 4.0;
   if (mismatch > report_.max_area_mismatch) {
     report_.max_area_mismatch = mismatch;
     report_.max_area_mismatch_allowed = allowed;

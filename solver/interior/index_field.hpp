@@ -30,9 +30,12 @@
 
 #include "common/error.hpp"
 #include "ib/domain.hpp"
+#include "interior/edge_table.hpp"
 #include "membrane/polygon.hpp"
 
 namespace erythro::interior {
+
+struct BoxAxis;  // geometry.hpp
 
 enum class Method { indexless, band_only, flood_fill, ray_casting };
 
@@ -101,10 +104,14 @@ class IndexField {
  private:
   struct CellStats {
     double band_area = 0.0;  // Σ(1 − H(d)) over the cell's own band nodes
+    double perimeter = 0.0;    // of the polygon (band pass), for the leak bound
+    double signed_area = 0.0;  // of the polygon (band pass: its orientation; the leak check)
+    bool within_walls = true;  // no wall clips the polygon (then its area is signed_area)
     long filled = 0;         // nodes set to 0 for this cell
   };
   void check_polygon(const membrane::Polygon& p, int cell) const;
   void band_pass(const membrane::Polygon& p, int cell, CellStats& stats);
+  void classify_box(const BoxAxis& bx, const BoxAxis& by, int cell, CellStats& stats);
   void flood_fill_cell(const membrane::Polygon& p, int cell, CellStats& stats);
   void ray_cast_cell(const membrane::Polygon& p, int cell, CellStats& stats);
   void window_starts(const membrane::Polygon& p, int cell, CellStats& stats, long limit);
@@ -119,16 +126,21 @@ class IndexField {
   std::vector<int> candidate_;          // cell + 1 for which the node is a start candidate (0: none)
   std::vector<std::size_t> starts_;     // start candidates of every cell, cell c in [starts_begin_[c], [c+1])
   std::vector<std::size_t> starts_begin_;
-  std::vector<double> sd_;              // per-cell scratch: best signed distance (+inf: untouched)
-  std::vector<std::size_t> touched_;    // per-cell scratch: nodes with a finite sd_
-  std::vector<std::array<int, 2>> touched_xy_;  // … and their (x, y)
+  std::vector<double> box_;             // per-cell scratch: best signed squared distance per node of
+                                        // the cell's box (BoxAxis), +inf where no edge reached
+  std::vector<std::array<int, 2>> span_;  // … per box row, the first and last column an edge visited
+  struct EdgeRow {
+    int row, first, last;  // box row and columns of one edge's row
+    double qy;             // node-row height above the edge's first marker
+  };
+  std::vector<EdgeRow> rows_;           // … the rows of the current edge
+  std::vector<double> box_d_, box_h_;   // … one box row's signed distances and eq-26 values
+  std::vector<int> col_node_, col_left_, col_right_;  // … per box column: grid column, box neighbours
   std::vector<std::size_t> dirty_;      // nodes changed by the last update (reset by the next)
   std::vector<std::size_t> previous_dirty_;  // those of the update before
   std::vector<std::size_t> stack_;      // scan-line seeds
   std::vector<double> crossings_;       // ray-casting scratch
-  std::vector<double> enx_, eny_;       // band-pass scratch: outward edge normals
-  std::vector<double> len_;             // … edge lengths
-  std::vector<double> vtx_, vty_, theta_;  // … bisector-line tangents and |tan(θ/2)| at vertices
+  EdgeTable edges_;                     // band-pass scratch: the current cell's edges and wedges
   std::vector<CellStats> stats_;
   FillReport report_;
 };

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "interior/geometry.hpp"
 #include "interior/index_field.hpp"
 #include "membrane/shapes.hpp"
 
@@ -225,5 +226,50 @@ TEST(IndexField, ChangedRelaxationTimesEqualTheFullWrite) {
       f.write_relaxation_times(full, nu_in, nu_ex);
       for (std::size_t k = 0; k < full.size(); ++k) ASSERT_EQ(incremental[k], full[k]) << "node " << k;
     }
+  }
+}
+
+// The band pass works in a per-cell node box (geometry.hpp, BoxAxis): unwrapped and
+// clipped at walls, or folded onto the whole axis when the cell's reach spans a periodic
+// side. Both paths must give the brute-force field (nearest periodic image, walls drop
+// the nodes beyond them).
+TEST(IndexField, FoldedAndWallClippedBoxesMatchBruteForce) {
+  const BoxAxis wall = BoxAxis::covering(-5.3, 20.2, 48, false);
+  EXPECT_FALSE(wall.folded);
+  EXPECT_EQ(wall.origin, 0);
+  EXPECT_EQ(wall.index(-1), -1);  // beyond the wall
+  const BoxAxis fold = BoxAxis::covering(-5.3, 70.2, 48, true);
+  EXPECT_TRUE(fold.folded);
+  EXPECT_EQ(fold.size, 48);
+  EXPECT_EQ(fold.index(-3), 45);
+  EXPECT_EQ(fold.neighbour(47, 1), 0);
+  const BoxAxis plain = BoxAxis::covering(-5.3, 20.2, 48, true);
+  EXPECT_FALSE(plain.folded);
+  EXPECT_EQ(plain.node(0), 43);  // unwrapped −5 is node 43
+  struct Case {
+    int nx, ny;
+    bool px, py;
+    double r, cx, cy;
+  };
+  // A disc whose band reaches around a periodic side (radius 15 on 32 nodes: folded in x
+  // and y), the same between walls in y, and a disc near a wall.
+  for (const Case& k : {Case{32, 34, true, true, 15.0, 16.2, 17.1}, Case{32, 40, true, false, 14.5, 3.4, 20.3},
+                        Case{40, 40, false, true, 9.0, 10.5, 38.0}}) {
+    const auto c = disc(k.r, k.cx, k.cy, 160);
+    IndexField f = field(k.nx, k.ny, Method::flood_fill, k.px, k.py);
+    f.update(std::vector<membrane::Polygon>{c});
+    for (int j = 0; j < k.ny; ++j)
+      for (int i = 0; i < k.nx; ++i) {
+        double best = 1e300;
+        for (int sy = -1; sy <= 1; ++sy)
+          for (int sx = -1; sx <= 1; ++sx) {
+            if ((sx != 0 && !k.px) || (sy != 0 && !k.py)) continue;
+            const double d = signed_distance(c, i + 0.5 + sx * k.nx, j + 0.5 + sy * k.ny);
+            if (std::abs(d) < std::abs(best)) best = d;
+          }
+        const double expect = std::abs(best) < 2.0 ? smoothed_heaviside(best) : (best < 0 ? 0.0 : 1.0);
+        ASSERT_NEAR(f.values()[static_cast<std::size_t>(j * k.nx + i)], expect, 1e-12)
+            << "case " << k.nx << "x" << k.ny << " node " << i << " " << j;
+      }
   }
 }
