@@ -103,11 +103,11 @@ class IndexField {
 
  private:
   struct CellStats {
-    double band_area = 0.0;  // Σ(1 − H(d)) over the cell's own band nodes
+    double band_area = 0.0;    // Σ(1 − H(d)) over the cell's own band nodes
     double perimeter = 0.0;    // of the polygon (band pass), for the leak bound
     double signed_area = 0.0;  // of the polygon (band pass: its orientation; the leak check)
     bool within_walls = true;  // no wall clips the polygon (then its area is signed_area)
-    long filled = 0;         // nodes set to 0 for this cell
+    long filled = 0;           // nodes set to 0 for this cell
   };
   void check_polygon(const membrane::Polygon& p, int cell) const;
   void band_pass(const membrane::Polygon& p, int cell, CellStats& stats);

@@ -7,8 +7,12 @@
 //
 // Collision (eqs T2–T4), ω = 1/τ, τ = ½ + D/c_s²:
 //   C     = (Σ g_i + q/2) / (1 + k/2),   q_tot = q − k C
-//   g*_i  = g_i − ω (g_i − w_i C (1 + c_i·u/c_s²)) + (1 − ω/2) w_i q_tot (1 + c_i·u/c_s²)
-// Σ_i g*_i = Σ_i g_i + q_tot exactly (Σ w_i c_i = 0), which is what closes the mass balance.
+//   BGK (T3):  g*_i = g_i − ω (g_i − w_i C (1 + c_i·u/c_s²)) + (1 − ω/2) w_i q_tot (1 + c_i·u/c_s²)
+//   TRT (T3'): g*_i = g_i − ω⁺ (g⁺_i − w_i C) − ω⁻ (g⁻_i − w_i C c_i·u/c_s²)
+//                     + (1 − ω⁺/2) w_i q_tot + (1 − ω⁻/2) w_i q_tot c_i·u/c_s²,
+//              g^±_i = (g_i ± g_ī)/2, ω⁻ = ω (D), ω⁺ = 1/(½ + Λ/(τ − ½)).
+// Σ_i g*_i = Σ_i g_i + q_tot exactly for both (Σ w_i c_i = 0, Σ g⁻ = 0), which is what
+// closes the mass balance.
 #include "transport/transport_kernel.hpp"
 
 #include <algorithm>
@@ -24,10 +28,20 @@ namespace {
 // loaded 2-core machine). Larger than the fluid's threshold for that reason.
 constexpr std::size_t kThreadingThreshold = 128 * 128;
 
-// The collision of one node (eqs T2–T4): g holds the streamed populations and
+// Relaxation rates of a uniform D: ω (BGK; ω⁻ of TRT) and ω⁺ (TRT).
+struct Rates {
+  double omega = 1.0, omega_plus = 1.0;
+};
+
+inline Rates rates_for(double D, bool trt, double magic) {
+  const double s = kInvCs2 * D;  // τ − ½ = τ⁻ − ½
+  return {1.0 / (0.5 + s), trt ? 1.0 / (0.5 + magic / s) : 1.0 / (0.5 + s)};
+}
+
+// The collision of one node (eqs T2–T4, T3 or T3'): g holds the streamed populations and
 // receives the post-collision ones; returns Σ_i g*_i in total and q_tot in q.
-template <class S, bool Vel, bool DField, bool React>
-[[gnu::always_inline]] inline void collide(const KernelArgs& a, std::size_t n, double inv_tau_uniform, double* g,
+template <class S, bool Vel, bool DField, bool React, bool Trt>
+[[gnu::always_inline]] inline void collide(const KernelArgs& a, std::size_t n, const Rates& uniform, double* g,
                                            double& total, double& q) {
   constexpr int Q = S::Q;
   double m = 0.0;
@@ -45,17 +59,37 @@ template <class S, bool Vel, bool DField, bool React>
     ux = a.ux[n];
     uy = a.uy[n];
   }
-  const double omega = DField ? 1.0 / (0.5 + kInvCs2 * a.D[n]) : inv_tau_uniform;
-  const double src_pref = (1.0 - 0.5 * omega) * q;
+  const Rates r = DField ? rates_for(a.D[n], Trt, a.magic) : uniform;
   double t = 0.0;
+  if constexpr (!Trt) {
+    const double omega = r.omega;
+    const double src_pref = (1.0 - 0.5 * omega) * q;
 #pragma GCC unroll 9
-  for (int i = 0; i < Q; ++i) {
-    const double shape = Vel ? 1.0 + kInvCs2 * (S::cx[i] * ux + S::cy[i] * uy) : 1.0;
-    const double geq = S::w[i] * C * shape;
-    double gi = g[i] - omega * (g[i] - geq);
-    if constexpr (React) gi += src_pref * S::w[i] * shape;
-    g[i] = gi;
-    t += gi;
+    for (int i = 0; i < Q; ++i) {
+      const double shape = Vel ? 1.0 + kInvCs2 * (S::cx[i] * ux + S::cy[i] * uy) : 1.0;
+      const double geq = S::w[i] * C * shape;
+      double gi = g[i] - omega * (g[i] - geq);
+      if constexpr (React) gi += src_pref * S::w[i] * shape;
+      g[i] = gi;
+      t += gi;
+    }
+  } else {
+    // eq T3': symmetric part relaxes with ω⁺ towards w_i C, antisymmetric with ω⁻ towards w_i C c_i·u/c_s²
+    const double om = r.omega, op = r.omega_plus;
+    const double src_p = (1.0 - 0.5 * op) * q, src_m = (1.0 - 0.5 * om) * q;
+    double out[Q];
+#pragma GCC unroll 9
+    for (int i = 0; i < Q; ++i) {
+      const int o = S::opposite[i];
+      const double cu = Vel ? kInvCs2 * (S::cx[i] * ux + S::cy[i] * uy) : 0.0;
+      const double gp = 0.5 * (g[i] + g[o]), gm = 0.5 * (g[i] - g[o]);
+      double gi = g[i] - op * (gp - S::w[i] * C) - om * (gm - S::w[i] * C * cu);
+      if constexpr (React) gi += S::w[i] * (src_p + src_m * cu);
+      out[i] = gi;
+      t += gi;
+    }
+#pragma GCC unroll 9
+    for (int i = 0; i < Q; ++i) g[i] = out[i];
   }
   a.C[n] = C;
   total = t;
@@ -75,9 +109,9 @@ inline double row_sum(const double* v, int len, bool absolute) {
 // Interior nodes n0 … n0+len−1 of one row: Q restrict source and destination
 // streams, no branches, so the loop vectorises along x (as the fluid kernel; named
 // pointers rather than arrays, which GCC would not vectorise).
-template <class S, bool Vel, bool DField, bool React>
+template <class S, bool Vel, bool DField, bool React, bool Trt>
 void interior_span(const KernelArgs& a, const double* const* src, double* const* out, std::size_t n0, int len,
-                   double inv_tau, double* __restrict total, double* __restrict qtot) {
+                   const Rates& rates, double* __restrict total, double* __restrict qtot) {
   constexpr int Q = S::Q;
   const double* __restrict s0 = src[0];
   const double* __restrict s1 = src[1];
@@ -113,7 +147,7 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
       f[7 % Q] = s7[k];
       f[8 % Q] = s8[k];
     }
-    collide<S, Vel, DField, React>(a, n0 + static_cast<std::size_t>(k), inv_tau, f, total[k], qtot[k]);
+    collide<S, Vel, DField, React, Trt>(a, n0 + static_cast<std::size_t>(k), rates, f, total[k], qtot[k]);
     o0[k] = f[0];
     o1[k] = f[1];
     o2[k] = f[2];
@@ -128,12 +162,12 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
   }
 }
 
-template <class S, bool Vel, bool DField, bool React>
+template <class S, bool Vel, bool DField, bool React, bool Trt>
 void run(const KernelArgs& a) {
   constexpr int Q = S::Q;
   const Grid g = a.grid;
   const std::size_t N = g.size();
-  const double inv_tau = 1.0 / tau_for_diffusivity(a.uniform_D);
+  const Rates rates = rates_for(a.uniform_D, Trt, a.magic);
 #pragma omp parallel if (N >= kThreadingThreshold)
   {
     // Per-node Σ g* and q_tot of the current row, summed after the row.
@@ -145,7 +179,7 @@ void run(const KernelArgs& a) {
         double f[Q];
         for (int i = 0; i < Q; ++i) f[i] = pull<S>(g, a.boundaries, a.src, x, y, i, boundary);
         const std::size_t n = g.index(x, y);
-        collide<S, Vel, DField, React>(a, n, inv_tau, f, total[static_cast<std::size_t>(x)],
+        collide<S, Vel, DField, React, Trt>(a, n, rates, f, total[static_cast<std::size_t>(x)],
                                        qtot[static_cast<std::size_t>(x)]);
         for (int i = 0; i < Q; ++i) a.dst[i * N + n] = f[i];
       };
@@ -160,7 +194,7 @@ void run(const KernelArgs& a) {
           s[i] = a.src + i * N + g.index(1 - S::cx[i], y - S::cy[i]);
           o[i] = a.dst + i * N + n0;
         }
-        interior_span<S, Vel, DField, React>(a, s, o, n0, g.nx - 2, inv_tau, total.data() + 1, qtot.data() + 1);
+        interior_span<S, Vel, DField, React, Trt>(a, s, o, n0, g.nx - 2, rates, total.data() + 1, qtot.data() + 1);
         general(g.nx - 1);
       }
       const auto r = static_cast<std::size_t>(y);
@@ -172,15 +206,20 @@ void run(const KernelArgs& a) {
   }
 }
 
+template <class S, bool Vel, bool DField, bool React>
+void with_collision(const KernelArgs& a) {
+  return a.trt ? run<S, Vel, DField, React, true>(a) : run<S, Vel, DField, React, false>(a);
+}
+
 template <class S>
 void dispatch(const KernelArgs& a) {
   const bool vel = a.ux != nullptr, dfield = a.D != nullptr, react = a.source != nullptr;
   if (vel) {
-    if (dfield) return react ? run<S, true, true, true>(a) : run<S, true, true, false>(a);
-    return react ? run<S, true, false, true>(a) : run<S, true, false, false>(a);
+    if (dfield) return react ? with_collision<S, true, true, true>(a) : with_collision<S, true, true, false>(a);
+    return react ? with_collision<S, true, false, true>(a) : with_collision<S, true, false, false>(a);
   }
-  if (dfield) return react ? run<S, false, true, true>(a) : run<S, false, true, false>(a);
-  return react ? run<S, false, false, true>(a) : run<S, false, false, false>(a);
+  if (dfield) return react ? with_collision<S, false, true, true>(a) : with_collision<S, false, true, false>(a);
+  return react ? with_collision<S, false, false, true>(a) : with_collision<S, false, false, false>(a);
 }
 
 }  // namespace

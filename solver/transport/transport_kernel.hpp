@@ -16,6 +16,8 @@ struct KernelArgs {
   double* dst = nullptr;        // post-collision populations of step t+1
   double* C = nullptr;          // concentration of the collision (out)
   double uniform_D = 0.0;
+  bool trt = false;    // collision: BGK (T3) or TRT with magic parameter Λ (T3')
+  double magic = 0.25;
   const double* D = nullptr;       // optional per-node D
   const double* source = nullptr;  // optional q and k (both or neither)
   const double* decay = nullptr;

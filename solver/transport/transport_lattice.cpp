@@ -56,6 +56,8 @@ void face_flux_impl(const Grid& grid, const TransportBoundaries& b, const std::v
 
 }  // namespace
 
+double source_offset_coefficient(double magic) { return 0.25 - 2.0 * magic / 3.0; }  // eq T7
+
 double MassBalance::relative_residual() const {
   return std::fabs(residual()) / std::max(scale, std::numeric_limits<double>::min());
 }
@@ -114,6 +116,13 @@ void TransportLattice::set_uniform_diffusivity(double D) {
   if (!D_field_.empty()) std::fill(D_field_.begin(), D_field_.end(), D);
 }
 
+void TransportLattice::set_collision(CollisionModel c) {
+  if (c.kind == Collision::trt && !(c.magic > 0.0)) {
+    throw std::invalid_argument("TransportLattice: the TRT magic parameter must be positive");
+  }
+  collision_ = c;
+}
+
 std::span<double> TransportLattice::diffusivity() {
   if (D_field_.empty()) D_field_.assign(grid_.size(), uniform_D_);
   return D_field_;
@@ -159,6 +168,8 @@ void TransportLattice::step() {
   a.dst = g_next_.data();
   a.C = C_.data();
   a.uniform_D = uniform_D_;
+  a.trt = collision_.kind == Collision::trt;
+  a.magic = collision_.magic;
   a.D = D_field_.empty() ? nullptr : D_field_.data();
   a.source = source_.empty() ? nullptr : source_.data();
   a.decay = decay_.empty() ? nullptr : decay_.data();
@@ -181,6 +192,15 @@ void TransportLattice::step() {
   }
   b.storage_change = b.amount - balance_.amount;
   balance_ = b;
+}
+
+double TransportLattice::source_corrected_concentration(std::size_t n) const {
+  if (source_.empty()) return C_[n];
+  const double D = D_field_.empty() ? uniform_D_ : D_field_[n];
+  const double s = kInvCs2 * D;  // τ − ½
+  const double magic = collision_.kind == Collision::trt ? collision_.magic : s * s;
+  const double q_tot = source_[n] - decay_[n] * C_[n];
+  return C_[n] + source_offset_coefficient(magic) * q_tot / D;  // eq T7
 }
 
 double TransportLattice::total_amount() const {

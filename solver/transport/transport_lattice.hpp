@@ -7,7 +7,8 @@
 //   g_i(x + c_i, t + 1) = g_i − ω (g_i − g_i^eq) + (1 − ω/2) w_i q_tot (1 + c_i·u/c_s²),
 //   C = Σ g_i + q_tot/2,    q_tot = q − k C   ⇒   C = (Σ g_i + q/2) / (1 + k/2).
 // Per-node τ with this equilibrium gives ∇·(D∇C), not ∇²(DC) (measured:
-// verification.transport_manufactured).
+// verification.transport_manufactured). Optional TRT collision (T3', set_collision) and the
+// steady source offset of the concentration (T7, source_corrected_concentration).
 // The first-order sink k is thus implicit (trapezoidal in time, unconditionally
 // stable); q is whatever the caller set before step() (reactions computed from the
 // previous step's concentrations: explicit).
@@ -27,6 +28,32 @@
 namespace erythro::transport {
 
 enum class Stencil { d2q5, d2q9 };
+
+// Collision operator (docs/transport.md §1, eq T3 / T3'):
+//  bgk: one rate ω = 1/τ, τ = ½ + D/c_s² (T3; the default, the former behaviour);
+//  trt: two relaxation times (Ginzburg 2005): for each link pair (i, ī) the antisymmetric
+//       part g⁻_i = (g_i − g_ī)/2 relaxes with τ⁻ = ½ + D/c_s² (sets D), the symmetric part
+//       g⁺_i = (g_i + g_ī)/2 with τ⁺ = ½ + Λ/(τ⁻ − ½) (T3'), Λ = `magic`, the SAME at every
+//       node whatever D_n. BGK is TRT with a per-node Λ_n = (τ_n − ½)²; a uniform Λ makes the
+//       steady and the slowly varying solutions depend on D only, not on the τ's
+//       (parametrisation invariance), also across a jump of D. Λ = 1/4 (default), 1/6
+//       (cancels the fourth-order diffusion error), 1/12 (third-order advection error).
+enum class Collision { bgk, trt };
+struct CollisionModel {
+  Collision kind = Collision::bgk;
+  double magic = 0.25;  // Λ of trt (> 0); ignored by bgk
+};
+
+// Steady source offset (docs/transport.md §1, eq T7). With a source, the symmetric TRT
+// populations carry a part ∝ q_tot, and the steady C = Σ g + q_tot/2 is not the finite-volume
+// solution. Derived on a 1D D2Q5 row (face flux J = D (C_n − C_m) + c (q_n − q_m)) and
+// verified in 2D to round-off (unit test SteadyOffsetCorrectedConcentrationIsFiniteVolume):
+// for TRT with Λ = 1/4 on D2Q5,
+//   Ĉ_n = C_n + c q_tot,n / D_n,   c = ¼ − 2Λ/3 = 1/12,
+// solves EXACTLY the 5-point finite-volume equations Σ_m D_nm (Ĉ_m − Ĉ_n) + q_tot,n = 0 with
+// harmonic face diffusivities D_nm = 2/(1/D_n + 1/D_m), across jumps of D and q alike. For
+// other Λ (and BGK, Λ_n = (τ_n − ½)²) non-local terms remain: c is then the 1D value only.
+double source_offset_coefficient(double magic);
 
 // Boundary condition of one side (docs/transport.md §3):
 //  periodic            : populations leaving one side enter the opposite one.
@@ -83,6 +110,10 @@ class TransportLattice {
   // D = c_s² (τ − ½). The uniform value; also resets an enabled per-node field.
   void set_uniform_diffusivity(double D);
   double uniform_diffusivity() const { return uniform_D_; }
+  // Collision operator (Collision above); throws std::invalid_argument for Λ ≤ 0.
+  void set_collision(CollisionModel c);
+  const CollisionModel& collision() const { return collision_; }
+
   // Per-node D: allocated (filled with the uniform value) on the first call.
   std::span<double> diffusivity();
   bool has_diffusivity_field() const { return !D_field_.empty(); }
@@ -113,6 +144,10 @@ class TransportLattice {
   double stored_amount() const;  // M = Σ_n Σ_i g*_i
   const MassBalance& mass_balance() const { return balance_; }
 
+  // Ĉ_n = C_n + c q_tot,n / D_n of eq T7 (c from the collision's Λ; BGK: Λ_n = (τ_n − ½)²),
+  // q_tot of the last collision: the concentration the steady finite-volume scheme would have.
+  double source_corrected_concentration(std::size_t n) const;
+
   // Net amount per step crossing the east face (x+½) and the north face (y+½) of each
   // node during the next streaming (eq T6): exactly the discrete flux, including the
   // faces on the sides (as the boundary condition gives). Size N each.
@@ -129,6 +164,7 @@ class TransportLattice {
   Stencil stencil_;
   TransportBoundaries boundaries_;
   double uniform_D_ = 1.0 / 6.0;  // τ = 1
+  CollisionModel collision_{};
   std::vector<double> g_, g_next_, C_;
   std::vector<double> D_field_, source_, decay_, ux_, uy_;
   std::vector<double> row_source_, row_boundary_, row_amount_, row_scale_;

@@ -9,6 +9,7 @@
 
 #include "common/case_support.hpp"
 #include "common/error.hpp"
+#include "deoxy_mask.hpp"
 #include "interior/geometry.hpp"
 #include "interior/index_field.hpp"
 #include "membrane/shapes.hpp"
@@ -58,17 +59,29 @@ Result run(const Setup& s) {
   const Grid grid{n, n};
   const transport::TransportUnits units{s.h_um, s.dt_s};
   // Cell centred in the box; lattice units, node (i, j) at (i + ½, j + ½).
-  const auto cell = membrane::transformed(membrane::biconcave(s.markers, s.a_um), 1.0 / s.h_um, 0.0, 0.5 * n, 0.5 * n);
+  const auto cell = membrane::transformed(membrane::biconcave(s.markers, s.a_um), 1.0 / s.h_um, 0.0,
+                                          0.5 * n + s.offset_x_h, 0.5 * n + s.offset_y_h);
   res.polygon_area_um2 = std::abs(membrane::signed_area(cell)) * s.h_um * s.h_um;
-  // The cell's nodes and heme weights (Setup::representation).
-  std::vector<Weighted> heme;
+  // The cell's nodes: area fractions φ (D, C0), heme weights of the release (heme) and of the
+  // mean P (sample) (Setup::representation).
+  std::vector<Weighted> mask, heme, sample;
   if (s.representation == Representation::ray_cast) {
     std::vector<std::size_t> nodes;
     interior::ray_cast_inside_nodes(cell, ib::Domain{grid, false, false}, nodes);
-    for (std::size_t k : nodes) heme.push_back({k, 1.0});
+    for (std::size_t k : nodes) mask.push_back({k, 1.0});
+    heme = mask;
   } else {
-    for (const auto& f : area_fractions(cell, n, n)) heme.push_back({f.node, f.phi});
+    const auto fractions = area_fractions(cell, n, n);
+    for (const auto& f : fractions) mask.push_back({f.node, f.phi});
+    heme = mask;
+    if (s.representation != Representation::area_fraction) {
+      std::vector<Weighted> moment;
+      for (const auto& f : first_moment_weights(cell, n, n, fractions)) moment.push_back({f.node, f.phi});
+      if (s.representation == Representation::area_fraction_moment) heme = moment;
+      sample = moment;
+    }
   }
+  if (sample.empty()) sample = heme;
   if (heme.empty()) throw InputError("deoxy::run: no interior node (h too coarse)");
   double w_sum = 0.0;
   for (const auto& c : heme) w_sum += c.w;
@@ -77,14 +90,22 @@ Result run(const Setup& s) {
 
   const transport::Side held{transport::SideKind::fixed_concentration, s.C_b_uM};
   transport::TransportLattice o2(grid, transport::Stencil::d2q5, {held, held, held, held});
+  o2.set_collision(s.collision);
   o2.set_uniform_diffusivity(units.diffusivity(s.D_out));
   auto D = o2.diffusivity();
   std::vector<double> C0(grid.size(), s.C_b_uM);
-  for (const auto& c : heme) {
+  const double C0_in = s.C0_in_uM < 0.0 ? s.hb.alpha * s.P0_torr : s.C0_in_uM;
+  for (const auto& c : mask) {
     // mixed node: series resistance 1/D = φ/D_in + (1 − φ)/D_out (as reference_rbc.py);
     // cell in equilibrium at P0 over its area fraction, medium C_b over the rest
     D[c.node] = units.diffusivity(1.0 / (c.w / s.D_in + (1.0 - c.w) / s.D_out));
-    C0[c.node] = c.w * s.hb.alpha * s.P0_torr + (1.0 - c.w) * s.C_b_uM;
+    C0[c.node] = c.w * C0_in + (1.0 - c.w) * s.C_b_uM;
+  }
+  if (s.link_diffusivity) {
+    std::vector<double> R_phi(grid.size(), 1.0 / s.D_out);
+    for (const auto& c : mask) R_phi[c.node] = c.w / s.D_in + (1.0 - c.w) / s.D_out;
+    const auto R = link_resistivities(cell, n, n, s.D_in, s.D_out, R_phi);
+    for (std::size_t k = 0; k < R.size(); ++k) D[k] = units.diffusivity(1.0 / R[k]);
   }
   o2.initialize(C0);
   auto q = o2.source();
@@ -98,13 +119,44 @@ Result run(const Setup& s) {
   res.S.t.push_back(0.0);
   res.S.y.push_back(S);
   double boundary_in = 0.0;
+  double P_prev = 0.0, r_prev = 0.0;  // P^{k−1} and r^{k−1} (Torr) of the outflow predictor
+  // Setup::source_corrected_P: the mean of Ĉ_n = C_n + c_n q_n / D_n (transport eq T7) is
+  // P̄ + κ r, r = this step's release in Torr, κ = Σ c_n w_n w'_n / D_n / Σ w (lattice D; w, w':
+  // sampling and release weights): the
+  // offset responds to the step's own release, so it enters the implicit solve: P_end =
+  // P^k − o^{k−1} + (1 + κ) r^k (C_heme scaled by 1 + κ in the solve only; the release itself
+  // is C_heme ΔS).
+  double kappa = 0.0;
+  if (s.source_corrected_P) {
+    std::vector<double> w_release(grid.size(), 0.0);
+    for (const auto& c : heme) w_release[c.node] = c.w;
+    for (const auto& c : sample) {
+      const double Dn = o2.diffusivity()[c.node], tm = 3.0 * Dn;  // τ − ½ (c_s² = 1/3)
+      const double magic = s.collision.kind == transport::Collision::trt ? s.collision.magic : tm * tm;
+      kappa += transport::source_offset_coefficient(magic) * c.w * w_release[c.node] / Dn;
+    }
+    kappa /= w_sum;
+  }
+  transport::HbParameters hb_end = s.hb;
+  hb_end.C_heme *= 1.0 + kappa;
   for (long k = 1; k <= steps; ++k) {
     // eq H1/H2 with P the heme-weighted mean of the current C over the cell's nodes
-    const double P = weighted_mean_P(heme, o2.concentration(), s.hb.alpha, w_sum);
-    // Setup::implicit_coupling: the layer's cell-implicit update (eq H3), else the lagged P.
-    const double S_new = s.implicit_coupling ? transport::advance_saturation_cell_implicit(s.hb, S, P, s.dt_s).saturation
-                                             : transport::advance_saturation(s.hb, S, P, s.dt_s).saturation;
+    const double P = weighted_mean_P(sample, o2.concentration(), s.hb.alpha, w_sum);
+    // Setup::coupling (deoxy_run.hpp): outflow of the last step o^{k−1} = P^{k−1} + r^{k−1} − P^k
+    const double outflow = k == 1 ? 0.0 : P_prev + r_prev - P;
+    double S_new = S;
+    switch (s.coupling) {
+      case Coupling::explicit_lagged: S_new = transport::advance_saturation(s.hb, S, P, s.dt_s).saturation; break;
+      case Coupling::cell_implicit:
+        S_new = transport::advance_saturation_cell_implicit(s.hb, S, P, s.dt_s).saturation;
+        break;
+      case Coupling::cell_implicit_outflow:
+        S_new = transport::advance_saturation_cell_implicit(hb_end, S, std::max(0.0, P - outflow), s.dt_s).saturation;
+        break;
+    }
     const double released = s.hb.C_heme * (S - S_new);  // −C_heme ΔS, µM
+    P_prev = P;
+    r_prev = released / s.hb.alpha;
     S = S_new;
     std::fill(q.begin(), q.end(), 0.0);
     for (const auto& c : heme) q[c.node] = c.w * released;  // µM per step = lattice source (w = 1:

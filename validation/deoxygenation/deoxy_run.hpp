@@ -2,9 +2,9 @@
 // The 2D single-RBC deoxygenation model of the validation case (docs/validation-deoxygenation.md):
 // a still Evans–Fung biconcave section (membrane::biconcave) centred in a square box of
 // half-width L held at C_b on all four sides (fixed_concentration), D2Q5 O2 transport
-// (transport::TransportLattice, no fluid lattice), interior nodes by ray casting
-// (Setup::representation) and ONE cell-averaged saturation S driven by the mean P over
-// the cell's nodes (transport/hb_kinetics.hpp):
+// (transport::TransportLattice, no fluid lattice; BGK or TRT, Setup::collision), the cell
+// by area fractions or ray casting (Setup::representation) and ONE cell-averaged saturation
+// S driven by the mean P over the cell's nodes (transport/hb_kinetics.hpp; Setup::coupling):
 //   dS/dt = −(k_off/M)[S − (1 − S)(P/P50)ⁿ],  release −C_heme dS/dt spread over the cell.
 #include <cstddef>
 #include <string>
@@ -13,6 +13,7 @@
 #include "common/calibration.hpp"
 #include "membrane/polygon.hpp"
 #include "transport/hb_kinetics.hpp"
+#include "transport/transport_lattice.hpp"
 
 namespace erythro::deoxy {
 
@@ -28,6 +29,35 @@ enum class Representation {
   // — the lattice counterpart of the reference's volume-fraction mask (reference_rbc.py).
   // Σ φ_n h² equals the polygon's area to round-off at every h.
   area_fraction,
+  // area_fraction for D and the initial C; heme weights by first moments (deoxy_mask.hpp):
+  // each cut node's φ spread bilinearly from the centroid of its inside part, so that the
+  // release and the mean P see the heme where it is (first moment exact), not at the node.
+  area_fraction_moment,
+  // area_fraction for D, C0 and the release; the mean P sampled with the first-moment
+  // weights (bilinear interpolation of C at each cut node's inside centroid) only.
+  area_fraction_moment_sampling,
+};
+
+// How S and the lattice's mean P are advanced together over one step (eq H3 of
+// transport/hb_kinetics.hpp; P^k = heme-weighted mean P of the lattice after step k,
+// r^k = C_heme (S^k − S^{k+1})/α the release of step k in Torr):
+enum class Coupling {
+  // advance_saturation at P^k (the module's recipe). Stable only for λ_eff Δt < 2, accurate
+  // for λ_eff Δt ≪ 1, λ_eff = (k_off/M)(1 + (P/P50)ⁿ)(1 + (C_heme/α) dS_eq/dP) ≈ 3.4e4/M 1/s.
+  explicit_lagged,
+  // cell-implicit: S^{k+1} from P_end = P^k + r^k (the step's release kept in the cell),
+  // solved by bisection — unconditionally stable, but P_end ignores the O2 that leaves the
+  // cell during the step: an O(Δt) error of P_end of ≈ r^k itself, which the heme buffer
+  // (C_heme/α ≈ 1.6e4 Torr per unit S) makes large: ≈ 0.04 Torr at Δt = 2.5 µs, a shift of
+  // S_eq comparable to the kinetic lag (measured: halving Δt moves the fitted ln M by 0.056
+  // at h = 0.2 µm).
+  cell_implicit,
+  // cell-implicit with the outflow predicted from the previous step:
+  //   P_end = P^k − o^{k−1} + r^k,   o^{k−1} = P^{k−1} + r^{k−1} − P^k
+  // (o = what the lattice took out of the cell's mean P in the last step besides the
+  // release): second order on the slow manifold (P_end = 2P^k − P^{k−1} + r^k − r^{k−1}),
+  // the release still implicit (the stiff S–P exchange stays stable).
+  cell_implicit_outflow,
 };
 
 struct Setup {
@@ -37,20 +67,30 @@ struct Setup {
   double t_end_s = 1.8;
   double C_b_uM = 20.0;       // held on the box
   double P0_torr = 100.0;     // initial equilibrium of the cell
+  // Initial free O2 in the cell, µM; < 0: α P0 (in equilibrium with S0 = Hill(P0), the case).
+  // A probe value (e.g. C_b) removes the initial jump of C at the membrane (deoxy_probe).
+  double C0_in_uM = -1.0;
   double D_out = 2800.0;      // µm²/s (parameters.md)
   double D_in = 950.0;        // µm²/s (Clark et al. 1985, R; PROVENANCE.md)
   double a_um = 3.91;         // equivalent radius (parameters.md)
   int markers = 800;          // polygon resolution of the mask (spacing ≈ 0.024 µm)
+  // Offset of the cell's centre from the box centre, in units of h (probe of how the
+  // lattice cuts the cell; the centred cell is a symmetric point, so the continuum S̄(t)
+  // changes only at second order in the offset).
+  double offset_x_h = 0.0, offset_y_h = 0.0;
   transport::HbParameters hb{};  // k_off, C_heme, α, P50, n, M
   // Coupling of S and the lattice O2 over one step (docs/validation-deoxygenation.md):
-  //  false: explicit — advance_saturation at the mean P of the step's start (the module's
-  //         recipe). Stable only for λ_eff Δt < 2, accurate for λ_eff Δt ≪ 1, with
-  //         λ_eff = (k_off/M)(1 + (P/P50)ⁿ)(1 + (C_heme/α) dS_eq/dP) ≈ 3.4e4/M 1/s near P50;
-  //  true : cell-implicit — P at the END of the step, P_new = P + C_heme (S − S_new)/α
-  //         (the released O2 still in the cell), S_new = advance_saturation(S, P_new)
-  //         solved by bisection: unconditionally stable.
-  bool implicit_coupling = true;
+  Coupling coupling = Coupling::cell_implicit;
   Representation representation = Representation::area_fraction;
+  // Collision of the O2 lattice (transport_lattice.hpp): BGK, or TRT with a uniform Λ.
+  transport::CollisionModel collision{};
+  // Mean P from the source-offset-corrected concentration Ĉ_n = C_n + c q_n / D_n
+  // (transport_lattice.hpp eq T7; exact steady finite-volume equivalence for TRT Λ = 1/4);
+  // with Coupling::cell_implicit_outflow only (the offset enters its implicit solve).
+  bool source_corrected_P = false;
+  // Probe: node D by link-wise least squares (deoxy_mask.hpp link_resistivities) instead of
+  // the area-fraction series rule.
+  bool link_diffusivity = false;
 };
 
 struct Result {

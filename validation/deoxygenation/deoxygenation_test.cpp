@@ -48,6 +48,18 @@ constexpr double kFdLnM = 0.02;
 // the cell's representation on the lattice (docs/validation-deoxygenation.md, "Set-up").
 constexpr double kDtAt0p2 = 2.5e-6;  // τ_out = 1.025, τ_in = 0.678
 constexpr deoxy::Representation kRepresentation = deoxy::Representation::area_fraction;
+// Collision of the O2 lattice: TRT with the SAME magic parameter Λ = 1/4 at every node
+// (transport_lattice.hpp eq T3'), and the mean P from the source-offset-corrected C (eq T7):
+// together the lattice's steady state is EXACTLY the 5-point finite-volume scheme with harmonic
+// face D — the discretisation of the reference (reference_rbc.py) — whatever τ_in, τ_out.
+// BGK (former) has Λ_n = (τ_n − ½)², 0.276 outside and 0.032 inside the cell: τ-dependent
+// interface and source errors (docs, "Findings").
+constexpr transport::CollisionModel kCollision{transport::Collision::trt, 0.25};
+constexpr bool kSourceCorrectedP = true;
+// Coupling of S and the lattice over a step: cell-implicit with the outflow predicted from the
+// previous step (deoxy_run.hpp): removes the O(Δt) error of the plain cell-implicit update,
+// which moved the fitted ln M by 0.11 at h = 0.2 µm (docs, "Findings").
+constexpr deoxy::Coupling kCoupling = deoxy::Coupling::cell_implicit_outflow;
 
 std::string fmt(const char* f, double v) {
   char b[96];
@@ -134,6 +146,9 @@ Runner make_runner(double h, double t_end) {
   r.base.dt_s = deoxy::diffusive_dt(h, kDtAt0p2);
   r.base.t_end_s = t_end;
   r.base.representation = kRepresentation;
+  r.base.collision = kCollision;
+  r.base.source_corrected_P = kSourceCorrectedP;
+  r.base.coupling = kCoupling;
   return r;
 }
 
@@ -185,10 +200,15 @@ void describe(io::ResultRecord& rec, double t_end) {
                                 "cylinder r <= 6 um, |z| <= 6 um held at 20 uM; planar reference: the same square)");
   rec.set_parameter("initial_state", "cell in equilibrium at P0 = 100 Torr (S0 = Hill(100) = 0.9722), medium 20 uM");
   rec.set_parameter("kinetics", "dS/dt = -(k_off/M)[S - (1-S)(P/P50)^n], P = heme-weighted mean over the cell's nodes "
-                                "(hb_kinetics.hpp), cell-implicit coupling (deoxy_run.hpp)");
+                                "(hb_kinetics.hpp)");
   rec.set_parameter("D_in_um2_s", 950.0);
   rec.set_parameter("D_out_um2_s", 2800.0);
   rec.set_parameter("dt_scaling", "diffusive: dt = 2.5 us (h/0.2 um)^2, tau_out = 1.025, tau_in = 0.678 at every level");
+  rec.set_parameter("collision", "TRT, magic parameter Lambda = 1/4 at every node (tau+ = 1/2 + Lambda/(tau- - 1/2), "
+                                 "tau- = 1/2 + 3 D), mean P from C + q/(12 D) (transport eq T7: exact steady "
+                                 "finite-volume equivalence, harmonic face D)");
+  rec.set_parameter("coupling", "cell-implicit with the outflow of the previous step: P_end = P^k - o^(k-1) + (1 + "
+                                "kappa) r^k (deoxy_run.hpp); the fitted M no longer depends on dt");
   rec.set_parameter("mask", "area fraction phi of each node's square inside membrane::biconcave(800 markers, a = 3.91 "
                             "um) (exact clipping): heme weight phi, P mean weighted by phi, 1/D = phi/D_in + "
                             "(1-phi)/D_out, C0 = phi*130 + (1-phi)*20 uM (the reference's volume-fraction mask)");
@@ -299,9 +319,10 @@ TEST(Deoxygenation, CiSubset) {
 // level a full-tier case affords.
 const std::vector<double> kLevels{0.4, 0.3, 0.2, 0.15};
 // Levels after the second: Brent on ln M(previous level) ± kWarmHalfBracket (M within
-// −10 %/+11 %), tolerance 1e-3 in ln M. A fit ending on that bracket's edge means
-// |ΔM| > 9.5 %, far outside the 2 % requirement: the check below then fails, as it must.
-constexpr double kWarmHalfBracket = 0.1;
+// −22 %/+28 %), tolerance 1e-3 in ln M (probes at fixed M: level-to-level shifts of ln M up
+// to 0.16 with this set-up, docs "Findings"). A fit ending on that bracket's edge means
+// |ΔM| > 22 %, far outside the 2 % requirement: the check below then fails, as it must.
+constexpr double kWarmHalfBracket = 0.25;
 // The calibrated RMS misfit is the model-form floor (one lumped S against local kinetics)
 // once lattice error is below it; measured with this set-up at every level (0.4–0.15 µm).
 // Lattice error under control = the calibrated RMS misfit at each level within 5 % of that
@@ -343,7 +364,7 @@ TEST(Deoxygenation, FullStudy) {
   describe(rec, ref.t.back());
   rec.set_parameter("levels", "h = 0.4, 0.3, 0.2, 0.15 um (dt = 10, 5.625, 2.5, 1.406 us); 0.4, 0.3 um: Brent on ln M "
                               "over [ln 0.05, ln 4] (tolerance 0.01, 1e-3), 3D-cell fits (tolerance 0.01); 0.2, "
-                              "0.15 um: Brent on ln M(previous level) +- 0.1 (tolerance 1e-3)");
+                              "0.15 um: Brent on ln M(previous level) +- 0.25 (tolerance 1e-3)");
   rec.set_parameter("curve_change_fixed_M_rms", curve_change_rms);
   rec.set_parameter("curve_change_fixed_M_predicted_dlnM", predicted_dlnM);
   io::Series mh;

@@ -8,6 +8,8 @@
 // Variant verification.transport_layered_slab_contrast: D_NO × {1, 1/3, 1, 2} per
 // layer (the per-node τ jumps between two rows): still second order, with the
 // interface C reconstructed flux-continuously, (D_a C_a + D_b C_b)/(D_a + D_b).
+// Variant verification.transport_layered_slab_contrast_trt: the contrast stack with the
+// TRT collision at Λ = 1/4 (transport_lattice.hpp, Collision::trt): the same orders.
 // Reference: layered_slab.hpp (derivation: docs/verification-transport.md): in each
 // layer D C'' − k C + q = 0, C and D C' continuous at interfaces, zero flux at the
 // lumen centre (symmetry) and at the tissue edge. Parameters (parameters.md): lumen
@@ -57,7 +59,8 @@ struct SlabRun {
   int rows;
 };
 
-SlabRun run_slab(Stencil stencil, int m, bool contrast, Placement placement = Placement::midway) {
+SlabRun run_slab(Stencil stencil, int m, bool contrast, Placement placement = Placement::midway,
+                 CollisionModel collision = {}) {
   const double h = 2.5 / m;
   const auto L = layers(contrast, placement == Placement::midway ? 0.0 : 0.5 * h);
   const vv::LayeredSlab exact(L);
@@ -68,6 +71,7 @@ SlabRun run_slab(Stencil stencil, int m, bool contrast, Placement placement = Pl
   b.top = {SideKind::zero_flux, 0.0};
   const Grid g{1, rows};
   TransportLattice lat(g, stencil, b);
+  lat.set_collision(collision);
   lat.set_uniform_diffusivity(units.diffusivity(kDNO));
   auto D = lat.diffusivity();
   auto q = lat.source();
@@ -117,7 +121,8 @@ SlabRun run_slab(Stencil stencil, int m, bool contrast, Placement placement = Pl
   return {vv::relative_l2(C, ref), err_c, err_f, run, rows};
 }
 
-void layered_slab_case(const std::string& case_name, const std::vector<int>& refinements, bool contrast = false) {
+void layered_slab_case(const std::string& case_name, const std::vector<int>& refinements, bool contrast = false,
+                       CollisionModel collision = {}) {
   vv::Stopwatch total;
   io::ResultRecord record(case_name, "transport");
   record.set_requirement(
@@ -137,6 +142,9 @@ void layered_slab_case(const std::string& case_name, const std::vector<int>& ref
   record.set_parameter("tau", kTau);
   record.set_parameter("R_NO_uM_per_s", no_production(70.0, 50.0, 4.7));
   record.set_parameter("D_factors", std::string(contrast ? "1, 1/3, 1, 2" : "1, 1, 1, 1"));
+  record.set_parameter("collision", collision.kind == Collision::trt
+                                        ? "TRT, magic parameter " + std::to_string(collision.magic)
+                                        : std::string("BGK"));
   double worst_balance = 0.0;
   for (auto stencil : {Stencil::d2q5, Stencil::d2q9}) {
     const std::string name = stencil == Stencil::d2q5 ? "D2Q5" : "D2Q9";
@@ -147,7 +155,7 @@ void layered_slab_case(const std::string& case_name, const std::vector<int>& ref
                               0.0, 0.15, false, ""};
     io::SpeedErrorSeries speed{name, {}, {}, {}};
     for (int m : refinements) {
-      const SlabRun r = run_slab(stencil, m, contrast);
+      const SlabRun r = run_slab(stencil, m, contrast, Placement::midway, collision);
       EXPECT_TRUE(r.run.converged) << name << " m=" << m;
       worst_balance = std::max(worst_balance, r.run.worst_mass_residual);
       record.add_run({{"stencil", name}, {"m", double(m)}, {"rows", double(r.rows)},
@@ -203,6 +211,12 @@ TEST(TransportLayeredSlabFull, PiecewiseExactSolutionSecondOrder) {
 // (τ 0.83 … 2.5 across the stack).
 TEST(TransportLayeredSlabContrast, PiecewiseExactSolutionSecondOrder) {
   layered_slab_case("verification.transport_layered_slab_contrast", {1, 2, 4}, true);
+}
+
+// CI tier: the contrast stack with the TRT collision, Λ = 1/4 (the deoxygenation case's
+// choice, docs/validation-deoxygenation.md): the option must keep second order at a D jump.
+TEST(TransportLayeredSlabContrastTrt, PiecewiseExactSolutionSecondOrder) {
+  layered_slab_case("verification.transport_layered_slab_contrast_trt", {1, 2, 4}, true, {Collision::trt, 0.25});
 }
 
 // Full tier: interfaces through node centres (the situation of a membrane cutting the
