@@ -1,6 +1,7 @@
 #include "simulation/cell_physics.hpp"
 
 #include <algorithm>
+#include <chrono>
 
 namespace erythro::sim {
 
@@ -32,9 +33,11 @@ std::span<const membrane::Polygon> CellPhysics::polygons_from_cells() {
 }
 
 void CellPhysics::refresh_viscosity(fluid::FluidLattice& lattice) {
+  const auto start = std::chrono::steady_clock::now();
   index_->update(polygons_from_cells());
   // Eq 27: τ(x) = ½ + 3[ν_in + (ν_ex − ν_in) I(x)], rewritten only where I changed.
   index_->write_changed_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);
+  index_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 void CellPhysics::advance(fluid::FluidLattice& lattice, long step) {

@@ -33,6 +33,8 @@ class CellPhysics {
   // The aggregation, or nullptr; its statistics of the last step.
   const aggregation::MorseAggregation* aggregation() const { return aggregation_ ? &*aggregation_ : nullptr; }
   const aggregation::AggregationStats& aggregation_stats() const { return aggregation_stats_; }
+  // Wall time spent so far rebuilding the index field and writing τ (s).
+  double index_field_seconds() const { return index_seconds_; }
 
  private:
   void refresh_viscosity(fluid::FluidLattice& lattice);
@@ -45,6 +47,7 @@ class CellPhysics {
   std::vector<membrane::Polygon> polygons_;  // scratch for the index field
   double nu_interior_ = 0.0, nu_exterior_ = 0.0;
   long index_interval_ = 1;
+  double index_seconds_ = 0.0;
 };
 
 }  // namespace erythro::sim

@@ -53,6 +53,9 @@ struct RunSummary {
   long steps = 0;
   double wall_time_s = 0.0;
   double mlups = 0.0;     // million lattice-node updates per second
+  // Of wall_time_s: rebuilding the interior index field and its τ (0 without one),
+  // measured inside the run, so its share of the step is free of run-to-run host noise.
+  double index_field_time_s = 0.0;
   std::string diagnosis;  // health monitor's message when diverged
   int threads = 1;
 };
