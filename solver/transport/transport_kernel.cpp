@@ -34,8 +34,8 @@ struct Rates {
 };
 
 inline Rates rates_for(double D, bool trt, double magic) {
-  const double s = kInvCs2 * D;  // τ − ½ = τ⁻ − ½
-  return {1.0 / (0.5 + s), trt ? 1.0 / (0.5 + magic / s) : 1.0 / (0.5 + s)};
+  const double omega = 1.0 / tau_for_diffusivity(D);  // τ⁻ = ½ + D/c_s² (sets D)
+  return {omega, trt ? 1.0 / (0.5 + magic / (kInvCs2 * D)) : omega};  // τ⁺ = ½ + Λ/(τ⁻ − ½)
 }
 
 // The collision of one node (eqs T2–T4, T3 or T3'): g holds the streamed populations and

@@ -194,13 +194,17 @@ void TransportLattice::step() {
   balance_ = b;
 }
 
-double TransportLattice::source_corrected_concentration(std::size_t n) const {
-  if (source_.empty()) return C_[n];
+double TransportLattice::source_offset_factor(std::size_t n) const {
   const double D = D_field_.empty() ? uniform_D_ : D_field_[n];
   const double s = kInvCs2 * D;  // τ − ½
   const double magic = collision_.kind == Collision::trt ? collision_.magic : s * s;
+  return source_offset_coefficient(magic) / D;  // eq T7
+}
+
+double TransportLattice::source_corrected_concentration(std::size_t n) const {
+  if (source_.empty()) return C_[n];
   const double q_tot = source_[n] - decay_[n] * C_[n];
-  return C_[n] + source_offset_coefficient(magic) * q_tot / D;  // eq T7
+  return C_[n] + source_offset_factor(n) * q_tot;  // eq T7
 }
 
 double TransportLattice::total_amount() const {

@@ -147,6 +147,8 @@ class TransportLattice {
   // Ĉ_n = C_n + c q_tot,n / D_n of eq T7 (c from the collision's Λ; BGK: Λ_n = (τ_n − ½)²),
   // q_tot of the last collision: the concentration the steady finite-volume scheme would have.
   double source_corrected_concentration(std::size_t n) const;
+  // c(Λ_n)/D_n of eq T7 at node n (BGK: Λ_n = (τ_n − ½)²): Ĉ_n − C_n per unit q_tot,n.
+  double source_offset_factor(std::size_t n) const;
 
   // Net amount per step crossing the east face (x+½) and the north face (y+½) of each
   // node during the next streaming (eq T6): exactly the discrete flux, including the

@@ -130,11 +130,7 @@ Result run(const Setup& s) {
   if (s.source_corrected_P) {
     std::vector<double> w_release(grid.size(), 0.0);
     for (const auto& c : heme) w_release[c.node] = c.w;
-    for (const auto& c : sample) {
-      const double Dn = o2.diffusivity()[c.node], tm = 3.0 * Dn;  // τ − ½ (c_s² = 1/3)
-      const double magic = s.collision.kind == transport::Collision::trt ? s.collision.magic : tm * tm;
-      kappa += transport::source_offset_coefficient(magic) * c.w * w_release[c.node] / Dn;
-    }
+    for (const auto& c : sample) kappa += o2.source_offset_factor(c.node) * c.w * w_release[c.node];
     kappa /= w_sum;
   }
   transport::HbParameters hb_end = s.hb;
