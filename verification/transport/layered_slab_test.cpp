@@ -128,7 +128,9 @@ void layered_slab_case(const std::string& case_name, const std::vector<int>& ref
   record.set_requirement(
       std::string("Steady NO across lumen (25 um, 382.5 1/s) / EC (2.5 um, eNOS source at 70 Torr) / SM (10 um, "
                   "1 1/s) / tissue (100 um, 1 1/s)") +
-      (contrast ? ", with D_NO x {1, 1/3, 1, 2} per layer (a diffusivity jump at every interface)," : "") +
+      (contrast ? ", with D_NO x {1, 1/3, 1, 2} per layer (a diffusivity jump at every interface)" : "") +
+      (collision.kind == Collision::trt ? ", with the TRT collision (magic parameter " + std::to_string(collision.magic) +
+                                              " at every node)" : "") +
       ", with interfaces midway between node rows, converges at second order (2 +- 0.15, D2Q5 and D2Q9) to the exact "
       "piecewise solution; the interface concentration (flux-continuous interpolation) and the interface flux "
       "converge with a finest local order 2 +- 0.15; mass balance closes to <= 1e-13 relative in every step.");
