@@ -13,9 +13,7 @@ namespace erythro::aggregation {
 
 namespace {
 
-// Below this many markers a parallel region costs more than it saves (a doublet of
-// 2 × 100 markers: ~10 µs of work per call).
-constexpr std::size_t kParallelMarkers = 2000;
+constexpr std::size_t kParallelMarkers = MorseAggregation::kParallelMarkers;
 
 // Minimum-image difference on a periodic axis of length L, inv = 1/L. Symmetric:
 // image(−d) = −image(d) bit for bit (−d·inv = −(d·inv) exactly, and round-to-nearest-even

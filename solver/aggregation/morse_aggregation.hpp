@@ -80,6 +80,10 @@ class MorseAggregation {
 
   const MorseParameters& parameters() const { return morse_.parameters(); }
   const ib::Domain& domain() const { return domain_; }
+  // Below this many markers a parallel region costs more than it saves (a doublet of
+  // 2 × 100 markers: ~10 µs of work per call), and add_forces runs on one thread.
+  static constexpr std::size_t kParallelMarkers = 2000;
+  static bool threads_forces(std::size_t markers) { return markers >= kParallelMarkers; }
   // Bins per axis of the cell list (for tests and the benchmark).
   int bins_x() const { return nbx_; }
   int bins_y() const { return nby_; }

@@ -248,6 +248,7 @@ void RunWriter::on_finish(const sim::RunSummary& summary) {
                               {"steps", summary.steps},
                               {"wall_time_s", summary.wall_time_s},
                               {"index_field_time_s", summary.index_field_time_s},
+                              {"index_field_exposed_time_s", summary.index_field_exposed_time_s},
                               {"mlups", summary.mlups}});
   meta.reset();
   close_and_commit();

@@ -38,7 +38,7 @@ void ImmersedCells::compute_forces() {
   std::fill(fy_.begin(), fy_.end(), 0.0);
   const int n = cell_count();
   // Cells own disjoint marker ranges: parallel over cells is race-free and deterministic.
-#pragma omp parallel for schedule(dynamic) if (n >= 4)
+#pragma omp parallel for schedule(dynamic) if (threads_forces())
   for (int c = 0; c < n; ++c) {
     add_membrane_forces(cells_[c].model, cells_[c].rest, x(c), y(c), range(fx_, c), range(fy_, c));
   }

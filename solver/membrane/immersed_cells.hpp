@@ -51,7 +51,10 @@ class ImmersedCells {
 
   // Step 1: overwrites the marker forces with the internal membrane forces
   // (other forces, e.g. aggregation, may be added to marker_fx/fy afterwards).
+  // Parallel over cells from kParallelCells cells on (threads_forces()), else one thread.
   void compute_forces();
+  static constexpr int kParallelCells = 4;
+  bool threads_forces() const { return cell_count() >= kParallelCells; }
   // Step 2: zeroes the lattice force field, then spreads the marker forces into it.
   void spread_forces(fluid::FluidLattice& lattice);
   // Step 2 without the zeroing: ADDS the spread marker forces to the lattice force

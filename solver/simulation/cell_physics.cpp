@@ -2,6 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <exception>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 namespace erythro::sim {
 
@@ -33,22 +38,81 @@ std::span<const membrane::Polygon> CellPhysics::polygons_from_cells() {
 }
 
 void CellPhysics::refresh_viscosity(fluid::FluidLattice& lattice) {
-  const auto start = std::chrono::steady_clock::now();
   index_->update(polygons_from_cells());
   // Eq 27: τ(x) = ½ + 3[ν_in + (ν_ex − ν_in) I(x)], rewritten only where I changed.
   index_->write_changed_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);
-  index_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void CellPhysics::compute_marker_forces() {
+  cells_.compute_forces();
+  if (aggregation_) aggregation_stats_ = aggregation_->add_forces(cells_);
+}
+
+bool CellPhysics::index_beside_forces() const {
+#if defined(_OPENMP)
+  // Only when the force stage would run on one thread anyway: inside the two-section
+  // region a nested parallel loop gets one thread, which would slow a threaded stage.
+  const bool forces_threaded = cells_.threads_forces() ||
+                               (aggregation_ && aggregation::MorseAggregation::threads_forces(cells_.marker_count()));
+  return omp_get_max_threads() > 1 && !forces_threaded;
+#else
+  return false;
+#endif
+}
+
+void CellPhysics::refresh_viscosity_beside_forces(fluid::FluidLattice& lattice) {
+  using clock = std::chrono::steady_clock;
+  // The index field reads the marker positions and writes τ; the force stage reads the
+  // positions and writes the marker forces: independent, so they run side by side, and
+  // each gives the same bits as when run one after the other. An exception cannot leave
+  // an OpenMP section: each section keeps its own, rethrown in serial order afterwards.
+  std::exception_ptr index_error, forces_error;
+  double index_s = 0.0, forces_s = 0.0;
+  const auto start = clock::now();
+#pragma omp parallel sections num_threads(2)
+  {
+#pragma omp section
+    {
+      try {
+        refresh_viscosity(lattice);
+      } catch (...) {
+        index_error = std::current_exception();
+      }
+      index_s = std::chrono::duration<double>(clock::now() - start).count();
+    }
+#pragma omp section
+    {
+      const auto forces_start = clock::now();
+      try {
+        compute_marker_forces();
+      } catch (...) {
+        forces_error = std::current_exception();
+      }
+      forces_s = std::chrono::duration<double>(clock::now() - forces_start).count();
+    }
+  }
+  const double region_s = std::chrono::duration<double>(clock::now() - start).count();
+  index_seconds_ += index_s;
+  index_exposed_seconds_ += std::max(0.0, region_s - forces_s);  // what the region added to the force stage
+  if (index_error) std::rethrow_exception(index_error);
+  if (forces_error) std::rethrow_exception(forces_error);
 }
 
 void CellPhysics::advance(fluid::FluidLattice& lattice, long step) {
-  if (index_ && step > 0 && step % index_interval_ == 0) refresh_viscosity(lattice);
-  if (!aggregation_) {
-    cells_.advance(lattice);
-    return;
+  const bool refresh = index_ && step > 0 && step % index_interval_ == 0;
+  if (refresh && index_beside_forces()) {
+    refresh_viscosity_beside_forces(lattice);
+  } else {
+    if (refresh) {
+      const auto start = std::chrono::steady_clock::now();
+      refresh_viscosity(lattice);
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      index_seconds_ += s;
+      index_exposed_seconds_ += s;
+    }
+    compute_marker_forces();
   }
-  // ImmersedCells::advance with the aggregation forces added to the membrane forces.
-  cells_.compute_forces();
-  aggregation_stats_ = aggregation_->add_forces(cells_);
+  // ImmersedCells::advance after its force stage (the aggregation forces, if any, added).
   cells_.spread_forces(lattice);
   lattice.step();
   cells_.support_velocity(lattice);

@@ -23,7 +23,10 @@ class CellPhysics {
 
   // One step: [index field → τ every k steps], membrane forces [+ aggregation],
   // spreading (the lattice's uniform force adds to the field), fluid step, marker
-  // advection.
+  // advection. On two or more threads, when the force stage runs on one thread (fewer
+  // than ImmersedCells::kParallelCells cells and MorseAggregation::kParallelMarkers
+  // markers), the index field is rebuilt on a second thread beside the force stage
+  // (independent: same results). docs/performance.md, "Index field".
   // Throws std::domain_error (non-finite marker) or interior::FillLeakError.
   void advance(fluid::FluidLattice& lattice, long step);
 
@@ -33,11 +36,19 @@ class CellPhysics {
   // The aggregation, or nullptr; its statistics of the last step.
   const aggregation::MorseAggregation* aggregation() const { return aggregation_ ? &*aggregation_ : nullptr; }
   const aggregation::AggregationStats& aggregation_stats() const { return aggregation_stats_; }
-  // Wall time spent so far rebuilding the index field and writing τ (s).
+  // Wall time spent so far rebuilding the index field and writing τ (s), and the part of
+  // it the step waited for: all of it when run alone; when run beside the force stage,
+  // the time by which that two-thread region outlasted the force stage.
   double index_field_seconds() const { return index_seconds_; }
+  double index_field_exposed_seconds() const { return index_exposed_seconds_; }
+  // Whether advance() rebuilds the index field beside the force stage (two or more
+  // OpenMP threads and a force stage that runs on one).
+  bool index_beside_forces() const;
 
  private:
   void refresh_viscosity(fluid::FluidLattice& lattice);
+  void compute_marker_forces();  // membrane forces [+ aggregation]
+  void refresh_viscosity_beside_forces(fluid::FluidLattice& lattice);
   std::span<const membrane::Polygon> polygons_from_cells();
 
   membrane::ImmersedCells cells_;
@@ -47,7 +58,7 @@ class CellPhysics {
   std::vector<membrane::Polygon> polygons_;  // scratch for the index field
   double nu_interior_ = 0.0, nu_exterior_ = 0.0;
   long index_interval_ = 1;
-  double index_seconds_ = 0.0;
+  double index_seconds_ = 0.0, index_exposed_seconds_ = 0.0;
 };
 
 }  // namespace erythro::sim

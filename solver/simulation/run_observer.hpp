@@ -56,6 +56,9 @@ struct RunSummary {
   // Of wall_time_s: rebuilding the interior index field and its τ (0 without one),
   // measured inside the run, so its share of the step is free of run-to-run host noise.
   double index_field_time_s = 0.0;
+  // The part of index_field_time_s the step waited for: all of it on one thread; less
+  // when the field is rebuilt beside the force stage (sim::CellPhysics::advance).
+  double index_field_exposed_time_s = 0.0;
   std::string diagnosis;  // health monitor's message when diverged
   int threads = 1;
 };

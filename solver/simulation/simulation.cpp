@@ -341,7 +341,10 @@ RunSummary Simulation::run(RunObserver& observer) {
   summary.steps = step;
   summary.wall_time_s = std::chrono::duration<double>(clock::now() - start).count();
   summary.mlups = mlups;
-  if (cells_) summary.index_field_time_s = cells_->index_field_seconds();
+  if (cells_) {
+    summary.index_field_time_s = cells_->index_field_seconds();
+    summary.index_field_exposed_time_s = cells_->index_field_exposed_seconds();
+  }
   observer.on_finish(summary);
   return summary;
 }

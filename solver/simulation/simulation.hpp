@@ -33,6 +33,7 @@ class Simulation {
   const membrane::ImmersedCells* cells() const { return cells_ ? &cells_->cells() : nullptr; }
   // The index field of the interior viscosity, or nullptr when the scene sets none.
   const interior::IndexField* index_field() const { return cells_ ? cells_->index_field() : nullptr; }
+  const CellPhysics* cell_physics() const { return cells_.get(); }
 
  private:
   void apply_initial_condition();
