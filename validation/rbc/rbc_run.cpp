@@ -128,7 +128,12 @@ RbcResult run_rbc(const RbcConfig& c) {
     const auto t0 = std::chrono::steady_clock::now();
     const Polygon p = cells.polygon(0);
     const interior::FillReport& fr = field->update(std::span<const Polygon>(&p, 1));
-    field->write_relaxation_times(lat.tau_field(), nu_in, nu);
+    // Eq 27: the whole τ field once, then only where I changed (bitwise the same;
+    // IndexField::write_changed_relaxation_times), as sim::CellPhysics does.
+    if (r.index_updates == 0)
+      field->write_relaxation_times(lat.tau_field(), nu_in, nu);
+    else
+      field->write_changed_relaxation_times(lat.tau_field(), nu_in, nu);
     r.max_fill_mismatch = std::max(r.max_fill_mismatch, fr.max_area_mismatch / A0);
     r.fallback_cells = std::max(r.fallback_cells, fr.fallback_cells);
     ++r.index_updates;
