@@ -38,9 +38,42 @@ inline Rates rates_for(double D, bool trt, double magic) {
   return {omega, trt ? 1.0 / (0.5 + magic / (kInvCs2 * D)) : omega};  // τ⁺ = ½ + Λ/(τ⁻ − ½)
 }
 
+// The D2Q5 collision with a per-node diffusivity TENSOR (docs/transport.md eq T8; Yoshida &
+// Nagaoka 2010, J Comput Phys 229:7774, relaxation of the flux moment by a matrix; Ginzburg
+// 2005, Adv Water Resour 28:1171, link-wise symmetric rates). Moments of the moving pairs:
+//   j = (g1 − g3, g2 − g4),  e_x = g1 + g3,  e_y = g2 + g4,  g0 = m − e_x − e_y;
+//   j*   = j − Ω (j − C u) + (I − Ω/2) q_tot u,    Ω = (½ I + D/c_s²)⁻¹   (2×2; sets D_ij)
+//   e_a* = e_a − ω⁺_a (e_a − C/3) + (1 − ω⁺_a/2) q_tot/3,  ω⁺_a = 1/(½ + Λ/(D_aa/c_s²)),
+//   g0*  = m + q_tot − e_x* − e_y*   (mass exactly conserved, as T3').
+// With D_xy = 0 and D_xx = D_yy = D this is T3' (unit test TransportTensor.ReducesToScalarTrtWhenIsotropic).
+// Returns Σ_i g*_i; g receives the post-collision populations.
+[[gnu::always_inline]] inline double collide_tensor(const KernelArgs& a, std::size_t n, double C, double q, double ux,
+                                                    double uy, double* g) {
+  const double dxx = a.Dxx[n], dyy = a.Dyy[n], dxy = a.Dxy[n];
+  const double txx = 0.5 + kInvCs2 * dxx, tyy = 0.5 + kInvCs2 * dyy, txy = kInvCs2 * dxy;  // T = ½ I + D/c_s²
+  const double inv_det = 1.0 / (txx * tyy - txy * txy);
+  const double oxx = tyy * inv_det, oyy = txx * inv_det, oxy = -txy * inv_det;  // Ω = T⁻¹
+  const double m = g[0] + g[1] + g[2] + g[3] + g[4];
+  const double jx = g[1] - g[3], jy = g[2] - g[4];
+  const double nx = jx - C * ux, ny = jy - C * uy;  // non-equilibrium flux
+  const double qx = q * ux, qy = q * uy;
+  const double jxs = jx - (oxx * nx + oxy * ny) + qx - 0.5 * (oxx * qx + oxy * qy);
+  const double jys = jy - (oxy * nx + oyy * ny) + qy - 0.5 * (oxy * qx + oyy * qy);
+  const double opx = 1.0 / (0.5 + a.magic / (kInvCs2 * dxx)), opy = 1.0 / (0.5 + a.magic / (kInvCs2 * dyy));
+  const double third = 1.0 / 3.0;
+  const double exs = (g[1] + g[3]) - opx * (g[1] + g[3] - third * C) + (1.0 - 0.5 * opx) * third * q;
+  const double eys = (g[2] + g[4]) - opy * (g[2] + g[4] - third * C) + (1.0 - 0.5 * opy) * third * q;
+  g[0] = m + q - exs - eys;
+  g[1] = 0.5 * (exs + jxs);
+  g[3] = 0.5 * (exs - jxs);
+  g[2] = 0.5 * (eys + jys);
+  g[4] = 0.5 * (eys - jys);
+  return m + q;
+}
+
 // The collision of one node (eqs T2–T4, T3 or T3'): g holds the streamed populations and
 // receives the post-collision ones; returns Σ_i g*_i in total and q_tot in q.
-template <class S, bool Vel, bool DField, bool React, bool Trt>
+template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor>
 [[gnu::always_inline]] inline void collide(const KernelArgs& a, std::size_t n, const Rates& uniform, double* g,
                                            double& total, double& q) {
   constexpr int Q = S::Q;
@@ -59,8 +92,15 @@ template <class S, bool Vel, bool DField, bool React, bool Trt>
     ux = a.ux[n];
     uy = a.uy[n];
   }
-  const Rates r = DField ? rates_for(a.D[n], Trt, a.magic) : uniform;
   double t = 0.0;
+  if constexpr (Tensor) {
+    static_assert(S::Q == 5 && Trt, "the diffusivity tensor is D2Q5 TRT only");
+    t = collide_tensor(a, n, C, q, ux, uy, g);
+    a.C[n] = C;
+    total = t;
+    return;
+  }
+  const Rates r = DField ? rates_for(a.D[n], Trt, a.magic) : uniform;
   if constexpr (!Trt) {
     const double omega = r.omega;
     const double src_pref = (1.0 - 0.5 * omega) * q;
@@ -109,7 +149,7 @@ inline double row_sum(const double* v, int len, bool absolute) {
 // Interior nodes n0 … n0+len−1 of one row: Q restrict source and destination
 // streams, no branches, so the loop vectorises along x (as the fluid kernel; named
 // pointers rather than arrays, which GCC would not vectorise).
-template <class S, bool Vel, bool DField, bool React, bool Trt>
+template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor>
 void interior_span(const KernelArgs& a, const double* const* src, double* const* out, std::size_t n0, int len,
                    const Rates& rates, double* __restrict total, double* __restrict qtot) {
   constexpr int Q = S::Q;
@@ -147,7 +187,7 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
       f[7 % Q] = s7[k];
       f[8 % Q] = s8[k];
     }
-    collide<S, Vel, DField, React, Trt>(a, n0 + static_cast<std::size_t>(k), rates, f, total[k], qtot[k]);
+    collide<S, Vel, DField, React, Trt, Tensor>(a, n0 + static_cast<std::size_t>(k), rates, f, total[k], qtot[k]);
     o0[k] = f[0];
     o1[k] = f[1];
     o2[k] = f[2];
@@ -162,7 +202,7 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
   }
 }
 
-template <class S, bool Vel, bool DField, bool React, bool Trt>
+template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor = false>
 void run(const KernelArgs& a) {
   constexpr int Q = S::Q;
   const Grid g = a.grid;
@@ -179,7 +219,7 @@ void run(const KernelArgs& a) {
         double f[Q];
         for (int i = 0; i < Q; ++i) f[i] = pull<S>(g, a.boundaries, a.src, x, y, i, boundary);
         const std::size_t n = g.index(x, y);
-        collide<S, Vel, DField, React, Trt>(a, n, rates, f, total[static_cast<std::size_t>(x)],
+        collide<S, Vel, DField, React, Trt, Tensor>(a, n, rates, f, total[static_cast<std::size_t>(x)],
                                        qtot[static_cast<std::size_t>(x)]);
         for (int i = 0; i < Q; ++i) a.dst[i * N + n] = f[i];
       };
@@ -194,7 +234,8 @@ void run(const KernelArgs& a) {
           s[i] = a.src + i * N + g.index(1 - S::cx[i], y - S::cy[i]);
           o[i] = a.dst + i * N + n0;
         }
-        interior_span<S, Vel, DField, React, Trt>(a, s, o, n0, g.nx - 2, rates, total.data() + 1, qtot.data() + 1);
+        interior_span<S, Vel, DField, React, Trt, Tensor>(a, s, o, n0, g.nx - 2, rates, total.data() + 1,
+                                                          qtot.data() + 1);
         general(g.nx - 1);
       }
       const auto r = static_cast<std::size_t>(y);
@@ -211,6 +252,13 @@ void with_collision(const KernelArgs& a) {
   return a.trt ? run<S, Vel, DField, React, true>(a) : run<S, Vel, DField, React, false>(a);
 }
 
+// Tensor diffusivity: D2Q5 with TRT only (checked by TransportLattice::step).
+void dispatch_tensor(const KernelArgs& a) {
+  const bool vel = a.ux != nullptr, react = a.source != nullptr;
+  if (vel) return react ? run<D2Q5, true, true, true, true, true>(a) : run<D2Q5, true, true, false, true, true>(a);
+  return react ? run<D2Q5, false, true, true, true, true>(a) : run<D2Q5, false, true, false, true, true>(a);
+}
+
 template <class S>
 void dispatch(const KernelArgs& a) {
   const bool vel = a.ux != nullptr, dfield = a.D != nullptr, react = a.source != nullptr;
@@ -225,6 +273,7 @@ void dispatch(const KernelArgs& a) {
 }  // namespace
 
 void stream_collide(const KernelArgs& args) {
+  if (args.Dxx != nullptr) return dispatch_tensor(args);
   if (args.stencil == Stencil::d2q5) return dispatch<D2Q5>(args);
   return dispatch<D2Q9>(args);
 }

@@ -19,6 +19,10 @@ struct KernelArgs {
   bool trt = false;    // collision: BGK (T3) or TRT with magic parameter Λ (T3')
   double magic = 0.25;
   const double* D = nullptr;       // optional per-node D
+  // optional per-node diffusivity tensor (D2Q5 TRT only, eq T8); replaces D when set
+  const double* Dxx = nullptr;
+  const double* Dyy = nullptr;
+  const double* Dxy = nullptr;
   const double* source = nullptr;  // optional q and k (both or neither)
   const double* decay = nullptr;
   const double* ux = nullptr;  // optional velocity (both or neither)

@@ -128,6 +128,19 @@ std::span<double> TransportLattice::diffusivity() {
   return D_field_;
 }
 
+TransportLattice::TensorField TransportLattice::diffusivity_tensor() {
+  if (Dxx_.empty()) {
+    if (D_field_.empty()) {
+      Dxx_.assign(grid_.size(), uniform_D_);
+    } else {
+      Dxx_ = D_field_;
+    }
+    Dyy_ = Dxx_;
+    Dxy_.assign(grid_.size(), 0.0);
+  }
+  return {Dxx_, Dyy_, Dxy_};
+}
+
 std::span<double> TransportLattice::source() {
   if (source_.empty()) {
     source_.assign(grid_.size(), 0.0);
@@ -171,6 +184,14 @@ void TransportLattice::step() {
   a.trt = collision_.kind == Collision::trt;
   a.magic = collision_.magic;
   a.D = D_field_.empty() ? nullptr : D_field_.data();
+  if (!Dxx_.empty()) {
+    if (stencil_ != Stencil::d2q5 || collision_.kind != Collision::trt) {
+      throw std::logic_error("TransportLattice: the diffusivity tensor needs D2Q5 and the TRT collision");
+    }
+    a.Dxx = Dxx_.data();
+    a.Dyy = Dyy_.data();
+    a.Dxy = Dxy_.data();
+  }
   a.source = source_.empty() ? nullptr : source_.data();
   a.decay = decay_.empty() ? nullptr : decay_.data();
   a.ux = ux_.empty() ? nullptr : ux_.data();
@@ -195,6 +216,10 @@ void TransportLattice::step() {
 }
 
 double TransportLattice::source_offset_factor(std::size_t n) const {
+  if (!Dxx_.empty()) {
+    // eq T7 per axis chain (c/D_xx along x, c/D_yy along y; Λ of the TRT collision): their mean
+    return source_offset_coefficient(collision_.magic) * 0.5 * (1.0 / Dxx_[n] + 1.0 / Dyy_[n]);
+  }
   const double D = D_field_.empty() ? uniform_D_ : D_field_[n];
   const double s = kInvCs2 * D;  // τ − ½
   const double magic = collision_.kind == Collision::trt ? collision_.magic : s * s;
@@ -251,7 +276,11 @@ HealthReport TransportLattice::check_health(double min_tau_margin) const {
       if (!std::isfinite(C_[n])) {
         return {false, "concentration", x, y, C_[n], std::numeric_limits<double>::quiet_NaN(), 0.0};
       }
-      const double D = D_field_.empty() ? uniform_D_ : D_field_[n];
+      // tensor: the smaller eigenvalue (positive definiteness)
+      const double D = !Dxx_.empty() ? 0.5 * (Dxx_[n] + Dyy_[n]) -
+                                           std::hypot(0.5 * (Dxx_[n] - Dyy_[n]), Dxy_[n])
+                       : D_field_.empty() ? uniform_D_
+                                          : D_field_[n];
       const double margin = tau_for_diffusivity(D) - 0.5;
       if (!(margin >= min_tau_margin)) return {false, "tau_margin", x, y, margin, min_tau_margin, 0.0};
     }

@@ -7,7 +7,8 @@
 //   g_i(x + c_i, t + 1) = g_i − ω (g_i − g_i^eq) + (1 − ω/2) w_i q_tot (1 + c_i·u/c_s²),
 //   C = Σ g_i + q_tot/2,    q_tot = q − k C   ⇒   C = (Σ g_i + q/2) / (1 + k/2).
 // Per-node τ with this equilibrium gives ∇·(D∇C), not ∇²(DC) (measured:
-// verification.transport_manufactured). Optional TRT collision (T3', set_collision) and the
+// verification.transport_manufactured). Optional TRT collision (T3', set_collision), a per-node
+// diffusivity tensor (T8, diffusivity_tensor; D2Q5 TRT only) and the
 // steady source offset of the concentration (T7, source_corrected_concentration).
 // The first-order sink k is thus implicit (trapezoidal in time, unconditionally
 // stable); q is whatever the caller set before step() (reactions computed from the
@@ -118,6 +119,18 @@ class TransportLattice {
   std::span<double> diffusivity();
   bool has_diffusivity_field() const { return !D_field_.empty(); }
 
+  // Per-node diffusivity TENSOR (D_xx, D_yy, D_xy), eq T8 of docs/transport.md: D2Q5 with the
+  // TRT collision only (step() throws std::logic_error otherwise). Allocated on the first call,
+  // filled isotropically from diffusivity() (or the uniform D); once enabled it replaces the
+  // scalar field everywhere (collision, source_offset_factor: c (1/D_xx + 1/D_yy)/2,
+  // check_health: the smaller eigenvalue). Every node's tensor must be positive definite. The
+  // node subpixel tensor of a curved diffusivity jump (subpixel_diffusivity.hpp) uses it.
+  struct TensorField {
+    std::span<double> xx, yy, xy;
+  };
+  TensorField diffusivity_tensor();
+  bool has_diffusivity_tensor() const { return !Dxx_.empty(); }
+
   // Per-node source q (amount per node per step, i.e. concentration per step) and
   // first-order sink rate k (per step, implicit): q_tot = q − k C. Allocated, zero,
   // on the first call of either; the caller rewrites them between steps.
@@ -169,6 +182,7 @@ class TransportLattice {
   CollisionModel collision_{};
   std::vector<double> g_, g_next_, C_;
   std::vector<double> D_field_, source_, decay_, ux_, uy_;
+  std::vector<double> Dxx_, Dyy_, Dxy_;  // optional tensor (eq T8)
   std::vector<double> row_source_, row_boundary_, row_amount_, row_scale_;
   MassBalance balance_;
   long steps_done_ = 0;

@@ -12,6 +12,8 @@
 //   shift=dx,dy     cell centre offset from the box centre, in units of h
 //   corr=1          mean P from the source-offset-corrected C (transport eq T7)
 //   linkd=1         node D by link-wise least squares (deoxy_mask.hpp)
+//   interface=series|node_tensor|face_tensor   diffusivity at the membrane (deoxy::InterfaceRule;
+//                   transport eqs T9–T11; the tensor rules need trt=)
 //   markers=N       polygon resolution of the cell
 //   coupling=explicit|implicit|outflow   (deoxy::Coupling)
 #include <cstdio>
@@ -38,6 +40,10 @@ bool apply(deoxy::Setup& s, const std::string& kv) {
   else if (k == "shift") std::sscanf(v.c_str(), "%lf,%lf", &s.offset_x_h, &s.offset_y_h);
   else if (k == "corr") s.source_corrected_P = v != "0";
   else if (k == "linkd") s.link_diffusivity = v != "0";
+  else if (k == "interface")
+    s.interface = v == "node_tensor"   ? deoxy::InterfaceRule::node_tensor
+                  : v == "face_tensor" ? deoxy::InterfaceRule::face_tensor
+                                       : deoxy::InterfaceRule::series;
   else if (k == "markers") s.markers = std::atoi(v.c_str());
   else if (k == "coupling")
     s.coupling = v == "explicit" ? deoxy::Coupling::explicit_lagged

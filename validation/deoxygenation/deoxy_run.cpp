@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <span>
 #include <sstream>
 #include <vector>
@@ -13,6 +14,8 @@
 #include "interior/geometry.hpp"
 #include "interior/index_field.hpp"
 #include "membrane/shapes.hpp"
+#include "transport/face_flux_correction.hpp"
+#include "transport/subpixel_diffusivity.hpp"
 #include "transport/transport_lattice.hpp"
 #include "transport/transport_units.hpp"
 
@@ -107,6 +110,24 @@ Result run(const Setup& s) {
     const auto R = link_resistivities(cell, n, n, s.D_in, s.D_out, R_phi);
     for (std::size_t k = 0; k < R.size(); ++k) D[k] = units.diffusivity(1.0 / R[k]);
   }
+  if (s.interface != InterfaceRule::series && s.representation == Representation::ray_cast) {
+    throw InputError("deoxy::run: the subpixel interface rules need area fractions");
+  }
+  // face subpixel tensor: the series lattice corrected towards the face targets (eq T11)
+  std::unique_ptr<transport::FaceFluxCorrection> face_correction;
+  if (s.interface == InterfaceRule::face_tensor) {
+    face_correction = std::make_unique<transport::FaceFluxCorrection>(
+        grid, D, transport::subpixel_face_targets(cell, n, n, units.diffusivity(s.D_in), units.diffusivity(s.D_out)));
+  }
+  if (s.interface == InterfaceRule::node_tensor) {
+    auto T = o2.diffusivity_tensor();
+    for (const auto& c : transport::cut_cells(cell, n, n)) {
+      const auto d = transport::subpixel_diffusivity(c, units.diffusivity(s.D_in), units.diffusivity(s.D_out));
+      T.xx[c.node] = d.xx;
+      T.yy[c.node] = d.yy;
+      T.xy[c.node] = d.xy;
+    }
+  }
   o2.initialize(C0);
   auto q = o2.source();
   double S = transport::hill_saturation(s.P0_torr, s.hb.P50, s.hb.n);
@@ -154,9 +175,11 @@ Result run(const Setup& s) {
     P_prev = P;
     r_prev = released / s.hb.alpha;
     S = S_new;
+    if (face_correction) face_correction->evaluate(o2);  // from this step's Ĉ, before q is rewritten
     std::fill(q.begin(), q.end(), 0.0);
     for (const auto& c : heme) q[c.node] = c.w * released;  // µM per step = lattice source (w = 1:
                                                             // transport::distribute_release)
+    if (face_correction) face_correction->add_to(q);
     o2.step();
     boundary_in += o2.mass_balance().boundary_in;
     res.max_step_residual = std::max(res.max_step_residual, std::abs(o2.mass_balance().relative_residual()));

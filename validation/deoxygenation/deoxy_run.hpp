@@ -60,6 +60,8 @@ enum class Coupling {
   cell_implicit_outflow,
 };
 
+enum class InterfaceRule { series, node_tensor, face_tensor };
+
 struct Setup {
   double h_um = 0.2;          // lattice spacing
   double dt_s = 1e-5;         // time step
@@ -91,6 +93,11 @@ struct Setup {
   // Probe: node D by link-wise least squares (deoxy_mask.hpp link_resistivities) instead of
   // the area-fraction series rule.
   bool link_diffusivity = false;
+  // Diffusivity at the membrane (area-fraction cells, TRT Λ = 1/4; docs/transport.md §1
+  // "Curved diffusivity jumps"): the node series rule (T9), the node subpixel tensor (T10 on each
+  // cut node's square, tensor lattice T8), or the face subpixel tensor (T10 on each face's dual
+  // cell, imposed on the series lattice by the face-flux correction T11).
+  InterfaceRule interface = InterfaceRule::series;
 };
 
 struct Result {

@@ -60,6 +60,12 @@ constexpr bool kSourceCorrectedP = true;
 // previous step (deoxy_run.hpp): removes the O(Δt) error of the plain cell-implicit update,
 // which moved the fitted ln M by 0.11 at h = 0.2 µm (docs, "Findings").
 constexpr deoxy::Coupling kCoupling = deoxy::Coupling::cell_implicit_outflow;
+// Diffusivity at the membrane: the face subpixel tensor (transport eqs T10–T11: on each face's
+// dual cell, series mean across the membrane, parallel mean along it, with the cross term),
+// imposed on the series-rule lattice by the face-flux correction. The node series rule (the
+// reference's own discretisation) drifts by +0.158 then +0.045 in ln M at fixed M between
+// h = 0.3, 0.2, 0.15 um; the face tensor by −0.001, −0.002 (docs, "Findings", deoxy_probe).
+constexpr deoxy::InterfaceRule kInterface = deoxy::InterfaceRule::face_tensor;
 
 std::string fmt(const char* f, double v) {
   char b[96];
@@ -149,6 +155,7 @@ Runner make_runner(double h, double t_end) {
   r.base.collision = kCollision;
   r.base.source_corrected_P = kSourceCorrectedP;
   r.base.coupling = kCoupling;
+  r.base.interface = kInterface;
   return r;
 }
 
@@ -210,8 +217,12 @@ void describe(io::ResultRecord& rec, double t_end) {
   rec.set_parameter("coupling", "cell-implicit with the outflow of the previous step: P_end = P^k - o^(k-1) + (1 + "
                                 "kappa) r^k (deoxy_run.hpp); the fitted M no longer depends on dt");
   rec.set_parameter("mask", "area fraction phi of each node's square inside membrane::biconcave(800 markers, a = 3.91 "
-                            "um) (exact clipping): heme weight phi, P mean weighted by phi, 1/D = phi/D_in + "
+                            "um) (exact clipping): heme weight phi, P mean weighted by phi, node 1/D = phi/D_in + "
                             "(1-phi)/D_out, C0 = phi*130 + (1-phi)*20 uM (the reference's volume-fraction mask)");
+  rec.set_parameter("interface", "face subpixel tensor (transport eqs T10-T11): on each face's dual cell D_f = "
+                                 "<1/D>^-1 n n^T + <D> (I - n n^T) (phi and normal of the dual cell), target face "
+                                 "flux K (C_a - C_b) - D_xy (transverse mean difference), imposed on the node-series "
+                                 "lattice by a mass-conserving source pair per face (lagged one step)");
   rec.set_parameter("calibration", "Brent on x = ln M (calibration.hpp), free bracket M in [0.05, 4], RMS misfit at "
                                    "the reference times (linear interpolation of the simulated curve), central-"
                                    "difference sensitivity at ln M +- 0.02");

@@ -1,0 +1,57 @@
+#include "transport/face_flux_correction.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace erythro::transport {
+
+FaceFluxCorrection::FaceFluxCorrection(const Grid& grid, std::span<const double> node_D,
+                                       const std::vector<FaceTarget>& targets) {
+  const std::size_t N = grid.size(), nx = static_cast<std::size_t>(grid.nx);
+  if (node_D.size() != N) throw std::invalid_argument("FaceFluxCorrection: node_D does not match the grid");
+  slot_.assign(N, N);
+  auto slot_of = [&](std::size_t n) {
+    if (slot_[n] == N) {
+      slot_[n] = nodes_.size();
+      nodes_.push_back(n);
+    }
+  };
+  for (const auto& t : targets) {
+    const int x = static_cast<int>(t.a % nx), y = static_cast<int>(t.a / nx);
+    if ((t.x_face && x + 1 >= grid.nx) || (!t.x_face && y + 1 >= grid.ny)) {
+      throw std::invalid_argument("FaceFluxCorrection: face beyond the grid");
+    }
+    const std::size_t b = t.x_face ? t.a + 1 : t.a + nx;
+    const double K_lattice = 2.0 / (1.0 / node_D[t.a] + 1.0 / node_D[b]);  // eq T7: harmonic face D
+    const double dK = t.K - K_lattice;
+    if (dK == 0.0 && t.X == 0.0) continue;
+    Face f{t.a, b, t.a, t.a, b, b, dK, t.X};
+    if (t.X != 0.0) {
+      const std::size_t e = t.x_face ? nx : 1;  // transverse step
+      const bool has_room = t.x_face ? (y >= 1 && y + 1 < grid.ny) : (x >= 1 && x + 1 < grid.nx);
+      if (!has_room) throw std::invalid_argument("FaceFluxCorrection: cross term on the grid's edge");
+      f = {t.a, b, t.a + e, t.a - e, b + e, b - e, dK, t.X};
+    }
+    slot_of(f.a);
+    slot_of(f.b);
+    faces_.push_back(f);
+  }
+  node_correction_.assign(nodes_.size(), 0.0);
+}
+
+void FaceFluxCorrection::evaluate(const TransportLattice& lattice) {
+  std::fill(node_correction_.begin(), node_correction_.end(), 0.0);
+  for (const auto& f : faces_) {
+    auto C = [&](std::size_t n) { return lattice.source_corrected_concentration(n); };  // Ĉ (T7)
+    double dF = f.dK * (C(f.a) - C(f.b));
+    if (f.X != 0.0) dF -= f.X * 0.25 * (C(f.a_plus) - C(f.a_minus) + C(f.b_plus) - C(f.b_minus));  // eq T11
+    node_correction_[slot_[f.a]] -= dF;
+    node_correction_[slot_[f.b]] += dF;
+  }
+}
+
+void FaceFluxCorrection::add_to(std::span<double> source) const {
+  for (std::size_t k = 0; k < nodes_.size(); ++k) source[nodes_[k]] += node_correction_[k];
+}
+
+}  // namespace erythro::transport

@@ -1,0 +1,58 @@
+#pragma once
+// Face-flux correction of a D2Q5 TRT (Λ = 1/4) transport lattice towards prescribed face
+// fluxes (docs/transport.md §1 "Curved diffusivity jumps", eq T11).
+//
+// In its steady (and slowly varying) limit the TRT Λ = 1/4 lattice is exactly the 5-point finite-
+// volume scheme with face conductance K_ab = 2/(1/D_a + 1/D_b) of its node D's (eq T7). A node D
+// cannot give every face the conductance it should have (each node serves four faces). This
+// correction adds, for each listed face (a → b, b the +x or +y neighbour of a), the difference
+// between a target flux and the lattice's own,
+//   ΔF_ab = (K*_ab − K_ab)(Ĉ_a − Ĉ_b) − X*_ab t_ab,     q_a −= ΔF_ab,   q_b += ΔF_ab,        (T11)
+// t_ab = ¼ (Ĉ_{a+e} − Ĉ_{a−e} + Ĉ_{b+e} − Ĉ_{b−e}) the transverse difference across the face
+// (e ⊥ the face normal), Ĉ the source-offset-corrected concentration (T7), as a source pair:
+// mass is conserved exactly, and at steady state the lattice solves the finite-volume scheme
+// with the target fluxes F*_ab = K*_ab (Ĉ_a − Ĉ_b) − X*_ab t_ab. The correction is evaluated
+// from the last step's Ĉ (explicit, one step lagged: an O(Δt) term in transients).
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "lattice/grid.hpp"
+#include "transport/transport_lattice.hpp"
+
+namespace erythro::transport {
+
+// Target flux of one face: a = node, b = its +x (x_face) or +y neighbour; K = conductance across
+// the face, X = cross coefficient (the D_xy of a diffusivity tensor on the face).
+struct FaceTarget {
+  std::size_t a = 0;
+  bool x_face = true;
+  double K = 0.0, X = 0.0;
+};
+
+class FaceFluxCorrection {
+ public:
+  // node_D: the lattice's per-node (scalar) D, lattice units; faces whose target equals the
+  // lattice's own flux are dropped. Throws std::invalid_argument if a face with X ≠ 0 lacks a
+  // transverse neighbour (touches the grid's edge).
+  FaceFluxCorrection(const Grid& grid, std::span<const double> node_D, const std::vector<FaceTarget>& targets);
+
+  // Per-node corrections from the lattice's current Ĉ (eq T11); no allocation.
+  void evaluate(const TransportLattice& lattice);
+  // source[n] += correction[n] for the nodes touched (call after writing the step's own source).
+  void add_to(std::span<double> source) const;
+
+  std::size_t faces() const { return faces_.size(); }
+
+ private:
+  struct Face {
+    std::size_t a, b, a_plus, a_minus, b_plus, b_minus;
+    double dK, X;
+  };
+  std::vector<Face> faces_;
+  std::vector<std::size_t> nodes_;       // nodes touched by a face (each once)
+  std::vector<double> node_correction_;  // per entry of nodes_
+  std::vector<std::size_t> slot_;        // node → entry of nodes_ (grid-sized; N = none)
+};
+
+}  // namespace erythro::transport
