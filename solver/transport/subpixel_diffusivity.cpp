@@ -32,38 +32,48 @@ double clipped_length(double x0, double y0, double x1, double y1, double bx0, do
 
 }  // namespace
 
-std::vector<CutCell> cut_cells(const membrane::Polygon& p, int nx, int ny) {
+std::vector<AreaFraction> area_fractions(const membrane::Polygon& p, int nx, int ny) {
   const auto [xmin, xmax] = std::minmax_element(p.x.begin(), p.x.end());
   const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
   const int i0 = std::max(0, static_cast<int>(std::floor(*xmin))), i1 = std::min(nx - 1, static_cast<int>(*xmax));
   const int j0 = std::max(0, static_cast<int>(std::floor(*ymin))), j1 = std::min(ny - 1, static_cast<int>(*ymax));
   const double orientation = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;  // +1: counter-clockwise
-  const std::size_t m = p.x.size();
-  std::vector<CutCell> out;
+  std::vector<AreaFraction> out;
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
       const double phi = std::clamp(orientation * interior::area_in_box(p, i, i + 1.0, j, j + 1.0), 0.0, 1.0);
-      if (!(phi > 0.0)) continue;
-      CutCell c{static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i), phi};
-      if (phi < 1.0) {
-        double sx = 0.0, sy = 0.0;
-        for (std::size_t k = 0; k < m; ++k) {
-          const std::size_t l = (k + 1) % m;
-          const double ex = p.x[l] - p.x[k], ey = p.y[l] - p.y[k], len = std::hypot(ex, ey);
-          if (len == 0.0) continue;
-          const double w = clipped_length(p.x[k], p.y[k], p.x[l], p.y[l], i, i + 1.0, j, j + 1.0) / len;
-          // outward normal of a counter-clockwise edge: (e_y, −e_x)/|e|; w·len·n summed
-          sx += w * orientation * ey;
-          sy += -w * orientation * ex;
-        }
-        const double s = std::hypot(sx, sy);
-        if (s > 0.0) {
-          c.nx = sx / s;
-          c.ny = sy / s;
-        }
-      }
-      out.push_back(c);
+      if (phi > 0.0) out.push_back({static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i), phi});
     }
+  return out;
+}
+
+std::vector<CutCell> cut_cells(const membrane::Polygon& p, int nx, int ny) {
+  const double orientation = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;  // +1: counter-clockwise
+  const std::size_t m = p.x.size();
+  std::vector<CutCell> out;
+  for (const AreaFraction& f : area_fractions(p, nx, ny)) {
+    CutCell c{f.node, f.phi};
+    if (f.phi < 1.0) {
+      const double i = static_cast<double>(f.node % static_cast<std::size_t>(nx));
+      const double j = static_cast<double>(f.node / static_cast<std::size_t>(nx));
+      double sx = 0.0, sy = 0.0;
+      for (std::size_t k = 0; k < m; ++k) {
+        const std::size_t l = (k + 1) % m;
+        const double ex = p.x[l] - p.x[k], ey = p.y[l] - p.y[k], len = std::hypot(ex, ey);
+        if (len == 0.0) continue;
+        const double w = clipped_length(p.x[k], p.y[k], p.x[l], p.y[l], i, i + 1.0, j, j + 1.0) / len;
+        // outward normal of a counter-clockwise edge: (e_y, −e_x)/|e|; w·len·n summed
+        sx += w * orientation * ey;
+        sy += -w * orientation * ex;
+      }
+      const double s = std::hypot(sx, sy);
+      if (s > 0.0) {
+        c.nx = sx / s;
+        c.ny = sy / s;
+      }
+    }
+    out.push_back(c);
+  }
   return out;
 }
 

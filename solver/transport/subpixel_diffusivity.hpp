@@ -34,9 +34,19 @@ struct CutCell {
   double nx = 0.0, ny = 0.0;
 };
 
+// Node `node` with the fraction φ ∈ (0, 1] of its square inside a polygon.
+struct AreaFraction {
+  std::size_t node = 0;
+  double phi = 0.0;
+};
+
 // Every node of an nx × ny grid (node (i, j) owning the square [i, i+1] × [j, j+1], lattice
-// units) with φ > 0 for polygon p: φ by exact polygon–square clipping (interior::area_in_box),
-// the normal by Liang–Barsky clipping of each edge to the square.
+// units) with φ > 0 for polygon p, row by row: φ by exact polygon–square clipping
+// (interior::area_in_box).
+std::vector<AreaFraction> area_fractions(const membrane::Polygon& p, int nx, int ny);
+
+// The same nodes with, where 0 < φ < 1, the membrane's normal in the square (Liang–Barsky
+// clipping of each edge to the square).
 std::vector<CutCell> cut_cells(const membrane::Polygon& p, int nx, int ny);
 
 double series_diffusivity(double phi, double D_in, double D_out);    // eq T9

@@ -11,11 +11,9 @@
 #include "common/case_support.hpp"
 #include "common/error.hpp"
 #include "deoxy_mask.hpp"
-#include "interior/geometry.hpp"
 #include "interior/index_field.hpp"
 #include "membrane/shapes.hpp"
 #include "transport/face_flux_correction.hpp"
-#include "transport/subpixel_diffusivity.hpp"
 #include "transport/transport_lattice.hpp"
 #include "transport/transport_units.hpp"
 
@@ -38,21 +36,6 @@ double weighted_mean_P(const std::vector<Weighted>& cell, std::span<const double
 }
 
 }  // namespace
-
-std::vector<NodeFraction> area_fractions(const membrane::Polygon& p, int nx, int ny) {
-  const auto [xmin, xmax] = std::minmax_element(p.x.begin(), p.x.end());
-  const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
-  const int i0 = std::max(0, static_cast<int>(std::floor(*xmin))), i1 = std::min(nx - 1, static_cast<int>(*xmax));
-  const int j0 = std::max(0, static_cast<int>(std::floor(*ymin))), j1 = std::min(ny - 1, static_cast<int>(*ymax));
-  const double sign = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;
-  std::vector<NodeFraction> out;
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i) {
-      const double phi = std::clamp(sign * interior::area_in_box(p, i, i + 1.0, j, j + 1.0), 0.0, 1.0);
-      if (phi > 0.0) out.push_back({static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + i, phi});
-    }
-  return out;
-}
 
 Result run(const Setup& s) {
   vv::Stopwatch clock;

@@ -13,6 +13,7 @@
 #include "common/calibration.hpp"
 #include "membrane/polygon.hpp"
 #include "transport/hb_kinetics.hpp"
+#include "transport/subpixel_diffusivity.hpp"
 #include "transport/transport_lattice.hpp"
 
 namespace erythro::deoxy {
@@ -122,14 +123,9 @@ Result run(const Setup& s);
 double diffusive_dt(double h_um, double dt_at_0p2_s = 1e-5);
 
 // Area fraction of each lattice node's unit square [i, i+1] × [j, j+1] inside the polygon
-// p (lattice units), for the nodes of an nx × ny grid whose square meets p's bounding box;
-// exact for the polygon (Sutherland–Hodgman clipping against the convex square; a
-// non-convex polygon clips to the correct area). Returns (node index, φ > 0) pairs.
-struct NodeFraction {
-  std::size_t node = 0;
-  double phi = 0.0;
-};
-std::vector<NodeFraction> area_fractions(const membrane::Polygon& p, int nx, int ny);
+// p (lattice units), exact for the polygon: transport::area_fractions (node index, φ > 0).
+using NodeFraction = transport::AreaFraction;
+using transport::area_fractions;
 
 // Reads reference_data/deoxygenation/reference_S.csv (columns t_s, S_fine, ...):
 // the curve of column `column` (1 = S_fine). Throws InputError when missing.
