@@ -60,7 +60,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s h_um dt_at_0p2_us M {ray|frac|moment|msample} [out.csv|-] [key=value ...]\n", argv[0]);
     return 2;
   }
-  const auto ref = deoxy::read_reference(std::string(ERYTHRO_DEOXY_REFERENCE_DIR) + "/reference_S_planar.csv", 1);
+  // The planar reference (what the cases calibrate against), or with ERYTHRO_PROBE_REF=3d the
+  // 3D cell of revolution (reference_S.csv).
+  const char* which = std::getenv("ERYTHRO_PROBE_REF");
+  const bool cell_3d = which && std::strcmp(which, "3d") == 0;
+  const auto ref = deoxy::read_reference(
+      std::string(ERYTHRO_DEOXY_REFERENCE_DIR) + (cell_3d ? "/reference_S.csv" : "/reference_S_planar.csv"), 1);
   deoxy::Setup s;
   s.h_um = std::atof(argv[1]);
   s.dt_s = deoxy::diffusive_dt(s.h_um, std::atof(argv[2]) * 1e-6);
