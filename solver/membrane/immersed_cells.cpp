@@ -62,6 +62,10 @@ void ImmersedCells::move_markers(std::span<const double> ux, std::span<const dou
 
 void ImmersedCells::advance(fluid::FluidLattice& lattice) {
   compute_forces();
+  advance_after_forces(lattice);
+}
+
+void ImmersedCells::advance_after_forces(fluid::FluidLattice& lattice) {
   spread_forces(lattice);
   lattice.step();
   support_velocity(lattice);  // force field still that of this step

@@ -70,8 +70,12 @@ class ImmersedCells {
   void support_velocity(fluid::FluidLattice& lattice);
   std::span<const double> support_ux() const { return grid_ux_; }
   std::span<const double> support_uy() const { return grid_uy_; }
-  // Steps 1–5 for one fluid step.
+  // Steps 1–5 for one fluid step: compute_forces(), then advance_after_forces().
   void advance(fluid::FluidLattice& lattice);
+  // Steps 2–5 with the marker forces as they are (compute_forces() plus whatever a caller
+  // added, e.g. aggregation): spread_forces, the fluid step, support_velocity,
+  // move_markers(support_ux/uy), wrap_periodic.
+  void advance_after_forces(fluid::FluidLattice& lattice);
   // Shifts every cell whose marker 0 left [0, n) on a periodic axis back by ±n
   // (a rigid shift of the whole cell: its shape and forces are unchanged), so
   // unwrapped coordinates stay small over long runs. Called by advance().

@@ -112,12 +112,7 @@ void CellPhysics::advance(fluid::FluidLattice& lattice, long step) {
     }
     compute_marker_forces();
   }
-  // ImmersedCells::advance after its force stage (the aggregation forces, if any, added).
-  cells_.spread_forces(lattice);
-  lattice.step();
-  cells_.support_velocity(lattice);
-  cells_.move_markers(cells_.support_ux(), cells_.support_uy());
-  cells_.wrap_periodic();
+  cells_.advance_after_forces(lattice);  // the aggregation forces, if any, added
 }
 
 }  // namespace erythro::sim

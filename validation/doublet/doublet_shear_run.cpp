@@ -144,11 +144,7 @@ DoubletShearResult run_doublet_shear(const DoubletShearConfig& c) {
         }
         cells.compute_forces();
         if (agg) agg->add_forces(cells);
-        cells.spread_forces(lat);
-        lat.step();
-        cells.support_velocity(lat);
-        cells.move_markers(cells.support_ux(), cells.support_uy());
-        cells.wrap_periodic();
+        cells.advance_after_forces(lat);
       } catch (const interior::FillLeakError& e) {
         r.diverged = true;
         r.diagnosis = "index field at step " + std::to_string(s) + ": " + e.what();

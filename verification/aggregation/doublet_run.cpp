@@ -114,11 +114,7 @@ DoubletResult run_doublet(const DoubletSetup& s, bool verbose) {
   for (long k = 0; k < s.steps; ++k) {
     cells.compute_forces();
     agg.add_forces(cells);
-    cells.spread_forces(lat);
-    lat.step();
-    cells.support_velocity(lat);
-    cells.move_markers(cells.support_ux(), cells.support_uy());
-    cells.wrap_periodic();
+    cells.advance_after_forces(lat);
     r.steps_done = k + 1;
     r.max_marker_speed = std::max(r.max_marker_speed, cells.max_marker_speed());
     if ((k + 1) % s.sample_every == 0 || k + 1 == s.steps) {
