@@ -89,6 +89,16 @@ DiffusivityTensor subpixel_diffusivity(const CutCell& c, double D_in, double D_o
   return {Dp + (Ds - Dp) * c.nx * c.nx, Dp + (Ds - Dp) * c.ny * c.ny, (Ds - Dp) * c.nx * c.ny};
 }
 
+void set_node_subpixel_tensor(TransportLattice& lat, const std::vector<CutCell>& cells, double D_in, double D_out) {
+  auto T = lat.diffusivity_tensor();
+  for (const auto& c : cells) {
+    const DiffusivityTensor d = subpixel_diffusivity(c, D_in, D_out);
+    T.xx[c.node] = d.xx;
+    T.yy[c.node] = d.yy;
+    T.xy[c.node] = d.xy;
+  }
+}
+
 std::vector<FaceTarget> subpixel_face_targets(const membrane::Polygon& p, int nx, int ny, double D_in, double D_out) {
   const std::size_t N = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
   std::vector<FaceTarget> out;

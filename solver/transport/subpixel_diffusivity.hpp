@@ -21,6 +21,12 @@
 
 namespace erythro::transport {
 
+// Treatment of the nodes a membrane cuts: the isotropic series mean (T9, the former rule),
+// the node subpixel tensor (T10 on each node's square, tensor lattice T8), or the face
+// subpixel tensor (T10 on each face's dual cell, imposed on the series lattice by the
+// face-flux correction T11).
+enum class InterfaceRule { series, node_tensor, face_tensor };
+
 struct DiffusivityTensor {
   double xx = 0.0, yy = 0.0, xy = 0.0;
 };
@@ -53,6 +59,10 @@ double series_diffusivity(double phi, double D_in, double D_out);    // eq T9
 double parallel_diffusivity(double phi, double D_in, double D_out);  // ⟨D⟩
 // eq T10; with a zero normal (no edge in the square) the isotropic series value.
 DiffusivityTensor subpixel_diffusivity(const CutCell& c, double D_in, double D_out);
+
+// The node_tensor rule: eq T10 on each node of `cells` into lat's diffusivity tensor (D2Q5 TRT;
+// D_in, D_out in lattice units).
+void set_node_subpixel_tensor(TransportLattice& lat, const std::vector<CutCell>& cells, double D_in, double D_out);
 
 // Face-centred subpixel targets (eq T10 on each face's dual cell, for FaceFluxCorrection eq T11):
 // for every x-face (between node (i, j) and (i+1, j)) and y-face near polygon p, the dual cell is

@@ -82,9 +82,9 @@ Result run(const Setup& s) {
   std::vector<double> C0(grid.size(), s.C_b_uM);
   const double C0_in = s.C0_in_uM < 0.0 ? s.hb.alpha * s.P0_torr : s.C0_in_uM;
   for (const auto& c : mask) {
-    // mixed node: series resistance 1/D = φ/D_in + (1 − φ)/D_out (as reference_rbc.py);
+    // mixed node: series resistance 1/D = φ/D_in + (1 − φ)/D_out (eq T9, as reference_rbc.py);
     // cell in equilibrium at P0 over its area fraction, medium C_b over the rest
-    D[c.node] = units.diffusivity(1.0 / (c.w / s.D_in + (1.0 - c.w) / s.D_out));
+    D[c.node] = units.diffusivity(transport::series_diffusivity(c.w, s.D_in, s.D_out));
     C0[c.node] = c.w * C0_in + (1.0 - c.w) * s.C_b_uM;
   }
   if (s.link_diffusivity) {
@@ -103,13 +103,8 @@ Result run(const Setup& s) {
         grid, D, transport::subpixel_face_targets(cell, n, n, units.diffusivity(s.D_in), units.diffusivity(s.D_out)));
   }
   if (s.interface == InterfaceRule::node_tensor) {
-    auto T = o2.diffusivity_tensor();
-    for (const auto& c : transport::cut_cells(cell, n, n)) {
-      const auto d = transport::subpixel_diffusivity(c, units.diffusivity(s.D_in), units.diffusivity(s.D_out));
-      T.xx[c.node] = d.xx;
-      T.yy[c.node] = d.yy;
-      T.xy[c.node] = d.xy;
-    }
+    transport::set_node_subpixel_tensor(o2, transport::cut_cells(cell, n, n), units.diffusivity(s.D_in),
+                                        units.diffusivity(s.D_out));
   }
   o2.initialize(C0);
   auto q = o2.source();

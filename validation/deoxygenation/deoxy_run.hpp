@@ -61,7 +61,7 @@ enum class Coupling {
   cell_implicit_outflow,
 };
 
-enum class InterfaceRule { series, node_tensor, face_tensor };
+using transport::InterfaceRule;  // membrane diffusivity (transport/subpixel_diffusivity.hpp)
 
 struct Setup {
   double h_um = 0.2;          // lattice spacing

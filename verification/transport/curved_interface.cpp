@@ -115,13 +115,7 @@ std::unique_ptr<transport::FaceFluxCorrection> apply_treatment(transport::Transp
   using namespace transport;
   const int n = lat.grid().nx;
   if (t == InterfaceTreatment::node_tensor) {
-    auto T = lat.diffusivity_tensor();
-    for (const auto& c : cells) {
-      const auto d = subpixel_diffusivity(c, Din, Dout);
-      T.xx[c.node] = d.xx;
-      T.yy[c.node] = d.yy;
-      T.xy[c.node] = d.xy;
-    }
+    set_node_subpixel_tensor(lat, cells, Din, Dout);
     return nullptr;
   }
   auto D = lat.diffusivity();

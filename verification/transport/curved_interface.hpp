@@ -17,16 +17,14 @@
 // In both, C and D ∂C/∂r are continuous at r = a (checked by the unit of the case).
 #include <vector>
 
+#include "transport/subpixel_diffusivity.hpp"
 #include "transport/transport_lattice.hpp"
 
 namespace erythro::vv {
 
 enum class InclusionProblem { radial, dipole };
-// Treatment of the cut nodes (transport/subpixel_diffusivity.hpp): isotropic series mean
-// (eq T9, the former rule), the node subpixel tensor (eq T10 on each node's square, tensor
-// lattice T8), or the face subpixel tensor (eq T10 on each face's dual cell, imposed on the
-// series lattice by the face-flux correction T11).
-enum class InterfaceTreatment { series, node_tensor, face_tensor };
+// Treatment of the cut nodes: transport::InterfaceRule (transport/subpixel_diffusivity.hpp).
+using InterfaceTreatment = transport::InterfaceRule;
 
 struct Inclusion {
   InclusionProblem problem = InclusionProblem::radial;
