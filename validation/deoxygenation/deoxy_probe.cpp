@@ -60,12 +60,6 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s h_um dt_at_0p2_us M {ray|frac|moment|msample} [out.csv|-] [key=value ...]\n", argv[0]);
     return 2;
   }
-  // The planar reference (what the cases calibrate against), or with ERYTHRO_PROBE_REF=3d the
-  // 3D cell of revolution (reference_S.csv).
-  const char* which = std::getenv("ERYTHRO_PROBE_REF");
-  const bool cell_3d = which && std::strcmp(which, "3d") == 0;
-  const auto ref = deoxy::read_reference(
-      std::string(ERYTHRO_DEOXY_REFERENCE_DIR) + (cell_3d ? "/reference_S.csv" : "/reference_S_planar.csv"), 1);
   deoxy::Setup s;
   s.h_um = std::atof(argv[1]);
   s.dt_s = deoxy::diffusive_dt(s.h_um, std::atof(argv[2]) * 1e-6);
@@ -75,11 +69,18 @@ int main(int argc, char** argv) {
                      : rep == "moment" ? deoxy::Representation::area_fraction_moment
                      : rep == "msample" ? deoxy::Representation::area_fraction_moment_sampling
                                        : deoxy::Representation::area_fraction;
-  for (int a = 6; a < argc; ++a)
-    if (!apply(s, argv[a])) {
+  // ref=planar (default; what the cases calibrate against) or ref=3d (the cell of revolution).
+  bool cell_3d = false;
+  for (int a = 6; a < argc; ++a) {
+    if (std::strcmp(argv[a], "ref=3d") == 0 || std::strcmp(argv[a], "ref=planar") == 0) {
+      cell_3d = std::strcmp(argv[a], "ref=3d") == 0;
+    } else if (!apply(s, argv[a])) {
       std::fprintf(stderr, "unknown option %s\n", argv[a]);
       return 2;
     }
+  }
+  const auto ref = deoxy::read_reference(
+      std::string(ERYTHRO_DEOXY_REFERENCE_DIR) + (cell_3d ? "/reference_S.csv" : "/reference_S_planar.csv"), 1);
   s.t_end_s = ref.t.back();
   const auto r = deoxy::run(s);
   const auto m = vv::curve_misfit(r.S, ref);
