@@ -251,7 +251,21 @@ void update_chunk(const KernelArgs& a, const NodeInputs& in, int y, int x0, int 
         for (std::size_t k = from + kPrefetchDistance; k < stop; k += 8) prefetch_l2(a.src + i * N + k);
       }
     }
-    interior_span<Model, TauField, HasForce, ForceField>(in, src, dst, g.index(begin, y), end - begin);
+    // Split off the head up to the first node whose outputs are cache-line aligned, so
+    // the vector loop's nine stores never straddle two lines (the same per-node arithmetic).
+    const int len = end - begin;
+    int head = 0;
+    const auto misalign = reinterpret_cast<std::uintptr_t>(dst[0]) % 64;
+    if (misalign % sizeof(double) == 0) head = std::min(len, static_cast<int>(((64 - misalign) % 64) / sizeof(double)));
+    const std::size_t n0 = g.index(begin, y);
+    if (head > 0) interior_span<Model, TauField, HasForce, ForceField>(in, src, dst, n0, head);
+    if (len > head) {
+      for (int i = 0; i < Q; ++i) {
+        src[i] += head;
+        dst[i] += head;
+      }
+      interior_span<Model, TauField, HasForce, ForceField>(in, src, dst, n0 + head, len - head);
+    }
   }
   if (x1 == g.nx) general(g.nx - 1);
 }
