@@ -10,12 +10,13 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
 #include "common/calibration.hpp"
 #include "common/case_support.hpp"
-#include "deoxy_run.hpp"
+#include "deoxy_case.hpp"
 #include "io/result_record.hpp"
 
 using namespace erythro;
@@ -44,94 +45,22 @@ constexpr double kBalanceTolerance = 1e-9;
 const double kLnMLower = std::log(0.05), kLnMUpper = std::log(4.0);
 // Central-difference step in ln M for the sensitivity (±2 % in M).
 constexpr double kFdLnM = 0.02;
-// Time-step rule Δt = kDtAt0p2 (h/0.2 µm)² (diffusive scaling, τ fixed at every level) and
-// the cell's representation on the lattice (docs/validation-deoxygenation.md, "Set-up").
-constexpr double kDtAt0p2 = 2.5e-6;  // τ_out = 1.025, τ_in = 0.678
-constexpr deoxy::Representation kRepresentation = deoxy::Representation::area_fraction;
-// Collision of the O2 lattice: TRT with the SAME magic parameter Λ = 1/4 at every node
-// (transport_lattice.hpp eq T3'), and the mean P from the source-offset-corrected C (eq T7):
-// together the lattice's steady state is EXACTLY the 5-point finite-volume scheme with harmonic
-// face D — the discretisation of the reference (reference_rbc.py) — whatever τ_in, τ_out.
-// BGK (former) has Λ_n = (τ_n − ½)², 0.276 outside and 0.032 inside the cell: τ-dependent
-// interface and source errors (docs, "Findings").
-constexpr transport::CollisionModel kCollision{transport::Collision::trt, 0.25};
-constexpr bool kSourceCorrectedP = true;
-// Coupling of S and the lattice over a step: cell-implicit with the outflow predicted from the
-// previous step (deoxy_run.hpp): removes the O(Δt) error of the plain cell-implicit update,
-// which moved the fitted ln M by 0.11 at h = 0.2 µm (docs, "Findings").
-constexpr deoxy::Coupling kCoupling = deoxy::Coupling::cell_implicit_outflow;
-// Diffusivity at the membrane: the face subpixel tensor (transport eqs T10–T11: on each face's
-// dual cell, series mean across the membrane, parallel mean along it, with the cross term),
-// imposed on the series-rule lattice by the face-flux correction. The node series rule (the
-// reference's own discretisation) drifts by +0.158 then +0.045 in ln M at fixed M between
-// h = 0.3, 0.2, 0.15 um; the face tensor by −0.001, −0.002 (docs, "Findings", deoxy_probe).
-constexpr deoxy::InterfaceRule kInterface = deoxy::InterfaceRule::face_tensor;
-
 std::string fmt(const char* f, double v) {
   char b[96];
   std::snprintf(b, sizeof b, f, v);
   return b;
 }
 
-// Planar reference (the calibration target): the same Evans–Fung section as a 2D planar
-// cell, resolved local kinetics (reference_rbc.py --planar). 3D reference: the real,
-// axisymmetric cell (reference_rbc.py) — the model-form comparison.
-vv::Curve planar_reference() {
-  return deoxy::read_reference(std::string(ERYTHRO_DEOXY_REFERENCE_DIR) + "/reference_S_planar.csv", 1);
-}
-vv::Curve cell_reference() {
-  return deoxy::read_reference(std::string(ERYTHRO_DEOXY_REFERENCE_DIR) + "/reference_S.csv", 1);
-}
+using deoxy::cell_reference;
+using deoxy::planar_reference;
 
-// Runs of one lattice level, each M once (fits against both references share them).
-struct Runner {
-  deoxy::Setup base;
-  std::map<double, deoxy::Result> memo;
-  int runs = 0;
-  const deoxy::Result& at(double M) {
-    auto it = memo.find(M);
-    if (it == memo.end()) {
-      deoxy::Setup s = base;
-      s.hb.M = M;
-      it = memo.emplace(M, deoxy::run(s)).first;
-      ++runs;
-    }
-    return it->second;
-  }
-};
+using deoxy::Fit;
+using deoxy::Runner;
 
-struct Fit {
-  vv::CalibrationResult r;  // parameter x = ln M
-  double M = 0.0;
-  int runs = 0;             // new lattice runs of this fit (memo hits excluded)
-  double wall_s = 0.0;
-  double rms_minus = 0.0, rms_plus = 0.0;  // linearised RMS misfit at ln M ∓ kFdLnM
-};
-
-// Brent on x = ln M ∈ [lo, hi] to |Δ ln M| ≤ tol_lnM (≈ relative tolerance in M).
+// Brent on x = ln M ∈ [lo, hi] (β = 1) to |Δ ln M| ≤ tol_lnM (≈ relative tolerance in M), RMS.
 Fit fit_lnM(Runner& run, const vv::Curve& ref, double lo, double hi, double tol_lnM) {
-  vv::Stopwatch clock;
-  const int runs0 = run.runs;
-  const vv::CurveModel model = [&](const std::vector<double>& p) { return run.at(std::exp(p[0])).S; };
-  vv::CalibrationOptions opt;
-  opt.norm = vv::MisfitNorm::rms;
-  opt.x_tolerance = tol_lnM / (hi - lo);
-  opt.fd_relative_step = kFdLnM / (hi - lo);
-  Fit f;
-  f.r = vv::calibrate_1d(model, ref, {"lnM", lo, hi, 0.5 * (lo + hi)}, opt);
-  f.M = std::exp(f.r.params[0]);
-  // Is the fit a minimum? RMS at ln M ∓ δ from r + J δ (δ = kFdLnM).
-  const auto r0 = vv::residuals(run.at(f.M).S, ref);
-  double sm = 0.0, sp = 0.0;
-  for (std::size_t k = 0; k < r0.size(); ++k) {
-    sm += std::pow(r0[k] - f.r.jacobian[k][0] * kFdLnM, 2);
-    sp += std::pow(r0[k] + f.r.jacobian[k][0] * kFdLnM, 2);
-  }
-  f.rms_minus = std::sqrt(sm / static_cast<double>(r0.size()));
-  f.rms_plus = std::sqrt(sp / static_cast<double>(r0.size()));
-  f.runs = run.runs - runs0;
-  f.wall_s = clock.seconds();
-  return f;
+  return deoxy::fit_log(run, ref, "lnM", [](double x) { return std::make_pair(std::exp(x), 1.0); }, lo, hi, tol_lnM,
+                        vv::MisfitNorm::rms, kFdLnM);
 }
 
 struct Level {
@@ -148,14 +77,7 @@ struct Level {
 
 Runner make_runner(double h, double t_end) {
   Runner r;
-  r.base.h_um = h;
-  r.base.dt_s = deoxy::diffusive_dt(h, kDtAt0p2);
-  r.base.t_end_s = t_end;
-  r.base.representation = kRepresentation;
-  r.base.collision = kCollision;
-  r.base.source_corrected_P = kSourceCorrectedP;
-  r.base.coupling = kCoupling;
-  r.base.interface = kInterface;
+  r.base = deoxy::case_setup(h, t_end);
   return r;
 }
 
@@ -165,19 +87,19 @@ Level calibrate_level(double h, const vv::Curve& ref, const vv::Curve& cell, dou
   vv::Stopwatch clock;
   Level L;
   L.h = h;
-  L.dt = deoxy::diffusive_dt(h, kDtAt0p2);
+  L.dt = deoxy::diffusive_dt(h, deoxy::kDtAt0p2);
   Runner run = make_runner(h, ref.t.back());
   L.planar = fit_lnM(run, ref, lo, hi, tol_lnM);
-  L.calibrated = run.at(L.planar.M);
+  L.calibrated = run.at(L.planar.value);
   L.cell_at_planar_fit = vv::curve_misfit(L.calibrated.S, cell);
   std::printf("h = %.2f um planar: M = %.4f (bound %d, %d evals + %d), max %.5f rms %.5f, 3D at it %.4f; %.0f s\n", h,
-              L.planar.M, static_cast<int>(L.planar.r.at_bound[0]), L.planar.r.evaluations,
+              L.planar.value, static_cast<int>(L.planar.r.at_bound[0]), L.planar.r.evaluations,
               L.planar.r.sensitivity_evaluations, L.planar.r.misfit.max_abs, L.planar.r.misfit.rms,
               L.cell_at_planar_fit.max_abs, L.planar.wall_s);
   std::fflush(stdout);
   if (fit_cell) {
     L.cell = fit_lnM(run, cell, kLnMLower, kLnMUpper, 0.01);
-    std::printf("h = %.2f um 3D cell: M = %.4f (bound %d), max %.5f rms %.5f; %.0f s\n", h, L.cell.M,
+    std::printf("h = %.2f um 3D cell: M = %.4f (bound %d), max %.5f rms %.5f; %.0f s\n", h, L.cell.value,
                 static_cast<int>(L.cell.r.at_bound[0]), L.cell.r.misfit.max_abs, L.cell.r.misfit.rms, L.cell.wall_s);
   }
   if (run_plain) {
@@ -238,13 +160,13 @@ void add_level(io::ResultRecord& rec, const Level& L) {
       {"interior_nodes", static_cast<double>(L.calibrated.interior_nodes)},
       {"interior_area_um2", L.calibrated.interior_area_um2},
       {"polygon_area_um2", L.calibrated.polygon_area_um2},
-      {"M_fitted", L.planar.M},
+      {"M_fitted", L.planar.value},
       {"M_at_bound", f.at_bound[0] ? 1.0 : 0.0},
       {"max_misfit", f.misfit.max_abs},
       {"rms_misfit", f.misfit.rms},
       {"sensitivity_rms_dS_dlnM", f.sensitivity_rms[0]},
       {"sensitivity_max_dS_dlnM", f.sensitivity_max[0]},
-      {"sensitivity_rms_dS_dM", f.sensitivity_rms[0] / L.planar.M},
+      {"sensitivity_rms_dS_dM", f.sensitivity_rms[0] / L.planar.value},
       {"relative_width_M_for_0.001", f.width(0, 1e-3)},
       {"gn_relative_standard_error_M", f.gn_standard_error[0]},
       {"brent_evaluations", static_cast<double>(f.evaluations)},
@@ -260,7 +182,7 @@ void add_level(io::ResultRecord& rec, const Level& L) {
     row["rms_misfit_M1"] = L.plain_misfit.rms;
   }
   if (!L.cell.r.params.empty()) {
-    row["M_fitted_3d_cell"] = L.cell.M;
+    row["M_fitted_3d_cell"] = L.cell.value;
     row["M_3d_at_bound"] = L.cell.r.at_bound[0] ? 1.0 : 0.0;
     row["max_misfit_3d_cell_fit"] = L.cell.r.misfit.max_abs;
     row["rms_misfit_3d_cell_fit"] = L.cell.r.misfit.rms;
@@ -277,7 +199,7 @@ void add_level_metrics(io::ResultRecord& rec, const Level& L, double curve_toler
                     reason});
   rec.add_metric({"fit_is_minimum_" + tag,
                   "min(RMS(lnM - 0.02), RMS(lnM + 0.02)) - RMS(lnM) (linearised; >= 0 at a minimum, one side at a "
-                  "bound)", "", std::min(f.r.at_bound[0] ? 1.0 : f.rms_minus, f.rms_plus) - f.r.misfit.rms, -1e-6,
+                  "bound)", "", std::min(f.r.at_bound[0] ? 1.0 : f.norm_minus, f.norm_plus) - f.r.misfit.rms, -1e-6,
                   0.0, io::Comparison::at_least, "Brent must end at a (constrained) minimum of the RMS misfit"});
   rec.add_metric({"o2_balance_" + tag, "|released - (change in lattice O2 - boundary inflow)| / released", "",
                   std::abs(L.calibrated.balance_residual), kBalanceTolerance, 0.0, io::Comparison::at_most,
@@ -299,7 +221,7 @@ io::Series curve_series(const std::string& name, const std::string& title, const
 
 void add_curves(io::ResultRecord& rec, const vv::Curve& ref, const vv::Curve& cell, const Level& L) {
   const std::string h = fmt("h = %.2f um", L.h);
-  rec.add_series(curve_series("S(t) calibrated, " + h, "2D calibrated (M = " + fmt("%.3f", L.planar.M) +
+  rec.add_series(curve_series("S(t) calibrated, " + h, "2D calibrated (M = " + fmt("%.3f", L.planar.value) +
                                                              ") vs planar resolved reference", ref, L.calibrated.S));
   rec.add_series(curve_series("S(t) vs 3D cell, " + h, "2D at the planar fit vs the 3D (axisymmetric) cell: "
                                                        "model-form gap", cell, L.calibrated.S));
@@ -324,7 +246,7 @@ TEST(Deoxygenation, CiSubset) {
   for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
 }
 
-// Levels of the full study (Δt = kDtAt0p2 (h/0.2 µm)², τ_out = 1.025 at each): the issue's
+// Levels of the full study (Δt = deoxy::kDtAt0p2 (h/0.2 µm)², τ_out = 1.025 at each): the issue's
 // resolution check is between the two finest. h = 0.1 µm at τ_out ≈ 1 costs ≈ 5 min per run
 // (≈ 45 min per Brent fit); 0.15 µm (80 nodes per side, ≈ 1–1.5 min per run) is the finest
 // level a full-tier case affords.
@@ -347,7 +269,7 @@ TEST(Deoxygenation, FullStudy) {
   for (std::size_t i = 0; i < kLevels.size(); ++i) {
     double lo = kLnMLower, hi = kLnMUpper;
     if (i >= 2) {
-      const double x = std::log(levels.back().planar.M);
+      const double x = std::log(levels.back().planar.value);
       lo = x - kWarmHalfBracket;
       hi = x + kWarmHalfBracket;
     }
@@ -358,7 +280,7 @@ TEST(Deoxygenation, FullStudy) {
   // Curve change between the two finest levels at FIXED M = M(finest): what moves the fit.
   // Linearised shift of ln M it implies: −J·Δr / J·J (J of the finest fit).
   Runner second = make_runner(L2.h, ref.t.back());
-  const auto r_fine = vv::residuals(L1.calibrated.S, ref), r_second = vv::residuals(second.at(L1.planar.M).S, ref);
+  const auto r_fine = vv::residuals(L1.calibrated.S, ref), r_second = vv::residuals(second.at(L1.planar.value).S, ref);
   double dd = 0.0, jd = 0.0, jj = 0.0;
   for (std::size_t k = 0; k < r_fine.size(); ++k) {
     const double d = r_second[k] - r_fine[k], j = L1.planar.r.jacobian[k][0];
@@ -388,7 +310,7 @@ TEST(Deoxygenation, FullStudy) {
     add_level_metrics(rec, L, 0.0, "");  // balance and fit quality; misfits in /runs and below
     add_curves(rec, ref, cell, L);
     mh.x.push_back(L.h);
-    mh.y.push_back(L.planar.M);
+    mh.y.push_back(L.planar.value);
   }
   rec.add_series(mh);
   const std::string t1 = fmt("h%.2f", L1.h), t2 = fmt("h%.2f", L2.h);
@@ -396,7 +318,7 @@ TEST(Deoxygenation, FullStudy) {
                   L1.planar.r.misfit.max_abs, kCurveTolerance, 0.0, io::Comparison::at_most,
                   "issue 7 validation tolerance 0.01 in S: 1.3 % of the drop S0 - S_f = 0.79, fifty times the "
                   "reference's numerical error (Richardson < 2e-4); asserted at the finest lattice (coarser: /runs)"});
-  const double dM = std::abs(L1.planar.M - L2.planar.M) / L1.planar.M;
+  const double dM = std::abs(L1.planar.value - L2.planar.value) / L1.planar.value;
   rec.add_metric({"M_change_" + t2 + "_" + t1, "|M(finest) - M(second finest)| / M(finest), both Brent fits", "", dM,
                   kMChangeTolerance, 0.0, io::Comparison::at_most,
                   "issue 7: the fitted M is resolution-independent, change < 2 % between the two finest levels (fit "
@@ -415,7 +337,7 @@ TEST(Deoxygenation, FullStudy) {
                   "while the planar fit meets 0.01; measured direction, recorded difference"});
   rec.set_wall_time(clock.seconds());
   std::printf("M:");
-  for (const auto& L : levels) std::printf(" %.4f", L.planar.M);
+  for (const auto& L : levels) std::printf(" %.4f", L.planar.value);
   std::printf(", |dM|/M(finest) = %.4f, wall %.0f s\n", dM, clock.seconds());
   std::printf("written: %s\n", rec.write_to_results_dir().c_str());
   for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
