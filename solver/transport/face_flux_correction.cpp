@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
 
 namespace erythro::transport {
 
@@ -47,6 +48,31 @@ void FaceFluxCorrection::evaluate(const TransportLattice& lattice) {
     if (f.X != 0.0) dF -= f.X * 0.25 * (C(f.a_plus) - C(f.a_minus) + C(f.b_plus) - C(f.b_minus));  // eq T11
     node_correction_[slot_[f.a]] -= dF;
     node_correction_[slot_[f.b]] += dF;
+  }
+}
+
+double FaceFluxCorrection::lagged_gain(const TransportLattice& lattice) const {
+  // A_nm = Σ_f s_nf ∂ΔF_f/∂Ĉ_m φ_m, s_nf = −1 at a, +1 at b; rows accumulated per touched node
+  // as Σ |…| over (face, m) pairs (an upper bound of Σ_m |A_nm|, equal when no m repeats).
+  std::vector<double> row(nodes_.size(), 0.0);
+  for (const auto& f : faces_) {
+    const auto phi = [&](std::size_t m) { return lattice.source_offset_factor(m); };
+    double dependence = std::abs(f.dK) * (phi(f.a) + phi(f.b));
+    if (f.X != 0.0) dependence += std::abs(f.X) * 0.25 * (phi(f.a_plus) + phi(f.a_minus) + phi(f.b_plus) + phi(f.b_minus));
+    row[slot_[f.a]] += dependence;
+    row[slot_[f.b]] += dependence;
+  }
+  return row.empty() ? 0.0 : *std::max_element(row.begin(), row.end());
+}
+
+void FaceFluxCorrection::require_stable(const TransportLattice& lattice) const {
+  const double gain = lagged_gain(lattice);
+  if (gain > kLaggedGainLimit) {
+    throw std::invalid_argument(
+        "FaceFluxCorrection: lagged gain " + std::to_string(gain) + " exceeds the stability limit " +
+        std::to_string(kLaggedGainLimit) +
+        " (a diffusivity contrast above about 9.5 across the membrane); reduce the contrast or use the series or "
+        "node-tensor interface rule (docs/transport.md, \"Stability of the face-flux correction\")");
   }
 }
 

@@ -44,6 +44,20 @@ class FaceFluxCorrection {
 
   std::size_t faces() const { return faces_.size(); }
 
+  // Gain of the one-step lag (stability, not accuracy): the correction is computed from Ĉ_m =
+  // C_m + φ_m q_m (T7, φ = lattice.source_offset_factor), and q holds the last correction, so
+  // q_corr(new) = A q_corr(old) + …; returns the row-sum norm max_n Σ_m |A_nm|. Measured on the
+  // deoxygenation cell (docs/transport.md, "Stability of the face-flux correction").
+  double lagged_gain(const TransportLattice& lattice) const;
+  // Throws std::invalid_argument, naming the gain, the limit and what to change, when
+  // lagged_gain > kLaggedGainLimit. The gain depends only on the diffusivity contrast and the cut
+  // pattern, not on Δt (dK ∝ Δt, φ ∝ 1/Δt); on a curved D_in/D_out jump the limit is a contrast of
+  // about 9.5 (950:2800 µm²/s gives 0.17).
+  void require_stable(const TransportLattice& lattice) const;
+  // Between the largest gain measured stable (0.785) and the smallest measured diverging (0.833)
+  // on the deoxygenation cell, 17 runs with contrasts 3–17 (docs/transport.md).
+  static constexpr double kLaggedGainLimit = 0.8;
+
  private:
   struct Face {
     std::size_t a, b, a_plus, a_minus, b_plus, b_minus;

@@ -85,11 +85,12 @@ int main(int argc, char** argv) {
   const auto r = deoxy::run(s);
   const auto m = vv::curve_misfit(r.S, ref);
   std::printf("h %.4f dt_us %.4f M %.5f rep %s coll %s din %g dout %g box %g nodes %d heme_nodes %ld area %.5f polygon %.5f "
-              "steps %ld max %.6f rms %.6f balance %.2e wall %.1f\n",
+              "steps %ld max %.6f rms %.6f balance %.2e gain %.3f wall %.1f\n",
               s.h_um, s.dt_s * 1e6, s.hb.M, argv[4],
               s.collision.kind == transport::Collision::trt ? ("trt" + std::to_string(s.collision.magic)).c_str() : "bgk",
               s.D_in, s.D_out, s.box_half_um, r.nodes, r.interior_nodes,
-              r.interior_area_um2, r.polygon_area_um2, r.steps, m.max_abs, m.rms, r.balance_residual, r.wall_s);
+              r.interior_area_um2, r.polygon_area_um2, r.steps, m.max_abs, m.rms, r.balance_residual,
+              r.face_correction_gain, r.wall_s);
   if (argc > 5 && std::strcmp(argv[5], "-") != 0) {
     FILE* f = std::fopen(argv[5], "w");
     if (!f) return 1;

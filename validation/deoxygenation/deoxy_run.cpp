@@ -35,6 +35,29 @@ double weighted_mean_P(const std::vector<Weighted>& cell, std::span<const double
   return s / (w_sum * alpha);
 }
 
+// Stops a diverging run with a diagnosis (step, time, node, quantity) instead of a curve of
+// NaNs: the concentration must be finite and within [−C_ceiling/2, C_ceiling], S within [0, 1].
+void check_bounded(const transport::TransportLattice& o2, const Grid& grid, long step, double t, double S,
+                   double C_ceiling, double face_gain, const Setup& s) {
+  auto fail = [&](const std::string& what) {
+    std::ostringstream m;
+    m << "deoxy::run diverged at step " << step << " (t = " << t << " s): " << what << "; h = " << s.h_um
+      << " um, dt = " << s.dt_s * 1e6 << " us, D_in = " << s.D_in << ", D_out = " << s.D_out
+      << " um^2/s, M = " << s.hb.M;
+    if (face_gain > 0.0) m << ", face-flux correction lagged gain " << face_gain;
+    throw std::runtime_error(m.str());
+  };
+  if (!(S >= 0.0 && S <= 1.0)) fail("cell saturation S = " + std::to_string(S) + " outside [0, 1]");
+  const auto C = o2.concentration();
+  for (int y = 0; y < grid.ny; ++y)
+    for (int x = 0; x < grid.nx; ++x) {
+      const double c = C[grid.index(x, y)];
+      if (!(c >= -0.5 * C_ceiling && c <= C_ceiling))
+        fail("concentration " + std::to_string(c) + " uM at node (" + std::to_string(x) + ", " + std::to_string(y) +
+             ") outside [" + std::to_string(-0.5 * C_ceiling) + ", " + std::to_string(C_ceiling) + "]");
+    }
+}
+
 }  // namespace
 
 Result run(const Setup& s) {
@@ -101,6 +124,8 @@ Result run(const Setup& s) {
   if (s.interface == InterfaceRule::face_tensor) {
     face_correction = std::make_unique<transport::FaceFluxCorrection>(
         grid, D, transport::subpixel_face_targets(cell, n, n, units.diffusivity(s.D_in), units.diffusivity(s.D_out)));
+    res.face_correction_gain = face_correction->lagged_gain(o2);
+    face_correction->require_stable(o2);  // before running: a clear error, not a diverged curve
   }
   if (s.interface == InterfaceRule::node_tensor) {
     transport::set_node_subpixel_tensor(o2, transport::cut_cells(cell, n, n), units.diffusivity(s.D_in),
@@ -132,6 +157,10 @@ Result run(const Setup& s) {
     for (const auto& c : sample) kappa += o2.source_offset_factor(c.node) * c.w * w_release[c.node];
     kappa /= w_sum;
   }
+  // Divergence guard: C stays in [min(C_b, C0_in), max(C_b, C0_in)] (maximum principle: the
+  // release only restores P towards what the heme held at P0); a margin of a factor 2 above and
+  // −C_b below catches a growing oscillation long before it is a NaN.
+  const double C_ceiling = 2.0 * std::max(s.C_b_uM, C0_in);
   transport::HbParameters hb_end = s.hb;
   hb_end.C_heme *= 1.0 + kappa;
   for (long k = 1; k <= steps; ++k) {
@@ -163,6 +192,7 @@ Result run(const Setup& s) {
     res.max_step_residual = std::max(res.max_step_residual, std::abs(o2.mass_balance().relative_residual()));
     const double t = static_cast<double>(k) * s.dt_s;
     if (t <= 2e-3 + 1e-12 || k % stride == 0 || k == steps) {
+      check_bounded(o2, grid, k, t, S, C_ceiling, res.face_correction_gain, s);
       res.S.t.push_back(t);
       res.S.y.push_back(S);
     }

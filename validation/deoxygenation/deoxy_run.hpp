@@ -113,6 +113,7 @@ struct Result {
   double boundary_in_uM_um2 = 0.0;    // Σ boundary_in (negative: outflow)
   double balance_residual = 0.0;      // (change − boundary_in − released) / released
   double max_step_residual = 0.0;     // max relative_residual() of the module's balance
+  double face_correction_gain = 0.0;  // FaceFluxCorrection::lagged_gain (0: no correction)
   double wall_s = 0.0;
 };
 

@@ -121,7 +121,10 @@ std::unique_ptr<transport::FaceFluxCorrection> apply_treatment(transport::Transp
   auto D = lat.diffusivity();
   for (const auto& c : cells) D[c.node] = series_diffusivity(c.phi, Din, Dout);
   if (t == InterfaceTreatment::series) return nullptr;
-  return std::make_unique<FaceFluxCorrection>(lat.grid(), D, subpixel_face_targets(shape, n, lat.grid().ny, Din, Dout));
+  auto correction =
+      std::make_unique<FaceFluxCorrection>(lat.grid(), D, subpixel_face_targets(shape, n, lat.grid().ny, Din, Dout));
+  correction->require_stable(lat);
+  return correction;
 }
 
 // Steps with a constant base source plus the face correction (if any), rewritten every step.
