@@ -125,22 +125,37 @@ void copy_once(const double* __restrict a, double* __restrict b, std::size_t n, 
   }
 }
 
-// Copy bandwidth in GB/s (10⁹ B/s, read + write bytes) over `repeats` copies.
+// Two initialised copy arrays; one timed copy at a time, alternating the direction.
+class CopyArrays {
+ public:
+  CopyArrays() : a_(aligned_array(kCopyElements)), b_(aligned_array(kCopyElements)) {
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < kCopyElements; ++i) {
+      a_[i] = 1.0 + static_cast<double>(i % 7);
+      b_[i] = 0.0;
+    }
+    copy_once(a_.get(), b_.get(), kCopyElements, true);  // warm-up (page faults, clocks)
+    copy_once(b_.get(), a_.get(), kCopyElements, false);
+  }
+  // GB/s (10⁹ B/s, read + write bytes) of one copy.
+  double sample(bool streaming) {
+    const auto start = Clock::now();
+    copy_once(forward_ ? a_.get() : b_.get(), forward_ ? b_.get() : a_.get(), kCopyElements, streaming);
+    forward_ = !forward_;
+    return 2.0 * sizeof(double) * static_cast<double>(kCopyElements) / seconds_since(start) / 1e9;
+  }
+
+ private:
+  AlignedArray a_, b_;
+  bool forward_ = true;
+};
+
+// Copy bandwidth in GB/s over `repeats` copies (at least 5).
 Stats copy_bandwidth(int threads, bool streaming, int repeats) {
   omp_set_num_threads(threads);
-  AlignedArray a = aligned_array(kCopyElements), b = aligned_array(kCopyElements);
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < kCopyElements; ++i) {
-    a[i] = 1.0 + static_cast<double>(i % 7);
-    b[i] = 0.0;
-  }
-  copy_once(a.get(), b.get(), kCopyElements, streaming);  // warm-up (page faults, clocks)
+  CopyArrays arrays;
   std::vector<double> gbs;
-  for (int r = 0; r < std::max(repeats, 5); ++r) {
-    const auto start = Clock::now();
-    copy_once(r % 2 ? b.get() : a.get(), r % 2 ? a.get() : b.get(), kCopyElements, streaming);
-    gbs.push_back(2.0 * sizeof(double) * static_cast<double>(kCopyElements) / seconds_since(start) / 1e9);
-  }
+  for (int r = 0; r < std::max(repeats, 5); ++r) gbs.push_back(arrays.sample(streaming));
   return stats_of(gbs);
 }
 
@@ -238,6 +253,34 @@ StepResult measure_kernel(const StepConfig& c, fluid::detail::StoreMode mode, in
       lat.grid().size(), repeats, sample_seconds);
   r.wall_time_s = seconds_since(start);
   return r;
+}
+
+// The fraction of the bound with the bound measured beside each kernel sample: `pairs` times a
+// plain and a streaming copy (the better one is that pair's bound) and then one kernel sample of
+// FluidLattice::step(). The host's copy bandwidth drifts by tens of per cent within minutes
+// (docs/performance.md), so a bound measured once at the start can be off by that much; the
+// median of the per-pair ratios is not.
+struct PairedResult {
+  Stats fraction, mlups, gbs;
+  int pairs = 0;
+  double wall_time_s = 0.0;
+};
+
+PairedResult measure_paired(const StepConfig& c, int pairs, double sample_seconds) {
+  const auto start = Clock::now();
+  omp_set_num_threads(c.threads);
+  CopyArrays arrays;
+  fluid::FluidLattice lat = shear_wave_lattice(c);
+  std::vector<double> fraction, mlups, gbs;
+  for (int p = 0; p < pairs; ++p) {
+    const double bw = std::max(arrays.sample(false), arrays.sample(true));
+    const StepResult r = time_steps([&] { lat.step(); }, lat.grid().size(), 1, sample_seconds);
+    gbs.push_back(bw);
+    mlups.push_back(r.mlups.median);
+    fraction.push_back(r.mlups.median / (bw * 1e9 / kBytesPerUpdate / 1e6));
+  }
+  if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
+  return {stats_of(fraction), stats_of(mlups), stats_of(gbs), pairs, seconds_since(start)};
 }
 
 // ---------------------------------------------------------------- machine state
@@ -432,6 +475,36 @@ int run_bench(BenchOptions o) {
         report("kernel, store mode forced", store_name(Grid{n_ablation, n_ablation}, mode), c, t1, r);
       }
     }
+  }
+
+  // The headline of issue 3 (1024², periodic BGK, one thread) with a paired bound.
+  const bool has_1024 = std::find(o.sizes.begin(), o.sizes.end(), 1024) != o.sizes.end();
+  const bool has_1_thread = std::find(o.threads.begin(), o.threads.end(), 1) != o.threads.end();
+  if (has_1024 && has_1_thread) {
+    const StepConfig c{1024, fluid::CollisionModel::bgk, false, 1};
+    const PairedResult p = measure_paired(c, std::max(o.repeats, 5), o.sample_seconds);
+    std::printf("\npaired (copy, then step; %d pairs), periodic BGK 1024^2, 1 thread: fraction of the bound %.0f %% "
+                "(%.0f-%.0f %%), MLUPS %.1f (%.1f-%.1f), copy %.1f GB/s (%.1f-%.1f)\n",
+                p.pairs, 100.0 * p.fraction.median, 100.0 * p.fraction.min, 100.0 * p.fraction.max, p.mlups.median,
+                p.mlups.min, p.mlups.max, p.gbs.median, p.gbs.min, p.gbs.max);
+    record.add_run({{"kind", std::string("paired: copy then FluidLattice::step")},
+                    {"boundary", boundary_name(false)},
+                    {"model", std::string("bgk")},
+                    {"grid_n", 1024.0},
+                    {"threads", 1.0},
+                    {"stores", store_name(Grid{1024, 1024}, fluid::detail::StoreMode::automatic)},
+                    {"samples", static_cast<double>(p.pairs)},
+                    {"mlups_median", p.mlups.median},
+                    {"mlups_min", p.mlups.min},
+                    {"mlups_max", p.mlups.max},
+                    {"bandwidth_gbs", p.gbs.median},
+                    {"fraction_of_bound", p.fraction.median},
+                    {"fraction_of_bound_min", p.fraction.min},
+                    {"fraction_of_bound_max", p.fraction.max},
+                    {"wall_time_s", p.wall_time_s}});
+    record.add_metric(informative("fraction_of_bound_paired_periodic_bgk_1024_t1",
+                                  "median over pairs of MLUPS / (copy bandwidth measured just before / 144 B)", "",
+                                  p.fraction.median));
   }
 
   const std::string load_end = load_average();
