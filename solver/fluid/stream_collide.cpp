@@ -10,6 +10,8 @@
 //    (nine restrict source and nine destination streams). Not `omp simd`: GCC 12
 //    privatises the node's f[9] per SIMD lane and then cannot vectorise the loop.
 //    The outermost rows and columns take the general path with boundary handling.
+//    Each span starts its vector loop at the first cache-line aligned output node (the
+//    few nodes before it go through the loop's scalar remainder): +10–25 % in cache.
 //    Both paths collide through the same node_update() → collide_node().
 //  - When the two lattices do not fit in the last-level cache, each row is done in
 //    chunks of kChunk nodes collided into a per-thread buffer and streamed out with
