@@ -55,8 +55,8 @@ double FaceFluxCorrection::lagged_gain(const TransportLattice& lattice) const {
   // A_nm = Σ_f s_nf ∂ΔF_f/∂Ĉ_m φ_m, s_nf = −1 at a, +1 at b; rows accumulated per touched node
   // as Σ |…| over (face, m) pairs (an upper bound of Σ_m |A_nm|, equal when no m repeats).
   std::vector<double> row(nodes_.size(), 0.0);
+  const auto phi = [&](std::size_t m) { return lattice.source_offset_factor(m); };
   for (const auto& f : faces_) {
-    const auto phi = [&](std::size_t m) { return lattice.source_offset_factor(m); };
     double dependence = std::abs(f.dK) * (phi(f.a) + phi(f.b));
     if (f.X != 0.0) dependence += std::abs(f.X) * 0.25 * (phi(f.a_plus) + phi(f.a_minus) + phi(f.b_plus) + phi(f.b_minus));
     row[slot_[f.a]] += dependence;

@@ -36,7 +36,8 @@ double weighted_mean_P(const std::vector<Weighted>& cell, std::span<const double
 }
 
 // Stops a diverging run with a diagnosis (step, time, node, quantity) instead of a curve of
-// NaNs: the concentration must be finite and within [−C_ceiling/2, C_ceiling], S within [0, 1].
+// NaNs: the concentration must be finite and within [−C_ceiling/2, C_ceiling], S within [0, 1];
+// face_gain (> 0 with the face-flux correction) is quoted in the diagnosis.
 void check_bounded(const transport::TransportLattice& o2, const Grid& grid, long step, double t, double S,
                    double C_ceiling, double face_gain, const Setup& s) {
   auto fail = [&](const std::string& what) {
@@ -158,8 +159,8 @@ Result run(const Setup& s) {
     kappa /= w_sum;
   }
   // Divergence guard: C stays in [min(C_b, C0_in), max(C_b, C0_in)] (maximum principle: the
-  // release only restores P towards what the heme held at P0); a margin of a factor 2 above and
-  // −C_b below catches a growing oscillation long before it is a NaN.
+  // release only restores P towards what the heme held at P0); the bounds [−C_max, 2 C_max],
+  // C_max = max(C_b, C0_in), catch a growing oscillation long before it is a NaN.
   const double C_ceiling = 2.0 * std::max(s.C_b_uM, C0_in);
   transport::HbParameters hb_end = s.hb;
   hb_end.C_heme *= 1.0 + kappa;
