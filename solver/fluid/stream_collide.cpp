@@ -256,9 +256,8 @@ void update_chunk(const KernelArgs& a, const NodeInputs& in, int y, int x0, int 
     // Split off the head up to the first node whose outputs are cache-line aligned, so
     // the vector loop's nine stores never straddle two lines (the same per-node arithmetic).
     const int len = end - begin;
-    int head = 0;
-    const auto misalign = reinterpret_cast<std::uintptr_t>(dst[0]) % 64;
-    if (misalign % sizeof(double) == 0) head = std::min(len, static_cast<int>(((64 - misalign) % 64) / sizeof(double)));
+    const auto misalign = reinterpret_cast<std::uintptr_t>(dst[0]) % 64;  // a multiple of 8 B
+    const int head = std::min(len, static_cast<int>((64 - misalign) % 64 / sizeof(double)));
     const std::size_t n0 = g.index(begin, y);
     if (head > 0) interior_span<Model, TauField, HasForce, ForceField>(in, src, dst, n0, head);
     if (len > head) {
