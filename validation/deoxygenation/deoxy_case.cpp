@@ -1,6 +1,7 @@
 #include "deoxy_case.hpp"
 
 #include <cmath>
+#include <cstdio>
 
 #include "common/case_support.hpp"
 
@@ -57,6 +58,25 @@ Fit fit_log(Runner& run, const vv::Curve& ref, const std::string& name,
   f.runs = run.runs - runs0;
   f.wall_s = clock.seconds();
   return f;
+}
+
+std::string fmt(const char* format, double value) {
+  char b[96];
+  std::snprintf(b, sizeof b, format, value);
+  return b;
+}
+
+io::Series curve_series(const std::string& name, const std::string& title, const vv::Curve& reference,
+                        const vv::Curve& simulated) {
+  io::Series s;
+  s.name = name;
+  s.title = title;
+  s.xlabel = "t (s)";
+  s.ylabel = "S";
+  s.x = reference.t;
+  s.y_reference = reference.y;
+  for (double t : reference.t) s.y.push_back(vv::interpolate(simulated, t));
+  return s;
 }
 
 }  // namespace erythro::deoxy

@@ -8,6 +8,8 @@
 #include <string>
 #include <utility>
 
+#include "io/result_record.hpp"
+
 #include "common/calibration.hpp"
 #include "deoxy_run.hpp"
 
@@ -63,6 +65,7 @@ inline vv::Curve cell_reference() {
 // Runs of one lattice level, each (M, β) once; β scales the medium diffusivity, D_out,eff =
 // β D_out (β = 1: the planar cases). Fits against different references share the runs.
 struct Runner {
+  explicit Runner(Setup setup) : base(std::move(setup)) {}
   Setup base;
   std::map<std::pair<double, double>, Result> memo;
   int runs = 0;
@@ -84,5 +87,12 @@ struct Fit {
 Fit fit_log(Runner& run, const vv::Curve& ref, const std::string& name,
             const std::function<std::pair<double, double>(double)>& point, double lo, double hi, double tol,
             vv::MisfitNorm norm, double fd_step);
+
+// printf-style formatting of one number (labels and metric names).
+std::string fmt(const char* format, double value);
+
+// The simulated S̄(t) at the reference's times, with the reference as the plot's reference line.
+io::Series curve_series(const std::string& name, const std::string& title, const vv::Curve& reference,
+                        const vv::Curve& simulated);
 
 }  // namespace erythro::deoxy

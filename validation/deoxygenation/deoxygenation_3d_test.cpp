@@ -35,6 +35,8 @@ using namespace erythro;
 
 namespace {
 
+using deoxy::fmt;
+
 // Issue 7 item 9: the calibrated curve matches the 3D cell within 0.01 in S over the whole
 // transient (S falls by 0.79); the reference's own error (Richardson, PROVENANCE.md) is 1.5e-4.
 // Not reached by the 2D planar model (measured floor ≈ 0.011 at every level, docs): asserted
@@ -63,11 +65,6 @@ constexpr double kWarmHalfBracket = 0.25;
 // Tolerances in ln p (≈ relative in p): 0.1 % where the change is asserted, coarser below.
 constexpr double kFineTolerance = 1e-3;
 
-std::string fmt(const char* f, double v) {
-  char b[96];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 struct Bracket {
   double lo, hi;
@@ -93,9 +90,8 @@ Level calibrate_level(double h, const vv::Curve& planar, const vv::Curve& cell, 
   Level L;
   L.h = h;
   L.dt = deoxy::diffusive_dt(h, deoxy::kDtAt0p2);
-  deoxy::Runner planar_run, cell_run;  // the planar reference runs longer (2.4 s against 1.8 s)
-  planar_run.base = deoxy::case_setup(h, planar.t.back());
-  cell_run.base = deoxy::case_setup(h, cell.t.back());
+  // the planar reference runs longer (2.4 s against 1.8 s)
+  deoxy::Runner planar_run(deoxy::case_setup(h, planar.t.back())), cell_run(deoxy::case_setup(h, cell.t.back()));
   L.planar = deoxy::fit_log(planar_run, planar, "lnM", [](double x) { return std::make_pair(std::exp(x), 1.0); },
                             lnM.lo, lnM.hi, tol_M, vv::MisfitNorm::rms, kFdLnM);
   const double M = L.planar.value;
@@ -142,8 +138,7 @@ double parameter_correlation(const vv::CalibrationResult& f) {
 
 JointFit joint_fit(double h, const vv::Curve& cell, const Level& start) {
   vv::Stopwatch clock;
-  deoxy::Runner run;
-  run.base = deoxy::case_setup(h, cell.t.back());
+  deoxy::Runner run(deoxy::case_setup(h, cell.t.back()));
   const vv::CurveModel model = [&](const std::vector<double>& p) { return run.at(std::exp(p[0]), std::exp(p[1])).S; };
   const std::vector<vv::ParameterBound> box{{"lnM", kLnMLower, kLnMUpper, start.planar.r.params[0]},
                                             {"lnBeta", kLnBetaLower, kLnBetaUpper, start.closure.r.params[0]}};
@@ -222,17 +217,11 @@ void add_level_metrics(io::ResultRecord& rec, const Level& L) {
                   "exact discrete balance (eq T5) summed over all steps: round-off only"});
 }
 
-io::Series curve_series(const vv::Curve& ref, const Level& L) {
-  io::Series s;
-  s.name = "S(t) vs 3D cell, closure, " + fmt("h = %.2f um", L.h);
-  s.title = "2D, M = " + fmt("%.3f", L.planar.value) + " (planar fit), beta = " + fmt("%.3f", L.closure.value) +
-            " (closure) vs the 3D axisymmetric cell";
-  s.xlabel = "t (s)";
-  s.ylabel = "S";
-  s.x = ref.t;
-  s.y_reference = ref.y;
-  for (double t : ref.t) s.y.push_back(vv::interpolate(L.calibrated.S, t));
-  return s;
+io::Series closure_series(const vv::Curve& cell, const Level& L) {
+  return deoxy::curve_series("S(t) vs 3D cell, closure, " + fmt("h = %.2f um", L.h),
+                             "2D, M = " + fmt("%.3f", L.planar.value) + " (planar fit), beta = " +
+                                 fmt("%.3f", L.closure.value) + " (closure) vs the 3D axisymmetric cell",
+                             cell, L.calibrated.S);
 }
 
 }  // namespace
@@ -252,7 +241,7 @@ TEST(Deoxygenation3d, CiSubset) {
                   L.cell_misfit.max_abs, 0.013, 0.0, io::Comparison::at_most,
                   "CI regression guard of the closure at the coarse lattice (measured 0.01076; the M-only "
                   "fit gives 0.066); the full study asserts the resolution checks and records the 0.01 gap"});
-  rec.add_series(curve_series(cell, L));
+  rec.add_series(closure_series(cell, L));
   rec.set_wall_time(clock.seconds());
   std::printf("written: %s\n", rec.write_to_results_dir().c_str());
   for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
@@ -295,7 +284,7 @@ TEST(Deoxygenation3d, FullStudy) {
   for (const auto& L : levels) {
     add_level(rec, L);
     add_level_metrics(rec, L);
-    rec.add_series(curve_series(cell, L));
+    rec.add_series(closure_series(cell, L));
     mh.x.push_back(L.h);
     mh.y.push_back(L.planar.value);
     bh.x.push_back(L.h);

@@ -45,16 +45,13 @@ constexpr double kBalanceTolerance = 1e-9;
 const double kLnMLower = std::log(0.05), kLnMUpper = std::log(4.0);
 // Central-difference step in ln M for the sensitivity (±2 % in M).
 constexpr double kFdLnM = 0.02;
-std::string fmt(const char* f, double v) {
-  char b[96];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
 
 using deoxy::cell_reference;
 using deoxy::planar_reference;
 
+using deoxy::curve_series;
 using deoxy::Fit;
+using deoxy::fmt;
 using deoxy::Runner;
 
 // Brent on x = ln M ∈ [lo, hi] (β = 1) to |Δ ln M| ≤ tol_lnM (≈ relative tolerance in M), RMS.
@@ -75,12 +72,6 @@ struct Level {
   int runs = 0;
 };
 
-Runner make_runner(double h, double t_end) {
-  Runner r;
-  r.base = deoxy::case_setup(h, t_end);
-  return r;
-}
-
 // One level: planar fit on [lo, hi] (ln M), optionally the 3D fit on the full bracket and M = 1.
 Level calibrate_level(double h, const vv::Curve& ref, const vv::Curve& cell, double lo, double hi, double tol_lnM,
                       bool fit_cell, bool run_plain) {
@@ -88,7 +79,7 @@ Level calibrate_level(double h, const vv::Curve& ref, const vv::Curve& cell, dou
   Level L;
   L.h = h;
   L.dt = deoxy::diffusive_dt(h, deoxy::kDtAt0p2);
-  Runner run = make_runner(h, ref.t.back());
+  Runner run(deoxy::case_setup(h, ref.t.back()));
   L.planar = fit_lnM(run, ref, lo, hi, tol_lnM);
   L.calibrated = run.at(L.planar.value);
   L.cell_at_planar_fit = vv::curve_misfit(L.calibrated.S, cell);
@@ -206,18 +197,6 @@ void add_level_metrics(io::ResultRecord& rec, const Level& L, double curve_toler
                   "exact discrete balance (eq T5) summed over all steps: round-off only"});
 }
 
-io::Series curve_series(const std::string& name, const std::string& title, const vv::Curve& ref,
-                        const vv::Curve& sim) {
-  io::Series s;
-  s.name = name;
-  s.title = title;
-  s.xlabel = "t (s)";
-  s.ylabel = "S";
-  s.x = ref.t;
-  s.y_reference = ref.y;
-  for (double t : ref.t) s.y.push_back(vv::interpolate(sim, t));
-  return s;
-}
 
 void add_curves(io::ResultRecord& rec, const vv::Curve& ref, const vv::Curve& cell, const Level& L) {
   const std::string h = fmt("h = %.2f um", L.h);
@@ -279,7 +258,7 @@ TEST(Deoxygenation, FullStudy) {
 
   // Curve change between the two finest levels at FIXED M = M(finest): what moves the fit.
   // Linearised shift of ln M it implies: −J·Δr / J·J (J of the finest fit).
-  Runner second = make_runner(L2.h, ref.t.back());
+  Runner second(deoxy::case_setup(L2.h, ref.t.back()));
   const auto r_fine = vv::residuals(L1.calibrated.S, ref), r_second = vv::residuals(second.at(L1.planar.value).S, ref);
   double dd = 0.0, jd = 0.0, jj = 0.0;
   for (std::size_t k = 0; k < r_fine.size(); ++k) {
