@@ -168,23 +168,32 @@ struct StepResult {
   double wall_time_s = 0.0;
 };
 
-// Warm-up (at least 3 steps and 0.1 s, which also sizes a sample), then `repeats`
-// samples of at least `sample_seconds` each.
-StepResult time_steps(const std::function<void()>& step, std::size_t nodes, int repeats, double sample_seconds) {
-  const auto start_all = Clock::now();
+// Warm-up: at least 3 steps and 0.1 s; returns the number of steps of one sample lasting at
+// least `sample_seconds`.
+long warm_up(const std::function<void()>& step, double sample_seconds) {
+  const auto start = Clock::now();
   long warm = 0;
-  while (warm < 3 || seconds_since(start_all) < 0.1) {
+  while (warm < 3 || seconds_since(start) < 0.1) {
     step();
     ++warm;
   }
-  const double per_step = seconds_since(start_all) / static_cast<double>(warm);
-  const long steps = std::max(1L, static_cast<long>(std::ceil(sample_seconds / per_step)));
+  const double per_step = seconds_since(start) / static_cast<double>(warm);
+  return std::max(1L, static_cast<long>(std::ceil(sample_seconds / per_step)));
+}
+
+// MLUPS of one sample of `steps` steps.
+double sample_mlups(const std::function<void()>& step, std::size_t nodes, long steps) {
+  const auto start = Clock::now();
+  for (long s = 0; s < steps; ++s) step();
+  return static_cast<double>(nodes) * static_cast<double>(steps) / seconds_since(start) / 1e6;
+}
+
+// Warm-up, then `repeats` samples of at least `sample_seconds` each.
+StepResult time_steps(const std::function<void()>& step, std::size_t nodes, int repeats, double sample_seconds) {
+  const auto start_all = Clock::now();
+  const long steps = warm_up(step, sample_seconds);
   std::vector<double> mlups;
-  for (int r = 0; r < repeats; ++r) {
-    const auto start = Clock::now();
-    for (long s = 0; s < steps; ++s) step();
-    mlups.push_back(static_cast<double>(nodes) * static_cast<double>(steps) / seconds_since(start) / 1e6);
-  }
+  for (int r = 0; r < repeats; ++r) mlups.push_back(sample_mlups(step, nodes, steps));
   return {stats_of(mlups), steps, repeats, seconds_since(start_all)};
 }
 
@@ -255,6 +264,9 @@ StepResult measure_kernel(const StepConfig& c, fluid::detail::StoreMode mode, in
   return r;
 }
 
+// Node updates per µs that a copy bandwidth (GB/s, read + write bytes) allows: bw / 144 B.
+double bound_mlups(double gbs) { return gbs * 1e9 / kBytesPerUpdate / 1e6; }
+
 // The fraction of the bound with the bound measured beside each kernel sample: `pairs` times a
 // plain and a streaming copy (the better one is that pair's bound) and then one kernel sample of
 // FluidLattice::step(). The host's copy bandwidth drifts by tens of per cent within minutes
@@ -271,13 +283,15 @@ PairedResult measure_paired(const StepConfig& c, int pairs, double sample_second
   omp_set_num_threads(c.threads);
   CopyArrays arrays;
   fluid::FluidLattice lat = shear_wave_lattice(c);
+  const auto step = [&] { lat.step(); };
+  const long steps = warm_up(step, sample_seconds);
   std::vector<double> fraction, mlups, gbs;
   for (int p = 0; p < pairs; ++p) {
     const double bw = std::max(arrays.sample(false), arrays.sample(true));
-    const StepResult r = time_steps([&] { lat.step(); }, lat.grid().size(), 1, sample_seconds);
+    const double m = sample_mlups(step, lat.grid().size(), steps);
     gbs.push_back(bw);
-    mlups.push_back(r.mlups.median);
-    fraction.push_back(r.mlups.median / (bw * 1e9 / kBytesPerUpdate / 1e6));
+    mlups.push_back(m);
+    fraction.push_back(m / bound_mlups(bw));
   }
   if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
   return {stats_of(fraction), stats_of(mlups), stats_of(gbs), pairs, seconds_since(start)};
@@ -340,7 +354,6 @@ struct Bandwidth {
   double best() const { return std::max(plain, streaming); }
 };
 
-double bound_mlups(double gbs) { return gbs * 1e9 / kBytesPerUpdate / 1e6; }
 
 int run_bench(BenchOptions o) {
   if (o.quick) {
