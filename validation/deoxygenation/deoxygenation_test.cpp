@@ -27,8 +27,6 @@ namespace {
 // reference within 0.01 in S over the whole transient (S falls by ≈ 0.79). The reference's
 // own numerical error (Richardson, PROVENANCE.md) is < 2e-4, well inside it.
 constexpr double kCurveTolerance = 0.01;
-// Resolution independence of the fitted modifier between the two finest levels (issue).
-constexpr double kMChangeTolerance = 0.02;
 // CI subset at h = 0.4 um (the full study's coarsest level, same Δt rule and representation):
 // measured max misfit at the fit 0.0080 (docs); 0.015 guards the coupling/transport/mask
 // against regressions (the old ray-cast, τ = 2.6 set-up gave 0.026) without claiming validation.
@@ -37,14 +35,6 @@ constexpr double kCiCurveTolerance = 0.015;
 // The best free-M fit to the 3D curve must stay far outside the validation tolerance
 // (measured 0.066 at h = 0.4, 0.3 um); 0.05 = five times the tolerance, while the planar fit meets 0.01.
 constexpr double kGeometricGapFloor = 0.05;
-// O2 balance: released = Δ(O2 in the lattice) − boundary inflow, summed over ~10⁵
-// steps of round-off-level per-step balances (transport_lattice.hpp eq T5).
-constexpr double kBalanceTolerance = 1e-9;
-// Free bracket of the modifier, fitted as x = ln M (rate k_off/M from k_off/4 to 20 k_off;
-// M → 0 is instantaneous local equilibrium, M = 0.05 already within 1e-3 of that limit).
-const double kLnMLower = std::log(0.05), kLnMUpper = std::log(4.0);
-// Central-difference step in ln M for the sensitivity (±2 % in M).
-constexpr double kFdLnM = 0.02;
 
 using deoxy::cell_reference;
 using deoxy::planar_reference;
@@ -57,7 +47,7 @@ using deoxy::Runner;
 // Brent on x = ln M ∈ [lo, hi] (β = 1) to |Δ ln M| ≤ tol_lnM (≈ relative tolerance in M), RMS.
 Fit fit_lnM(Runner& run, const vv::Curve& ref, double lo, double hi, double tol_lnM) {
   return deoxy::fit_log(run, ref, "lnM", [](double x) { return std::make_pair(std::exp(x), 1.0); }, lo, hi, tol_lnM,
-                        vv::MisfitNorm::rms, kFdLnM);
+                        vv::MisfitNorm::rms, deoxy::kFdLnM);
 }
 
 struct Level {
@@ -89,7 +79,7 @@ Level calibrate_level(double h, const vv::Curve& ref, const vv::Curve& cell, dou
               L.cell_at_planar_fit.max_abs, L.planar.wall_s);
   std::fflush(stdout);
   if (fit_cell) {
-    L.cell = fit_lnM(run, cell, kLnMLower, kLnMUpper, 0.01);
+    L.cell = fit_lnM(run, cell, deoxy::kLnMLower, deoxy::kLnMUpper, 0.01);
     std::printf("h = %.2f um 3D cell: M = %.4f (bound %d), max %.5f rms %.5f; %.0f s\n", h, L.cell.value,
                 static_cast<int>(L.cell.r.at_bound[0]), L.cell.r.misfit.max_abs, L.cell.r.misfit.rms, L.cell.wall_s);
   }
@@ -193,7 +183,7 @@ void add_level_metrics(io::ResultRecord& rec, const Level& L, double curve_toler
                   "bound)", "", std::min(f.r.at_bound[0] ? 1.0 : f.norm_minus, f.norm_plus) - f.r.misfit.rms, -1e-6,
                   0.0, io::Comparison::at_least, "Brent must end at a (constrained) minimum of the RMS misfit"});
   rec.add_metric({"o2_balance_" + tag, "|released - (change in lattice O2 - boundary inflow)| / released", "",
-                  std::abs(L.calibrated.balance_residual), kBalanceTolerance, 0.0, io::Comparison::at_most,
+                  std::abs(L.calibrated.balance_residual), deoxy::kBalanceTolerance, 0.0, io::Comparison::at_most,
                   "exact discrete balance (eq T5) summed over all steps: round-off only"});
 }
 
@@ -211,7 +201,7 @@ void add_curves(io::ResultRecord& rec, const vv::Curve& ref, const vv::Curve& ce
 TEST(Deoxygenation, CiSubset) {
   vv::Stopwatch clock;
   const auto ref = planar_reference(), cell = cell_reference();
-  const Level L = calibrate_level(0.4, ref, cell, kLnMLower, kLnMUpper, 0.02, false, false);
+  const Level L = calibrate_level(0.4, ref, cell, deoxy::kLnMLower, deoxy::kLnMUpper, 0.02, false, false);
   io::ResultRecord rec("validation.deoxygenation_ci", "deoxygenation");
   describe(rec, ref.t.back());
   rec.set_parameter("levels", "h = 0.4 um only (CI subset of validation.deoxygenation), dt = 10 us, tolerance 0.02 in ln M");
@@ -230,11 +220,6 @@ TEST(Deoxygenation, CiSubset) {
 // (≈ 45 min per Brent fit); 0.15 µm (80 nodes per side, ≈ 1–1.5 min per run) is the finest
 // level a full-tier case affords.
 const std::vector<double> kLevels{0.4, 0.3, 0.2, 0.15};
-// Levels after the second: Brent on ln M(previous level) ± kWarmHalfBracket (M within
-// −22 %/+28 %), tolerance 1e-3 in ln M (probes at fixed M: level-to-level shifts of ln M up
-// to 0.16 with this set-up, docs "Findings"). A fit ending on that bracket's edge means
-// |ΔM| > 22 %, far outside the 2 % requirement: the check below then fails, as it must.
-constexpr double kWarmHalfBracket = 0.25;
 // The calibrated RMS misfit is the model-form floor (one lumped S against local kinetics)
 // once lattice error is below it; measured with this set-up at every level (0.4–0.15 µm).
 // Lattice error under control = the calibrated RMS misfit at each level within 5 % of that
@@ -246,11 +231,11 @@ TEST(Deoxygenation, FullStudy) {
   const auto ref = planar_reference(), cell = cell_reference();
   std::vector<Level> levels;
   for (std::size_t i = 0; i < kLevels.size(); ++i) {
-    double lo = kLnMLower, hi = kLnMUpper;
+    double lo = deoxy::kLnMLower, hi = deoxy::kLnMUpper;
     if (i >= 2) {
       const double x = std::log(levels.back().planar.value);
-      lo = x - kWarmHalfBracket;
-      hi = x + kWarmHalfBracket;
+      lo = x - deoxy::kWarmHalfBracket;
+      hi = x + deoxy::kWarmHalfBracket;
     }
     levels.push_back(calibrate_level(kLevels[i], ref, cell, lo, hi, i == 0 ? 0.01 : 1e-3, i < 2, i < 2));
   }
@@ -299,7 +284,7 @@ TEST(Deoxygenation, FullStudy) {
                   "reference's numerical error (Richardson < 2e-4); asserted at the finest lattice (coarser: /runs)"});
   const double dM = std::abs(L1.planar.value - L2.planar.value) / L1.planar.value;
   rec.add_metric({"M_change_" + t2 + "_" + t1, "|M(finest) - M(second finest)| / M(finest), both Brent fits", "", dM,
-                  kMChangeTolerance, 0.0, io::Comparison::at_most,
+                  deoxy::kChangeTolerance, 0.0, io::Comparison::at_most,
                   "issue 7: the fitted M is resolution-independent, change < 2 % between the two finest levels (fit "
                   "tolerance 1e-3 in ln M, i.e. 0.1 % in M)"});
   double spread = 0.0;
