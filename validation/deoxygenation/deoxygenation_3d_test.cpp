@@ -142,6 +142,7 @@ JointFit joint_fit(double h, const vv::Curve& cell, const Level& start) {
   vv::CalibrationOptions opt;
   opt.norm = vv::MisfitNorm::max_abs;
   opt.x_tolerance = 2e-3;
+  // relative to each range: ± 0.01 in ln β and ± 0.04 in ln M (only the correlation uses it)
   opt.fd_relative_step = kFdLnBeta / (kLnBetaUpper - kLnBetaLower);
   opt.max_evaluations = 150;
   JointFit j;
