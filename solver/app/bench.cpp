@@ -1,10 +1,10 @@
 // `erythro bench` (issue 3 items 9–10): MLUPS of FluidLattice::step() per grid,
 // collision model, boundary set-up and thread count, and the STREAM-like copy
 // bandwidth of the same run, giving the bandwidth bound
-//   bound_MLUPS = bandwidth / 144 B   (D2Q9, two double lattices: 9·8 B read + 9·8 B written).
+//   bound_MLUPS = bandwidth / 144 B   (D2Q9 doubles: 9·8 B read + 9·8 B written per update).
 // Every configuration is warmed up, then timed `repeats` times; the table shows the
-// median and the spread (min, max). A short ablation times the kernel with its
-// store mode forced (cached vs non-temporal stores). The result record is
+// median and the spread (min, max). A short ablation times the two steps of the AA
+// pattern apart (pull_swap and local, fluid/stream_collide.hpp). The result record is
 // informative: MLUPS and the fraction of the bound are recorded with `at_least 0`,
 // never asserted. Method and figures: docs/performance.md.
 #include "app/bench.hpp"
@@ -237,38 +237,53 @@ StepResult measure_lattice(const StepConfig& c, int repeats, double sample_secon
   return r;
 }
 
-// The kernel alone with its store mode forced, on the lattice's own 64-byte aligned
-// populations and a second lattice of the same alignment (fluid_lattice.hpp).
-StepResult measure_kernel(const StepConfig& c, fluid::detail::StoreMode mode, int repeats, double sample_seconds) {
+// The two AA steps timed apart (they alternate, as in FluidLattice::step()): the
+// pull_swap step reads and writes shifted slots, the local step only its own node's.
+std::pair<StepResult, StepResult> measure_half_steps(const StepConfig& c, int repeats, double sample_seconds) {
   const auto start = Clock::now();
   omp_set_num_threads(c.threads);
   fluid::FluidLattice lat = shear_wave_lattice(c);
-  const std::span<double> f = lat.populations();
-  std::vector<double, fluid::detail::CacheLineAllocator<double>> other(f.size(), 0.0);
+  // The lattice's populations in storage laid out as FluidLattice's own (padded arrays).
+  const std::size_t N = lat.grid().size(), stride = fluid::detail::padded_stride(N);
+  const std::span<const double> natural = lat.populations();
+  std::vector<double, fluid::detail::CacheLineAllocator<double>> storage(9 * stride, 0.0);
+  for (std::size_t i = 0; i < 9; ++i) {
+    std::copy_n(natural.begin() + static_cast<std::ptrdiff_t>(i * N), N,
+                storage.begin() + static_cast<std::ptrdiff_t>(i * stride));
+  }
   fluid::detail::KernelArgs k;
   k.grid = lat.grid();
+  k.f = storage.data();  // natural layout: a pull_swap step comes first
+  k.stride = stride;
   k.collision = lat.collision();
   k.boundaries = lat.boundaries();
-  k.stores = mode;
-  double* src = f.data();
-  double* dst = other.data();
-  StepResult r = time_steps(
-      [&] {
-        k.src = src;
-        k.dst = dst;
-        fluid::detail::stream_collide(k);
-        std::swap(src, dst);
-      },
-      lat.grid().size(), repeats, sample_seconds);
-  r.wall_time_s = seconds_since(start);
-  return r;
+  double seconds[2] = {0.0, 0.0};
+  auto pair_of_steps = [&] {
+    for (int half = 0; half < 2; ++half) {
+      k.step = half == 0 ? fluid::detail::AaStep::pull_swap : fluid::detail::AaStep::local;
+      const auto t = Clock::now();
+      fluid::detail::stream_collide(k);
+      seconds[half] += seconds_since(t);
+    }
+  };
+  const long pairs = warm_up(pair_of_steps, sample_seconds);
+  std::vector<double> mlups[2];
+  for (int r = 0; r < repeats; ++r) {
+    seconds[0] = seconds[1] = 0.0;
+    for (long p = 0; p < pairs; ++p) pair_of_steps();
+    for (int half = 0; half < 2; ++half) {
+      mlups[half].push_back(static_cast<double>(lat.grid().size()) * static_cast<double>(pairs) / seconds[half] / 1e6);
+    }
+  }
+  const double wall = seconds_since(start);
+  return {StepResult{stats_of(mlups[0]), pairs, repeats, wall}, StepResult{stats_of(mlups[1]), pairs, repeats, wall}};
 }
 
 // Node updates per µs that a copy bandwidth (GB/s, read + write bytes) allows: bw / 144 B.
 double bound_mlups(double gbs) { return gbs * 1e9 / kBytesPerUpdate / 1e6; }
 
-// The fraction of the bound with the bound measured beside each kernel sample: `pairs` times a
-// plain and a streaming copy (the better one is that pair's bound) and then one kernel sample of
+// The fraction of the bound with the bound measured beside each kernel sample: `pairs` times an
+// untimed copy, a streaming and a plain copy (the better one is that pair's bound) and then one kernel sample of
 // FluidLattice::step(). The host's copy bandwidth drifts by tens of per cent within minutes
 // (docs/performance.md), so a bound measured once at the start can be off by that much; the
 // median of the per-pair ratios is not.
@@ -287,7 +302,13 @@ PairedResult measure_paired(const StepConfig& c, int pairs, double sample_second
   const long steps = warm_up(step, sample_seconds);
   std::vector<double> fraction, mlups, gbs;
   for (int p = 0; p < pairs; ++p) {
-    const double bw = std::max(arrays.sample(false), arrays.sample(true));
+    // An untimed copy first: the in-place kernel leaves up to an L3 of dirty lattice lines,
+    // whose write-back would otherwise slow the timed copy (a lower bound, a flattering
+    // fraction). Then a streaming copy from that clean cache, as at the start of the run,
+    // and a plain one (its own dirty lines are part of what a plain copy measures).
+    arrays.sample(true);
+    const double streaming = arrays.sample(true);
+    const double bw = std::max(streaming, arrays.sample(false));
     const double m = sample_mlups(step, lat.grid().size(), steps);
     gbs.push_back(bw);
     mlups.push_back(m);
@@ -330,11 +351,8 @@ std::string tag(const StepConfig& c) {
   return s.str();
 }
 
-std::string store_name(const Grid& g, fluid::detail::StoreMode mode) {
-  const bool nt = fluid::detail::uses_streaming_stores(g, mode);
-  if (mode == fluid::detail::StoreMode::automatic) return nt ? "auto: streaming" : "auto: cached";
-  return nt ? "forced streaming" : "forced cached";
-}
+// The propagation pattern of FluidLattice::step(), for the table and the record.
+constexpr const char* kPattern = "AA, in place";
 
 io::Metric informative(std::string name, std::string description, std::string unit, double value) {
   io::Metric m;
@@ -368,9 +386,10 @@ int run_bench(BenchOptions o) {
       "Informative: measure the throughput of the fused D2Q9 stream-collide step (MLUPS) and its fraction of "
       "the memory-bandwidth bound, copy bandwidth / 144 B per node update, on this machine.");
   record.set_reference(
-      "Bandwidth bound of a two-lattice D2Q9 double-precision update: 9 x 8 B read + 9 x 8 B written = 144 B "
-      "per node update (Wittmann et al. 2013, Comput Math Appl 65:924, roofline model); copy bandwidth measured "
-      "with a STREAM-like copy (McCalpin 1995), counted as read + write bytes.");
+      "Bandwidth bound of a D2Q9 double-precision update: 9 x 8 B read + 9 x 8 B written = 144 B per node "
+      "update, for two lattices and for the in-place AA pattern alike (Wittmann et al. 2013, Comput Math Appl "
+      "65:924, roofline model); copy bandwidth measured with a STREAM-like copy (McCalpin 1995), counted as "
+      "read + write bytes.");
   record.set_parameter("cpu", cpu_model());
   record.set_parameter("load_average_start", load_start);
   record.set_parameter("omp_wait_policy", env_or("OMP_WAIT_POLICY", "default"));
@@ -379,8 +398,7 @@ int run_bench(BenchOptions o) {
   record.set_parameter("sample_seconds", o.sample_seconds);
   record.set_parameter("bytes_per_update", kBytesPerUpdate);
   record.set_parameter("copy_array_mib", static_cast<double>(kCopyElements * sizeof(double)) / (1 << 20));
-  record.set_parameter("streaming_footprint_mib",
-                       static_cast<double>(fluid::detail::kStreamingFootprintBytes) / (1 << 20));
+  record.set_parameter("propagation", std::string(kPattern));
   record.set_parameter("bound_definition",
                        "best of the plain-store and streaming-store copy bandwidths / 144 B; the plain-store bound "
                        "(write-allocate traffic uncounted, as in most published STREAM figures) is also given");
@@ -409,16 +427,16 @@ int run_bench(BenchOptions o) {
     record.set_parameter("bandwidth_gbs_t" + std::to_string(th), bandwidth[t].best());
   }
 
-  std::printf("\n%-9s %-4s %5s %3s %-16s %7s %15s %6s %6s %6s %6s %6s\n", "boundary", "coll", "grid", "thr", "stores",
+  std::printf("\n%-9s %-4s %5s %3s %-16s %7s %15s %6s %6s %6s %6s %6s\n", "boundary", "coll", "grid", "thr", "kernel",
               "MLUPS", "min-max", "spread", "GB/s", "bound", "frac", "fr.pl");
-  auto report = [&](const std::string& kind, const std::string& stores, const StepConfig& c, std::size_t t,
+  auto report = [&](const std::string& kind, const std::string& pattern, const StepConfig& c, std::size_t t,
                     const StepResult& r) {
     const double bound = bound_mlups(bandwidth[t].best()), plain_bound = bound_mlups(bandwidth[t].plain);
     const double fraction = r.mlups.median / bound, fraction_plain = r.mlups.median / plain_bound;
     const double gbs = r.mlups.median * 1e6 * kBytesPerUpdate / 1e9;
     std::printf("%-9s %-4s %5d %3d %-16s %7.1f %7.1f-%-7.1f %5.1f%% %6.1f %6.0f %5.0f%% %5.0f%%\n",
                 boundary_name(c.channel).c_str(), std::string(fluid::to_string(c.model)).c_str(), c.n, c.threads,
-                stores.c_str(), r.mlups.median, r.mlups.min, r.mlups.max, 100.0 * r.mlups.spread(), gbs, bound,
+                pattern.c_str(), r.mlups.median, r.mlups.min, r.mlups.max, 100.0 * r.mlups.spread(), gbs, bound,
                 100.0 * fraction, 100.0 * fraction_plain);
     std::fflush(stdout);
     record.add_run({{"kind", kind},
@@ -426,7 +444,7 @@ int run_bench(BenchOptions o) {
                     {"model", std::string(fluid::to_string(c.model))},
                     {"grid_n", static_cast<double>(c.n)},
                     {"threads", static_cast<double>(c.threads)},
-                    {"stores", stores},
+                    {"propagation", pattern},
                     {"steps_per_sample", static_cast<double>(r.steps_per_sample)},
                     {"samples", static_cast<double>(r.samples)},
                     {"mlups_median", r.mlups.median},
@@ -458,7 +476,7 @@ int run_bench(BenchOptions o) {
           const StepConfig c{n, model, channel, o.threads[t]};
           const StepResult r = measure_lattice(c, o.repeats, o.sample_seconds);
           const auto [bound, fraction] =
-              report("FluidLattice::step", store_name(Grid{n, n}, fluid::detail::StoreMode::automatic), c, t, r);
+              report("FluidLattice::step", kPattern, c, t, r);
           record.add_metric(informative("mlups_" + tag(c), "median MLUPS of FluidLattice::step()", "MLUPS",
                                         r.mlups.median));
           record.add_metric(informative("fraction_of_bound_" + tag(c),
@@ -472,22 +490,19 @@ int run_bench(BenchOptions o) {
     }
   }
 
-  // Ablation: the kernel with cached vs non-temporal stores, periodic BGK, one thread,
-  // at the largest benchmark grid of at most 1024² (the bound-relevant case).
+  // Ablation: the two AA steps apart, periodic BGK, one thread, at the largest benchmark
+  // grid of at most 1024² (the bound-relevant case).
   int n_ablation = 0;
   for (int n : o.sizes) {
     if (n <= 1024) n_ablation = std::max(n_ablation, n);
   }
-  if (n_ablation > 0 && streaming_stores_available()) {
-    std::printf("\nablation: kernel store mode (periodic BGK, 1 thread)\n");
-    const std::size_t t1 = static_cast<std::size_t>(std::find(o.threads.begin(), o.threads.end(), 1) - o.threads.begin());
-    if (t1 < o.threads.size()) {
-      const StepConfig c{n_ablation, fluid::CollisionModel::bgk, false, 1};
-      for (auto mode : {fluid::detail::StoreMode::cached, fluid::detail::StoreMode::streaming}) {
-        const StepResult r = measure_kernel(c, mode, o.repeats, o.sample_seconds);
-        report("kernel, store mode forced", store_name(Grid{n_ablation, n_ablation}, mode), c, t1, r);
-      }
-    }
+  const std::size_t t1 = static_cast<std::size_t>(std::find(o.threads.begin(), o.threads.end(), 1) - o.threads.begin());
+  if (n_ablation > 0 && t1 < o.threads.size()) {
+    std::printf("\nablation: the two AA steps timed apart (periodic BGK, 1 thread)\n");
+    const StepConfig c{n_ablation, fluid::CollisionModel::bgk, false, 1};
+    const auto [pull_swap, local] = measure_half_steps(c, o.repeats, o.sample_seconds);
+    report("kernel, pull_swap step", "AA pull_swap", c, t1, pull_swap);
+    report("kernel, local step", "AA local", c, t1, local);
   }
 
   // The headline of issue 3 (1024², periodic BGK, one thread) with a paired bound.
@@ -505,7 +520,7 @@ int run_bench(BenchOptions o) {
                     {"model", std::string("bgk")},
                     {"grid_n", 1024.0},
                     {"threads", 1.0},
-                    {"stores", store_name(Grid{1024, 1024}, fluid::detail::StoreMode::automatic)},
+                    {"propagation", std::string(kPattern)},
                     {"samples", static_cast<double>(p.pairs)},
                     {"mlups_median", p.mlups.median},
                     {"mlups_min", p.mlups.min},

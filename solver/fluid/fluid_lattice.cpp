@@ -15,8 +15,8 @@ FluidLattice::FluidLattice(Grid grid, CollisionConfig collision, BoundaryConfig 
   if (grid_.nx < 1 || grid_.ny < 1) throw std::invalid_argument("FluidLattice: empty grid");
   if (!(collision_.tau > 0.5)) throw std::invalid_argument("FluidLattice: tau must exceed 1/2");
   if (auto why = boundaries_.inconsistency(); !why.empty()) throw std::invalid_argument("FluidLattice: " + why);
-  f_.assign(d2q9::Q * grid_.size(), 0.0);
-  f_next_.assign(d2q9::Q * grid_.size(), 0.0);
+  stride_ = detail::padded_stride(grid_.size());
+  f_.assign(d2q9::Q * stride_, 0.0);
   initialize_uniform(1.0, 0.0, 0.0);
 }
 
@@ -27,16 +27,33 @@ void FluidLattice::initialize(std::span<const double> rho, std::span<const doubl
     throw std::invalid_argument("FluidLattice::initialize: field size does not match the grid");
   }
   for (std::size_t n = 0; n < N; ++n) {
-    for (int i = 0; i < d2q9::Q; ++i) f_[i * N + n] = d2q9::equilibrium_deviation(i, rho[n], ux[n], uy[n]);
+    for (int i = 0; i < d2q9::Q; ++i) f_[i * stride_ + n] = d2q9::equilibrium_deviation(i, rho[n], ux[n], uy[n]);
   }
+  streamed_ = false;
+  natural_copy_step_ = -1;
+}
+
+void FluidLattice::set_populations(std::span<const double> populations) {
+  const std::size_t N = grid_.size();
+  if (populations.size() != d2q9::Q * N) {
+    throw std::invalid_argument("FluidLattice::set_populations: expected 9 N values");
+  }
+  for (int i = 0; i < d2q9::Q; ++i) {
+    std::copy_n(populations.begin() + static_cast<std::ptrdiff_t>(i * N), N,
+                f_.begin() + static_cast<std::ptrdiff_t>(i * stride_));
+  }
+  streamed_ = false;
+  natural_copy_step_ = -1;
 }
 
 void FluidLattice::initialize_uniform(double rho, double ux, double uy) {
   const std::size_t N = grid_.size();
   for (int i = 0; i < d2q9::Q; ++i) {
     const double feq = d2q9::equilibrium_deviation(i, rho, ux, uy);
-    std::fill(f_.begin() + static_cast<std::ptrdiff_t>(i * N), f_.begin() + static_cast<std::ptrdiff_t>((i + 1) * N), feq);
+    std::fill_n(f_.begin() + static_cast<std::ptrdiff_t>(i * stride_), N, feq);
   }
+  streamed_ = false;
+  natural_copy_step_ = -1;
 }
 
 void FluidLattice::enable_force_field() {
@@ -53,8 +70,9 @@ void FluidLattice::enable_tau_field() {
 void FluidLattice::step() {
   detail::KernelArgs args;
   args.grid = grid_;
-  args.src = f_.data();
-  args.dst = f_next_.data();
+  args.f = f_.data();
+  args.stride = stride_;
+  args.step = streamed_ ? detail::AaStep::local : detail::AaStep::pull_swap;
   args.collision = collision_;
   args.boundaries = boundaries_;
   args.tau_field = tau_field_.empty() ? nullptr : tau_field_.data();
@@ -64,37 +82,112 @@ void FluidLattice::step() {
   args.uniform_fy = uniform_force_[1];
   detail::stream_collide(args);
   applied_force_ = uniform_force_;
-  f_.swap(f_next_);
+  streamed_ = !streamed_;
   ++steps_done_;
 }
 
-void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const {
+std::size_t FluidLattice::slot_of(int x, int y, int k) const {
+  if (!streamed_) return k * stride_ + grid_.index(x, y);
+  if (x > 0 && x < grid_.nx - 1 && y > 0 && y < grid_.ny - 1) {  // no side crossed
+    return d2q9::opposite[k] * stride_ + grid_.index(x + d2q9::cx[k], y + d2q9::cy[k]);
+  }
+  return detail::streamed_slot(grid_, boundaries_, stride_, x, y, k);
+}
+
+FluidLattice::RowView FluidLattice::row_view(int y) const {
+  RowView v;
+  if (!streamed_) {
+    for (int k = 0; k < d2q9::Q; ++k) v.p[k] = f_.data() + k * stride_ + grid_.index(0, y);
+    v.first = 0;
+    v.last = grid_.nx;
+    return v;
+  }
+  if (y == 0 || y == grid_.ny - 1 || grid_.nx < 3) {  // every node may cross a side
+    for (int k = 0; k < d2q9::Q; ++k) v.p[k] = nullptr;
+    v.first = v.last = grid_.nx;
+    return v;
+  }
+  // Interior node (x, y): f*_k sits where (x + c_k, y + c_k) pulls along k̄ from.
+  for (int k = 0; k < d2q9::Q; ++k) {
+    v.p[k] = f_.data() + d2q9::opposite[k] * stride_ + grid_.index(0, y + d2q9::cy[k]) + d2q9::cx[k];
+  }
+  v.first = 1;
+  v.last = grid_.nx - 1;
+  return v;
+}
+
+void FluidLattice::gather_natural(Storage& out) const {
   const std::size_t N = grid_.size();
-  const double* f = f_.data();
-  const bool field = has_force_field();
+  out.resize(d2q9::Q * N);
 #pragma omp parallel for schedule(static) if (grid_.worth_threading())
   for (int y = 0; y < grid_.ny; ++y) {
-    for (int x = 0; x < grid_.nx; ++x) {
-      const std::size_t n = grid_.index(x, y);
-      double dr = 0.0, jx = 0.0, jy = 0.0;
-      for (int i = 0; i < d2q9::Q; ++i) {
-        const double fi = f[i * N + n];
-        dr += fi;
-        jx += d2q9::cx[i] * fi;
-        jy += d2q9::cy[i] * fi;
-      }
-      double Fx = applied_force_[0], Fy = applied_force_[1];
-      if (field) {
-        Fx += force_x_[n];
-        Fy += force_y_[n];
-      }
-      // Stored populations are post-collision: Σ c f* = ρu + F/2 (Guo forcing), so
-      // the velocity of the last collision is ρu = Σ c f* − F/2.
-      const double r = 1.0 + dr;
-      rho[n] = r;
-      ux[n] = (jx - 0.5 * Fx) / r;
-      uy[n] = (jy - 0.5 * Fy) / r;
+    const RowView v = row_view(y);
+    for (int k = 0; k < d2q9::Q; ++k) {
+      double* row = out.data() + k * N + grid_.index(0, y);
+      for (int x = 0; x < grid_.nx; ++x) row[x] = v.inside(x) ? v.p[k][x] : f_[slot_of(x, y, k)];
     }
+  }
+}
+
+std::span<const double> FluidLattice::populations() const {
+  if (natural_copy_step_ != steps_done_) {
+    gather_natural(natural_copy_);
+    natural_copy_step_ = steps_done_;
+  }
+  return natural_copy_;
+}
+
+namespace {
+// ρ and u of one node from its nine post-collision populations f (ρ0 = 1 deviations) and
+// the force F of the collision: ρ = 1 + Σ f̃, ρu = Σ c f* − F/2 (Guo forcing: Σ c f* = ρu + F/2).
+// The one place this is computed, so every caller gets the same bits.
+[[gnu::always_inline]] inline void moments_from(const double* f, double Fx, double Fy, double& rho, double& ux,
+                                                double& uy) {
+  double dr = 0.0, jx = 0.0, jy = 0.0;
+  for (int i = 0; i < d2q9::Q; ++i) {
+    dr += f[i];
+    jx += d2q9::cx[i] * f[i];
+    jy += d2q9::cy[i] * f[i];
+  }
+  const double r = 1.0 + dr;
+  rho = r;
+  ux = (jx - 0.5 * Fx) / r;
+  uy = (jy - 0.5 * Fy) / r;
+}
+}  // namespace
+
+std::array<double, 2> FluidLattice::collision_force(std::size_t n) const {
+  std::array<double, 2> F = applied_force_;
+  if (has_force_field()) {
+    F[0] += force_x_[n];
+    F[1] += force_y_[n];
+  }
+  return F;
+}
+
+void FluidLattice::node_moments(std::size_t n, double& rho, double& ux, double& uy) const {
+  const int x = static_cast<int>(n % static_cast<std::size_t>(grid_.nx));
+  const int y = static_cast<int>(n / static_cast<std::size_t>(grid_.nx));
+  double f[d2q9::Q];
+  for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[slot_of(x, y, i)];
+  const auto F = collision_force(n);
+  moments_from(f, F[0], F[1], rho, ux, uy);
+}
+
+void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const {
+#pragma omp parallel for schedule(static) if (grid_.worth_threading())
+  for (int y = 0; y < grid_.ny; ++y) {
+    const RowView v = row_view(y);
+    const std::size_t row = grid_.index(0, y);
+    auto edge = [&](int x) { node_moments(row + x, rho[row + x], ux[row + x], uy[row + x]); };
+    for (int x = 0; x < v.first; ++x) edge(x);
+    for (int x = v.first; x < v.last; ++x) {
+      double f[d2q9::Q];
+      for (int i = 0; i < d2q9::Q; ++i) f[i] = v.p[i][x];
+      const auto F = collision_force(row + x);
+      moments_from(f, F[0], F[1], rho[row + x], ux[row + x], uy[row + x]);
+    }
+    for (int x = std::max(v.first, v.last); x < grid_.nx; ++x) edge(x);
   }
 }
 
@@ -114,9 +207,11 @@ double FluidLattice::total_mass() const {
 #pragma omp parallel for schedule(static) if (grid_.worth_threading())
   for (int y = 0; y < grid_.ny; ++y) {
     double s = 0.0;
-    for (int i = 0; i < d2q9::Q; ++i) {
-      const double* row = f_.data() + i * N + grid_.index(0, y);
-      for (int x = 0; x < grid_.nx; ++x) s += row[x];
+    const RowView v = row_view(y);
+    for (int i = 0; i < d2q9::Q; ++i) {  // x in order: edge columns, interior, edge columns
+      for (int x = 0; x < v.first; ++x) s += f_[slot_of(x, y, i)];
+      for (int x = v.first; x < v.last; ++x) s += v.p[i][x];
+      for (int x = std::max(v.first, v.last); x < grid_.nx; ++x) s += f_[slot_of(x, y, i)];
     }
     row_sum[static_cast<std::size_t>(y)] = s;
   }

@@ -1,9 +1,12 @@
 #pragma once
-// The D2Q9 fluid: two structure-of-arrays population lattices and one fused
-// stream–collide step (pull scheme). Everything is in lattice units (h = Δt = 1);
-// the scene layer converts from physical units.
+// The D2Q9 fluid: one structure-of-arrays population lattice updated in place by a
+// fused stream–collide step (pull scheme, AA pattern: fluid/stream_collide.hpp).
+// Everything is in lattice units (h = Δt = 1); the scene layer converts from physical
+// units.
 //
-// Storage: populations[q * N + n], n = y*nx + x (see lattice/grid.hpp), kept as
+// Populations: populations()[q * N + n], n = y*nx + x (see lattice/grid.hpp); inside,
+// the nine arrays are padded apart and alternate between the AA pattern's two layouts
+// (fluid/stream_collide.hpp), which every read here resolves. They are kept as
 // deviations from the rest state, f̃_i = f_i − w_i (ρ0 = 1). Sums of O(1) numbers
 // that nearly cancel become sums of O(Ma) numbers, so round-off in mass, momentum
 // and slow steady flows drops by about two orders (Skordos 1993, Phys Rev E
@@ -23,9 +26,9 @@
 namespace erythro::fluid {
 
 namespace detail {
-// Cache-line (64 B) aligned storage for the population lattices: rows of grids with
-// nx a multiple of 8 start on a cache line, so the kernel's non-temporal stores
-// write whole lines (docs/performance.md).
+// Cache-line (64 B) aligned storage for the population lattice: rows of grids with
+// nx a multiple of 8 start on a cache line, so the kernel's vector loop reads and
+// writes whole lines (docs/performance.md).
 template <class T>
 struct CacheLineAllocator {
   using value_type = T;
@@ -88,6 +91,8 @@ class FluidLattice {
   // initial velocity minus F/(2ρ) if a force was already set.
   Moments moments() const;
   void compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const;
+  // The same for one node n (the same operations, so the same bits).
+  void node_moments(std::size_t n, double& rho, double& ux, double& uy) const;
 
   double total_mass() const;
   // Σ ρu of the last collision (see moments()).
@@ -97,15 +102,40 @@ class FluidLattice {
   // node in row-major order is reported.
   HealthReport check_health(double max_mach) const { return fluid::check_health(grid_, moments(), max_mach); }
 
-  // Raw populations as deviations f̃_i = f_i − w_i, [q * N + n].
-  std::span<const double> populations() const { return f_; }
-  std::span<double> populations() { return f_; }
+  // Raw post-collision populations as deviations f̃_i = f_i − w_i, [q * N + n]. The
+  // lattice keeps its nine arrays padded apart (detail::padded_stride) and, after an odd
+  // number of steps, in the AA pattern's streamed layout, so this is a copy gathered into
+  // a second buffer (allocated on first use, kept until the next step or write). Hot
+  // paths use compute_moments() or node_moments(), which read the lattice in place.
+  std::span<const double> populations() const;
+  // Replaces every population ([q * N + n], size 9N), e.g. a non-equilibrium start.
+  void set_populations(std::span<const double> populations);
 
  private:
+  using Storage = std::vector<double, detail::CacheLineAllocator<double>>;
+  // Slot of f*_k(x, y) in f_ (the layout-dependent part of every read).
+  std::size_t slot_of(int x, int y, int k) const;
+  // Row y of the post-collision populations: p[k][x] = f*_k(x, y) for first ≤ x < last
+  // (the whole row in the natural layout; the interior columns of interior rows in the
+  // streamed one). The other nodes are read through slot_of().
+  struct RowView {
+    const double* p[9];
+    int first, last;
+    bool inside(int x) const { return x >= first && x < last; }
+  };
+  RowView row_view(int y) const;
+  void gather_natural(Storage& out) const;
+  // Uniform force of the last collision plus the force field at node n.
+  std::array<double, 2> collision_force(std::size_t n) const;
+
   Grid grid_;
   CollisionConfig collision_;
   BoundaryConfig boundaries_;
-  std::vector<double, detail::CacheLineAllocator<double>> f_, f_next_;
+  std::size_t stride_ = 0;  // distance between the population arrays in f_
+  Storage f_;
+  bool streamed_ = false;  // f_ in the AA streamed layout (after an odd number of steps)
+  mutable Storage natural_copy_;  // what populations() returns
+  mutable long natural_copy_step_ = -1;  // steps_done_ when gathered; −1: stale
   std::vector<double> force_x_, force_y_, tau_field_;
   std::array<double, 2> uniform_force_{0.0, 0.0};
   std::array<double, 2> applied_force_{0.0, 0.0};  // uniform force of the last step

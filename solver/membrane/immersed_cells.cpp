@@ -84,30 +84,10 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
     lattice.compute_moments(rho_, grid_ux_, grid_uy_);
     return;
   }
-  // FluidLattice::compute_moments node by node (same operations in the same order, so the
-  // same bits): ρ = 1 + Σ f̃_i, u = (Σ c_i f̃_i − F/2)/ρ, F = uniform force + force field.
-  const double* f = lattice.populations().data();
-  const std::array<double, 2> F0 = lattice.uniform_force();  // the one step() just applied
-  const bool field = lattice.has_force_field();
-  const double* fx = field ? lattice.force_x().data() : nullptr;
-  const double* fy = field ? lattice.force_y().data() : nullptr;
-  auto velocity_at = [&](std::size_t n) {
-    double dr = 0.0, jx = 0.0, jy = 0.0;
-    for (int i = 0; i < d2q9::Q; ++i) {
-      const double fi = f[i * N + n];
-      dr += fi;
-      jx += d2q9::cx[i] * fi;
-      jy += d2q9::cy[i] * fi;
-    }
-    double Fx = F0[0], Fy = F0[1];
-    if (field) {
-      Fx += fx[n];
-      Fy += fy[n];
-    }
-    const double r = 1.0 + dr;
-    grid_ux_[n] = (jx - 0.5 * Fx) / r;
-    grid_uy_[n] = (jy - 0.5 * Fy) / r;
-  };
+  // FluidLattice::compute_moments node by node (node_moments: the same operations, so
+  // the same bits).
+  double rho_n = 0.0;
+  auto velocity_at = [&](std::size_t n) { lattice.node_moments(n, rho_n, grid_ux_[n], grid_uy_[n]); };
   auto wrap = [](int i, int n) { const int r = i % n; return r < 0 ? r + n : r; };
   // Only the nodes Transfer::interpolate reads (ib/transfer.cpp): the W×W support of each
   // marker, wrapped across periodic sides, clipped at walls. A non-finite marker is left

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "lattice/d2q9.hpp"
 
@@ -37,7 +38,7 @@ void initialize_post_collision(fluid::FluidLattice& lattice, const FlowField& fi
   const bool gradients = !field.dux_dx.empty();
   const bool force = !fx.empty();
   const double tau = lattice.collision().tau;
-  auto f = lattice.populations();
+  std::vector<double> f(Q * N);
   for (std::size_t n = 0; n < N; ++n) {
     const double rho = field.rho[n];
     for (int i = 0; i < Q; ++i) {
@@ -52,6 +53,7 @@ void initialize_post_collision(fluid::FluidLattice& lattice, const FlowField& fi
       f[i * N + n] = value;
     }
   }
+  lattice.set_populations(f);
 }
 
 double relative_l2_vector(std::span<const double> ax, std::span<const double> ay, std::span<const double> bx,
