@@ -165,11 +165,18 @@ std::array<double, 2> FluidLattice::collision_force(std::size_t n) const {
   return F;
 }
 
-void FluidLattice::node_moments(std::size_t n, double& rho, double& ux, double& uy) const {
-  const int x = static_cast<int>(n % static_cast<std::size_t>(grid_.nx));
-  const int y = static_cast<int>(n / static_cast<std::size_t>(grid_.nx));
+void FluidLattice::node_moments(int x, int y, double& rho, double& ux, double& uy) const {
+  const std::size_t n = grid_.index(x, y);
   double f[d2q9::Q];
-  for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[slot_of(x, y, i)];
+  if (!streamed_) {
+    for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[i * stride_ + n];
+  } else if (x > 0 && x < grid_.nx - 1 && y > 0 && y < grid_.ny - 1) {  // as slot_of, decided once
+    for (int i = 0; i < d2q9::Q; ++i) {
+      f[i] = f_[d2q9::opposite[i] * stride_ + grid_.index(x + d2q9::cx[i], y + d2q9::cy[i])];
+    }
+  } else {
+    for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[slot_of(x, y, i)];
+  }
   const auto F = collision_force(n);
   moments_from(f, F[0], F[1], rho, ux, uy);
 }
@@ -179,7 +186,7 @@ void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, 
   for (int y = 0; y < grid_.ny; ++y) {
     const RowView v = row_view(y);
     const std::size_t row = grid_.index(0, y);
-    auto edge = [&](int x) { node_moments(row + x, rho[row + x], ux[row + x], uy[row + x]); };
+    auto edge = [&](int x) { node_moments(x, y, rho[row + x], ux[row + x], uy[row + x]); };
     for (int x = 0; x < v.first; ++x) edge(x);
     for (int x = v.first; x < v.last; ++x) {
       double f[d2q9::Q];

@@ -91,8 +91,8 @@ class FluidLattice {
   // initial velocity minus F/(2ρ) if a force was already set.
   Moments moments() const;
   void compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const;
-  // The same for one node n (the same operations, so the same bits).
-  void node_moments(std::size_t n, double& rho, double& ux, double& uy) const;
+  // The same for one node (x, y) (the same operations, so the same bits).
+  void node_moments(int x, int y, double& rho, double& ux, double& uy) const;
 
   double total_mass() const;
   // Σ ρu of the last collision (see moments()).

@@ -85,9 +85,16 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
     return;
   }
   // FluidLattice::compute_moments node by node (node_moments: the same operations, so
-  // the same bits).
+  // the same bits), each node once: neighbouring markers' supports overlap many times.
+  support_seen_.resize(N, 0);
   double rho_n = 0.0;
-  auto velocity_at = [&](std::size_t n) { lattice.node_moments(n, rho_n, grid_ux_[n], grid_uy_[n]); };
+  auto velocity_at = [&](int i, int j) {
+    const std::size_t n = d.grid.index(i, j);
+    if (support_seen_[n]) return;
+    support_seen_[n] = 1;
+    support_nodes_.push_back(n);
+    lattice.node_moments(i, j, rho_n, grid_ux_[n], grid_uy_[n]);
+  };
   auto wrap = [](int i, int n) { const int r = i % n; return r < 0 ? r + n : r; };
   // Only the nodes Transfer::interpolate reads (ib/transfer.cpp): the W×W support of each
   // marker, wrapped across periodic sides, clipped at walls. A non-finite marker is left
@@ -103,10 +110,12 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
         int i = i0 + b;
         if (d.periodic_x) i = wrap(i, d.grid.nx);
         else if (i < 0 || i >= d.grid.nx) continue;
-        velocity_at(d.grid.index(i, j));
+        velocity_at(i, j);
       }
     }
   }
+  for (std::size_t n : support_nodes_) support_seen_[n] = 0;
+  support_nodes_.clear();
 }
 
 void ImmersedCells::wrap_periodic() {

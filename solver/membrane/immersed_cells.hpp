@@ -102,6 +102,10 @@ class ImmersedCells {
   std::vector<Cell> cells_;
   std::vector<double> x_, y_, fx_, fy_, ux_, uy_;
   std::vector<double> rho_, grid_ux_, grid_uy_;  // scratch moments
+  // support_velocity(): nodes already computed this call (the supports overlap), all 0
+  // between calls, and the list of those set.
+  std::vector<unsigned char> support_seen_;
+  std::vector<std::size_t> support_nodes_;
 };
 
 }  // namespace erythro::membrane
