@@ -105,8 +105,9 @@ class FluidLattice {
   // Raw post-collision populations as deviations f̃_i = f_i − w_i, [q * N + n]. The
   // lattice keeps its nine arrays padded apart (detail::padded_stride) and, after an odd
   // number of steps, in the AA pattern's streamed layout, so this is a copy gathered into
-  // a second buffer (allocated on first use, kept until the next step or write). Hot
-  // paths use compute_moments() or node_moments(), which read the lattice in place.
+  // a second buffer (allocated on first use, kept until the next step or write; so not
+  // to be called from two threads at once). Hot paths use compute_moments() or
+  // node_moments(), which read the lattice in place.
   std::span<const double> populations() const;
   // Replaces every population ([q * N + n], size 9N), e.g. a non-equilibrium start.
   void set_populations(std::span<const double> populations);
