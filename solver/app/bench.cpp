@@ -246,8 +246,8 @@ std::pair<StepResult, StepResult> measure_half_steps(const StepConfig& c, int re
   // The lattice's populations in storage laid out as FluidLattice's own (padded arrays).
   const std::size_t N = lat.grid().size(), stride = fluid::detail::padded_stride(N);
   const std::span<const double> natural = lat.populations();
-  std::vector<double, fluid::detail::CacheLineAllocator<double>> storage(9 * stride, 0.0);
-  for (std::size_t i = 0; i < 9; ++i) {
+  std::vector<double, fluid::detail::CacheLineAllocator<double>> storage(d2q9::Q * stride, 0.0);
+  for (std::size_t i = 0; i < d2q9::Q; ++i) {
     std::copy_n(natural.begin() + static_cast<std::ptrdiff_t>(i * N), N,
                 storage.begin() + static_cast<std::ptrdiff_t>(i * stride));
   }
@@ -272,7 +272,7 @@ std::pair<StepResult, StepResult> measure_half_steps(const StepConfig& c, int re
     seconds[0] = seconds[1] = 0.0;
     for (long p = 0; p < pairs; ++p) pair_of_steps();
     for (int half = 0; half < 2; ++half) {
-      mlups[half].push_back(static_cast<double>(lat.grid().size()) * static_cast<double>(pairs) / seconds[half] / 1e6);
+      mlups[half].push_back(static_cast<double>(N) * static_cast<double>(pairs) / seconds[half] / 1e6);
     }
   }
   const double wall = seconds_since(start);
@@ -283,8 +283,8 @@ std::pair<StepResult, StepResult> measure_half_steps(const StepConfig& c, int re
 double bound_mlups(double gbs) { return gbs * 1e9 / kBytesPerUpdate / 1e6; }
 
 // The fraction of the bound with the bound measured beside each kernel sample: `pairs` times an
-// untimed copy, a streaming and a plain copy (the better one is that pair's bound) and then one kernel sample of
-// FluidLattice::step(). The host's copy bandwidth drifts by tens of per cent within minutes
+// untimed copy, a streaming and a plain copy (the better one is that pair's bound) and then one
+// kernel sample of FluidLattice::step(). The host's copy bandwidth drifts by tens of per cent within minutes
 // (docs/performance.md), so a bound measured once at the start can be off by that much; the
 // median of the per-pair ratios is not.
 struct PairedResult {

@@ -206,7 +206,9 @@ std::vector<double> natural_view(const std::vector<double>& f, const Grid& g, co
   std::vector<double> out(f.size());
   for (int y = 0; y < g.ny; ++y) {
     for (int x = 0; x < g.nx; ++x) {
-      for (int k = 0; k < d2q9::Q; ++k) out[k * g.size() + g.index(x, y)] = f[detail::streamed_slot(g, b, g.size(), x, y, k)];
+      for (int k = 0; k < d2q9::Q; ++k) {
+        out[k * g.size() + g.index(x, y)] = f[detail::streamed_slot(g, b, g.size(), x, y, k)];
+      }
     }
   }
   return out;
