@@ -31,7 +31,7 @@ enum class AaStep { pull_swap, local };
 // a cache line, plus 4168 doubles (32 KiB and 9 lines). When N is a power of two (1024²,
 // 2048²) unpadded arrays start at the same offset modulo a large power of two, and their
 // nine streams conflict in the memory system: measured 55–82 % of the copy bound
-// unpadded against 88–109 % padded (docs/performance.md, "Padding").
+// unpadded against 88–107 % padded (stand-alone AA loop; docs/performance.md, Summary).
 inline constexpr std::size_t kArrayPadding = 4168;
 inline constexpr std::size_t padded_stride(std::size_t nodes) { return (nodes + 7) / 8 * 8 + kArrayPadding; }
 
