@@ -34,6 +34,7 @@ enum class AaStep { pull_swap, local };
 // unpadded against 88–107 % padded (stand-alone AA loop; docs/performance.md, Summary).
 inline constexpr std::size_t kArrayPadding = 4168;
 inline constexpr std::size_t padded_stride(std::size_t nodes) { return (nodes + 7) / 8 * 8 + kArrayPadding; }
+static_assert(kArrayPadding % 8 == 0, "every population array must start on a cache line");
 
 struct KernelArgs {
   Grid grid;
