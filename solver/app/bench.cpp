@@ -29,7 +29,6 @@
 
 #include "common/error.hpp"
 #include "fluid/fluid_lattice.hpp"
-#include "fluid/stream_collide.hpp"
 #include "io/result_record.hpp"
 
 #if defined(__SSE2__)
@@ -237,32 +236,18 @@ StepResult measure_lattice(const StepConfig& c, int repeats, double sample_secon
   return r;
 }
 
-// The two AA steps timed apart (they alternate, as in FluidLattice::step()): the
-// pull_swap step reads and writes shifted slots, the local step only its own node's.
+// The two AA steps timed apart: FluidLattice::step() alternates them, a pull_swap step
+// (reads and writes shifted slots) from the natural layout the lattice starts in, then a
+// local step (each node's own slots).
 std::pair<StepResult, StepResult> measure_half_steps(const StepConfig& c, int repeats, double sample_seconds) {
   const auto start = Clock::now();
   omp_set_num_threads(c.threads);
   fluid::FluidLattice lat = shear_wave_lattice(c);
-  // The lattice's populations in storage laid out as FluidLattice's own (padded arrays).
-  const std::size_t N = lat.grid().size(), stride = fluid::detail::padded_stride(N);
-  const std::span<const double> natural = lat.populations();
-  std::vector<double, fluid::detail::CacheLineAllocator<double>> storage(d2q9::Q * stride, 0.0);
-  for (std::size_t i = 0; i < d2q9::Q; ++i) {
-    std::copy_n(natural.begin() + static_cast<std::ptrdiff_t>(i * N), N,
-                storage.begin() + static_cast<std::ptrdiff_t>(i * stride));
-  }
-  fluid::detail::KernelArgs k;
-  k.grid = lat.grid();
-  k.f = storage.data();  // natural layout: a pull_swap step comes first
-  k.stride = stride;
-  k.collision = lat.collision();
-  k.boundaries = lat.boundaries();
-  double seconds[2] = {0.0, 0.0};
+  double seconds[2] = {0.0, 0.0};  // pull_swap, local
   auto pair_of_steps = [&] {
     for (int half = 0; half < 2; ++half) {
-      k.step = half == 0 ? fluid::detail::AaStep::pull_swap : fluid::detail::AaStep::local;
       const auto t = Clock::now();
-      fluid::detail::stream_collide(k);
+      lat.step();
       seconds[half] += seconds_since(t);
     }
   };
@@ -272,9 +257,10 @@ std::pair<StepResult, StepResult> measure_half_steps(const StepConfig& c, int re
     seconds[0] = seconds[1] = 0.0;
     for (long p = 0; p < pairs; ++p) pair_of_steps();
     for (int half = 0; half < 2; ++half) {
-      mlups[half].push_back(static_cast<double>(N) * static_cast<double>(pairs) / seconds[half] / 1e6);
+      mlups[half].push_back(static_cast<double>(lat.grid().size()) * static_cast<double>(pairs) / seconds[half] / 1e6);
     }
   }
+  if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
   const double wall = seconds_since(start);
   return {StepResult{stats_of(mlups[0]), pairs, repeats, wall}, StepResult{stats_of(mlups[1]), pairs, repeats, wall}};
 }

@@ -29,8 +29,7 @@ void FluidLattice::initialize(std::span<const double> rho, std::span<const doubl
   for (std::size_t n = 0; n < N; ++n) {
     for (int i = 0; i < d2q9::Q; ++i) f_[i * stride_ + n] = d2q9::equilibrium_deviation(i, rho[n], ux[n], uy[n]);
   }
-  streamed_ = false;
-  natural_copy_step_ = -1;
+  mark_natural();
 }
 
 void FluidLattice::set_populations(std::span<const double> populations) {
@@ -42,8 +41,7 @@ void FluidLattice::set_populations(std::span<const double> populations) {
     std::copy_n(populations.begin() + static_cast<std::ptrdiff_t>(i * N), N,
                 f_.begin() + static_cast<std::ptrdiff_t>(i * stride_));
   }
-  streamed_ = false;
-  natural_copy_step_ = -1;
+  mark_natural();
 }
 
 void FluidLattice::initialize_uniform(double rho, double ux, double uy) {
@@ -52,8 +50,7 @@ void FluidLattice::initialize_uniform(double rho, double ux, double uy) {
     const double feq = d2q9::equilibrium_deviation(i, rho, ux, uy);
     std::fill_n(f_.begin() + static_cast<std::ptrdiff_t>(i * stride_), N, feq);
   }
-  streamed_ = false;
-  natural_copy_step_ = -1;
+  mark_natural();
 }
 
 void FluidLattice::enable_force_field() {
@@ -84,6 +81,11 @@ void FluidLattice::step() {
   applied_force_ = uniform_force_;
   streamed_ = !streamed_;
   ++steps_done_;
+}
+
+void FluidLattice::mark_natural() {
+  streamed_ = false;
+  natural_copy_step_ = -1;  // populations() gathers afresh
 }
 
 std::size_t FluidLattice::slot_of(int x, int y, int k) const {
@@ -121,10 +123,9 @@ void FluidLattice::gather_natural(Storage& out) const {
   out.resize(d2q9::Q * N);
 #pragma omp parallel for schedule(static) if (grid_.worth_threading())
   for (int y = 0; y < grid_.ny; ++y) {
-    const RowView v = row_view(y);
     for (int k = 0; k < d2q9::Q; ++k) {
       double* row = out.data() + k * N + grid_.index(0, y);
-      for (int x = 0; x < grid_.nx; ++x) row[x] = v.inside(x) ? v.p[k][x] : f_[slot_of(x, y, k)];
+      for (int x = 0; x < grid_.nx; ++x) row[x] = f_[slot_of(x, y, k)];
     }
   }
 }
@@ -166,18 +167,9 @@ std::array<double, 2> FluidLattice::collision_force(std::size_t n) const {
 }
 
 void FluidLattice::node_moments(int x, int y, double& rho, double& ux, double& uy) const {
-  const std::size_t n = grid_.index(x, y);
   double f[d2q9::Q];
-  if (!streamed_) {
-    for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[i * stride_ + n];
-  } else if (x > 0 && x < grid_.nx - 1 && y > 0 && y < grid_.ny - 1) {  // as slot_of, decided once
-    for (int i = 0; i < d2q9::Q; ++i) {
-      f[i] = f_[d2q9::opposite[i] * stride_ + grid_.index(x + d2q9::cx[i], y + d2q9::cy[i])];
-    }
-  } else {
-    for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[slot_of(x, y, i)];
-  }
-  const auto F = collision_force(n);
+  for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[slot_of(x, y, i)];
+  const auto F = collision_force(grid_.index(x, y));
   moments_from(f, F[0], F[1], rho, ux, uy);
 }
 

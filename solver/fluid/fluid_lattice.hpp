@@ -116,13 +116,14 @@ class FluidLattice {
   using Storage = std::vector<double, detail::CacheLineAllocator<double>>;
   // Slot of f*_k(x, y) in f_ (the layout-dependent part of every read).
   std::size_t slot_of(int x, int y, int k) const;
+  // f_ now holds the natural layout (after a write of every population).
+  void mark_natural();
   // Row y of the post-collision populations: p[k][x] = f*_k(x, y) for first ≤ x < last
   // (the whole row in the natural layout; the interior columns of interior rows in the
   // streamed one). The other nodes are read through slot_of().
   struct RowView {
     const double* p[9];
     int first, last;
-    bool inside(int x) const { return x >= first && x < last; }
   };
   RowView row_view(int y) const;
   void gather_natural(Storage& out) const;
