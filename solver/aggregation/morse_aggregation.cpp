@@ -41,7 +41,7 @@ void check_view(const MarkerView& v) {
 // pair_sums(m, cand) takes, for marker m, marker indices in ASCENDING order containing
 // every marker of another cell within the cut-off (it may contain more).
 struct Engine {
-  const ib::Domain& domain;
+  const geometry::Domain& domain;
   const ShiftedMorse& morse;
   const MarkerView& v;
   std::vector<std::size_t> cell_of;
@@ -51,7 +51,7 @@ struct Engine {
   std::atomic<bool> coincident{false};
   bool use_boxes = true;  // bounding-box block skip (cell lists); the brute force tests every pair
 
-  Engine(const ib::Domain& d, const ShiftedMorse& m, const MarkerView& view) : domain(d), morse(m), v(view) {
+  Engine(const geometry::Domain& d, const ShiftedMorse& m, const MarkerView& view) : domain(d), morse(m), v(view) {
     check_view(v);
     const std::size_t N = v.x.size();
     cell_of.resize(N);
@@ -216,7 +216,7 @@ struct CellList {
     return static_cast<int>(std::clamp(std::floor(t * nb), 0.0, double(nb - 1)));
   }
 
-  void build(const ib::Domain& d, const MarkerView& v, std::vector<int>& bin) {
+  void build(const geometry::Domain& d, const MarkerView& v, std::vector<int>& bin) {
     const std::size_t N = v.x.size();
     bin.resize(N);
     start.assign(static_cast<std::size_t>(nbx * nby) + 1, 0);
@@ -231,7 +231,7 @@ struct CellList {
   }
 
   // The distinct bins within ±1 of (bx, by), wrapped on periodic axes.
-  void neighbours(const ib::Domain& d, int bx, int by, std::vector<int>& out) const {
+  void neighbours(const geometry::Domain& d, int bx, int by, std::vector<int>& out) const {
     out.clear();
     for (int oy = -1; oy <= 1; ++oy) {
       int j = by + oy;
@@ -271,7 +271,7 @@ void merge_runs(std::vector<std::size_t>& v, std::vector<std::size_t>& ends) {
   }
 }
 
-void run_cell_list(Engine& eng, const ib::Domain& d, int nbx, int nby) {
+void run_cell_list(Engine& eng, const geometry::Domain& d, int nbx, int nby) {
   CellList cl;
   cl.nbx = nbx;
   cl.nby = nby;
@@ -313,7 +313,7 @@ void run_brute_force(Engine& eng) {
   for (long long i = 0; i < n_ll; ++i) eng.pair_sums(static_cast<std::size_t>(i), all);
 }
 
-void check_periodic_cutoff(const ib::Domain& d, double rc) {
+void check_periodic_cutoff(const geometry::Domain& d, double rc) {
   // Minimum image is the only image within r_c only if r_c < half the period.
   if ((d.periodic_x && !(2.0 * rc < d.grid.nx)) || (d.periodic_y && !(2.0 * rc < d.grid.ny))) {
     throw std::invalid_argument("aggregation: the cut-off " + std::to_string(rc) +
@@ -327,7 +327,7 @@ MarkerView view_of(const membrane::ImmersedCells& cells, const std::vector<std::
   return {std::span<const double>(cells.x(0).data(), N), std::span<const double>(cells.y(0).data(), N), offsets};
 }
 
-void check_same_domain(const ib::Domain& a, const ib::Domain& b) {
+void check_same_domain(const geometry::Domain& a, const geometry::Domain& b) {
   if (a.grid.nx != b.grid.nx || a.grid.ny != b.grid.ny || a.periodic_x != b.periodic_x || a.periodic_y != b.periodic_y) {
     throw std::invalid_argument("aggregation: the cells live on another domain than the aggregation model");
   }
@@ -335,7 +335,7 @@ void check_same_domain(const ib::Domain& a, const ib::Domain& b) {
 
 }  // namespace
 
-MorseAggregation::MorseAggregation(const ib::Domain& domain, MorseParameters p) : domain_(domain), morse_(p) {
+MorseAggregation::MorseAggregation(const geometry::Domain& domain, MorseParameters p) : domain_(domain), morse_(p) {
   check_periodic_cutoff(domain, p.cutoff);
   nbx_ = CellList::bins(domain.grid.nx, p.cutoff);
   nby_ = CellList::bins(domain.grid.ny, p.cutoff);
@@ -380,7 +380,7 @@ double relative_contact_area(std::span<const double> mag, std::span<const std::s
   return double(k) / double(e - o);
 }
 
-AggregationStats add_forces_brute_force(const ib::Domain& domain, const MorseParameters& p, const MarkerView& markers,
+AggregationStats add_forces_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers,
                                         std::span<double> fx, std::span<double> fy) {
   check_periodic_cutoff(domain, p.cutoff);
   const ShiftedMorse morse(p);
@@ -390,7 +390,7 @@ AggregationStats add_forces_brute_force(const ib::Domain& domain, const MorsePar
   return eng.finish(fx, fy, &mag);
 }
 
-double energy_brute_force(const ib::Domain& domain, const MorseParameters& p, const MarkerView& markers) {
+double energy_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers) {
   check_periodic_cutoff(domain, p.cutoff);
   const ShiftedMorse morse(p);
   Engine eng(domain, morse, markers);

@@ -39,7 +39,7 @@
 #include <vector>
 
 #include "aggregation/morse.hpp"
-#include "ib/domain.hpp"
+#include "geometry/domain.hpp"
 
 namespace erythro::membrane {
 class ImmersedCells;
@@ -64,7 +64,7 @@ struct AggregationStats {
 class MorseAggregation {
  public:
   // Throws std::invalid_argument on bad parameters, or a cut-off ≥ half a periodic side.
-  MorseAggregation(const ib::Domain& domain, MorseParameters p);
+  MorseAggregation(const geometry::Domain& domain, MorseParameters p);
 
   // ADDS the aggregation forces to cells.marker_fx()/marker_fy() (call after
   // cells.compute_forces(), which overwrites them) and returns the statistics.
@@ -79,7 +79,7 @@ class MorseAggregation {
   std::span<const double> force_magnitude() const { return magnitude_; }
 
   const MorseParameters& parameters() const { return morse_.parameters(); }
-  const ib::Domain& domain() const { return domain_; }
+  const geometry::Domain& domain() const { return domain_; }
   // Below this many markers a parallel region costs more than it saves (a doublet of
   // 2 × 100 markers: ~10 µs of work per call), and add_forces runs on one thread.
   static constexpr std::size_t kParallelMarkers = 2000;
@@ -89,7 +89,7 @@ class MorseAggregation {
   int bins_y() const { return nby_; }
 
  private:
-  ib::Domain domain_;
+  geometry::Domain domain_;
   ShiftedMorse morse_;
   int nbx_ = 1, nby_ = 1;
   std::vector<double> magnitude_;
@@ -106,8 +106,8 @@ std::vector<std::size_t> cell_offsets(const membrane::ImmersedCells& cells);
 
 // Brute-force O(N²) reference: every marker against every marker of the other cells,
 // same arithmetic and summation order as MorseAggregation (bitwise the same result).
-AggregationStats add_forces_brute_force(const ib::Domain& domain, const MorseParameters& p, const MarkerView& markers,
+AggregationStats add_forces_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers,
                                         std::span<double> fx, std::span<double> fy);
-double energy_brute_force(const ib::Domain& domain, const MorseParameters& p, const MarkerView& markers);
+double energy_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers);
 
 }  // namespace erythro::aggregation

@@ -7,6 +7,8 @@
 #include <string>
 #include <string_view>
 
+#include "geometry/domain.hpp"
+
 namespace erythro::fluid {
 
 enum class SideType { periodic, wall, moving_wall };
@@ -26,6 +28,12 @@ struct BoundaryConfig {
 };
 
 std::string_view to_string(SideType type);
+
+// The domain of a fluid grid: an axis is periodic when its sides are (left/right for x,
+// bottom/top for y; inconsistency() rejects a periodic side facing a wall).
+inline geometry::Domain domain_of(const Grid& grid, const BoundaryConfig& b) {
+  return {grid, b.left.type == SideType::periodic, b.bottom.type == SideType::periodic};
+}
 bool parse_side_type(std::string_view name, SideType& out);
 
 }  // namespace erythro::fluid

@@ -44,7 +44,7 @@ inline void weights_1d(double X, int& i0, double* w) {
 }
 
 template <class K>
-void interpolate_impl(const Domain& d, std::span<const double> X, std::span<const double> Y,
+void interpolate_impl(const geometry::Domain& d, std::span<const double> X, std::span<const double> Y,
                       std::span<const double> ux, std::span<const double> uy, std::span<double> Ux,
                       std::span<double> Uy) {
   constexpr int W = K::width;
@@ -60,7 +60,7 @@ void interpolate_impl(const Domain& d, std::span<const double> X, std::span<cons
     for (int a = 0; a < W; ++a) {
       int j = j0 + a;
       if (d.periodic_y) j = wrap(j, ny);
-      else if (j < 0 || j >= ny) continue;  // beyond a wall: no node (ib/domain.hpp)
+      else if (j < 0 || j >= ny) continue;  // beyond a wall: no node (geometry/domain.hpp)
       double rx = 0.0, ry = 0.0;
       for (int b = 0; b < W; ++b) {
         int i = i0 + b;
@@ -93,7 +93,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
   dispatch(kernel_, [&](auto k) {
     using K = decltype(k);
     constexpr int W = K::width;
-    const Domain& d = domain_;
+    const geometry::Domain& d = domain_;
     const int nx = d.grid.nx, ny = d.grid.ny;
     // 1. Support origins and weights of every marker.
     i0_.resize(M);
@@ -137,7 +137,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
           for (int c = 0; c < W; ++c) {
             int i = i0_[m] + c;
             if (d.periodic_x) i = wrap(i, nx);
-            else if (i < 0 || i >= nx) continue;  // beyond a wall: dropped (ib/domain.hpp)
+            else if (i < 0 || i >= nx) continue;  // beyond a wall: dropped (geometry/domain.hpp)
             rowx[i] += gx * w[c];
             rowy[i] += gy * w[c];
           }

@@ -7,7 +7,7 @@
 //   interpolation  U_m   = Σ_x u(x) δ_h(x − X_m) h²        (eq 25)
 //
 // F_m is a FORCE (force density × marker arc length), so Σ_x f = Σ_m F_m when the
-// kernel sums to one. Periodic axes wrap, walls drop support nodes (ib/domain.hpp).
+// kernel sums to one. Periodic axes wrap, walls drop support nodes (geometry/domain.hpp).
 // Marker coordinates may be unwrapped (outside [0, n) on a periodic axis).
 //
 // Threading: spreading gathers per grid row. Markers are bucketed (counting sort,
@@ -19,17 +19,17 @@
 #include <span>
 #include <vector>
 
-#include "ib/domain.hpp"
+#include "geometry/domain.hpp"
 #include "ib/kernel.hpp"
 
 namespace erythro::ib {
 
 class Transfer {
  public:
-  Transfer(KernelType kernel, Domain domain) : kernel_(kernel), domain_(domain) {}
+  Transfer(KernelType kernel, geometry::Domain domain) : kernel_(kernel), domain_(domain) {}
 
   KernelType kernel() const { return kernel_; }
-  const Domain& domain() const { return domain_; }
+  const geometry::Domain& domain() const { return domain_; }
 
   // Adds the spread marker forces (Fx, Fy) at (X, Y) to the node force density
   // (fx, fy), each of size grid.size(). Throws std::invalid_argument on size
@@ -43,7 +43,7 @@ class Transfer {
 
  private:
   KernelType kernel_;
-  Domain domain_;
+  geometry::Domain domain_;
   // Scratch reused across calls: per-marker support origin and weights, buckets.
   std::vector<int> i0_, j0_, bucket_start_, order_, next_;  // scratch reused across calls
   std::vector<double> wx_, wy_;

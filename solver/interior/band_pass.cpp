@@ -44,7 +44,7 @@ inline void visit_node(const Segment& g, double qy, int i, double& best, bool li
 }
 }  // namespace
 
-void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stats) {
+void IndexField::band_pass(const geometry::Polygon& p, int cell, CellStats& stats) {
   const Grid& g = domain_.grid;
   const double w = options_.band_half_width;
   // Distances are needed below w (the band). Start candidates (w ≤ −d < w + 1) are the free
@@ -58,7 +58,7 @@ void IndexField::band_pass(const membrane::Polygon& p, int cell, CellStats& stat
   // are widened by 0.05 h against round-off (≈ 1e-13 h at lattice coordinates): nodes a
   // wedge takes in error only cost a visit, the minimum over edges is kept.
   constexpr double kWedgeTol = 0.05;
-  stats.signed_area = membrane::signed_area(p);
+  stats.signed_area = geometry::signed_area(p);
   const double orient = stats.signed_area >= 0.0 ? 1.0 : -1.0;
   EdgeTable& e = edges_;
   e.build(p, orient, margin, kWedgeTol);

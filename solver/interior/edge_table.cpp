@@ -75,7 +75,7 @@ int wedge_row_pass(std::size_t n, double orient, double margin, double wedge_tol
 
 }  // namespace
 
-void EdgeTable::build(const membrane::Polygon& p, double orient, double margin, double wedge_tol) {
+void EdgeTable::build(const geometry::Polygon& p, double orient, double margin, double wedge_tol) {
   const std::size_t n = p.size();
   x_.assign(p.x.begin(), p.x.end());
   y_.assign(p.y.begin(), p.y.end());

@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 
 namespace erythro::interior {
 
@@ -30,7 +30,7 @@ struct EdgeTable {
   // Fills the table for polygon p with orientation sign `orient` (+1 counter-clockwise)
   // and band margin `margin` (the largest distance the band pass records); `wedge_tol`
   // widens every wedge's row range (band_pass.cpp).
-  void build(const membrane::Polygon& p, double orient, double margin, double wedge_tol);
+  void build(const geometry::Polygon& p, double orient, double margin, double wedge_tol);
 
  private:
   std::vector<double> x_, y_;  // the marker coordinates, marker 0 repeated at the end

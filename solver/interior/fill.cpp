@@ -17,7 +17,7 @@ namespace erythro::interior {
 using detail::kFilled;
 using detail::kFree;
 
-void IndexField::flood_fill_cell(const membrane::Polygon& p, int cell, CellStats& stats) {
+void IndexField::flood_fill_cell(const geometry::Polygon& p, int cell, CellStats& stats) {
   const Grid& g = domain_.grid;
   // No fill of a closed polygon reaches beyond the nodes of its bounding box.
   int i0, i1, j0, j1;
@@ -41,7 +41,7 @@ void IndexField::flood_fill_cell(const membrane::Polygon& p, int cell, CellStats
   }
 }
 
-void IndexField::window_starts(const membrane::Polygon& p, int cell, CellStats& stats, long limit) {
+void IndexField::window_starts(const geometry::Polygon& p, int cell, CellStats& stats, long limit) {
   const Grid& g = domain_.grid;
   const double hw = options_.band_half_width;
   // The thesis: the first start node in the window of a marker (markers in order).
@@ -66,7 +66,7 @@ void IndexField::window_starts(const membrane::Polygon& p, int cell, CellStats& 
 }
 
 void IndexField::scan_line_fill(std::size_t start, int cell, CellStats& stats, long limit,
-                                const membrane::Polygon& p) {
+                                const geometry::Polygon& p) {
   const Grid& g = domain_.grid;
   const int nx = g.nx, ny = g.ny;
   stack_.clear();
@@ -135,7 +135,7 @@ void IndexField::scan_line_fill(std::size_t start, int cell, CellStats& stats, l
   }
 }
 
-void IndexField::ray_cast_cell(const membrane::Polygon& p, int /*cell*/, CellStats& stats) {
+void IndexField::ray_cast_cell(const geometry::Polygon& p, int /*cell*/, CellStats& stats) {
   const Grid& g = domain_.grid;
   const auto [y0, y1] = std::minmax_element(p.y.begin(), p.y.end());
   int j0, j1;

@@ -1,35 +1,19 @@
 #pragma once
-// Polygon geometry behind the index field (index_field.hpp): node wrapping on a
-// domain, even–odd crossings of a node row, clipped area. Lattice units, node (i, j)
-// at (i + ½, j + ½).
+// The index field's own geometry (index_field.hpp): eq 26 in and beyond the band, and
+// the node box of a cell (BoxAxis). The polygon-on-grid helpers it builds on live in
+// geometry/grid_polygon.hpp. Lattice units, node (i, j) at (i + ½, j + ½).
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <numbers>
 #include <vector>
 
-#include "ib/domain.hpp"
-#include "membrane/polygon.hpp"
+#include "geometry/grid_polygon.hpp"
 
 namespace erythro::interior {
 
-// Index of unwrapped node coordinate i on an axis of n nodes: i mod n when periodic,
-// −1 when the node lies beyond a wall (non-periodic axis, i ∉ [0, n)).
-inline int wrap_node(int i, int n, bool periodic) {
-  if (i >= 0 && i < n) return i;
-  if (!periodic) return -1;
-  if (i < 0 && i >= -n) return i + n;  // one period off: no integer division
-  if (i >= n && i < 2 * n) return i - n;
-  return ((i % n) + n) % n;
-}
-
-// Node index range [first, last] of unwrapped node coordinates whose centres k + ½ lie
-// in [lo, hi] (first > last when empty).
-inline void node_range(double lo, double hi, int& first, int& last) {
-  // One rounding instruction each with SSE4.1 (the native build); a library call without.
-  first = static_cast<int>(std::ceil(lo - 0.5));
-  last = static_cast<int>(std::floor(hi - 0.5));
-}
+using geometry::node_range;
+using geometry::wrap_node;
 
 // Eq 26 (thesis §II.4) inside the band, |d| < w (w = 2h): H(d) = ½[1 + d/w + (1/π) sin(πd/w)].
 // Branch-free (a loop over a row of distances vectorises); outside the band the value is
@@ -92,23 +76,6 @@ struct BoxAxis {
     return c >= 0 && c < size ? c : -1;
   }
 };
-
-// x at which the edges cross the horizontal line y = py, sorted ascending (even–odd
-// rule: edge (A, B) crosses when (A.y > py) ≠ (B.y > py)). Inside ⇔ #(x_c ≤ px) odd.
-void row_crossings(const membrane::Polygon& p, double py, std::vector<double>& xs);
-
-// |area| of the polygon clipped to the domain along its non-periodic axes ([0, nx] or
-// [0, ny], Sutherland–Hodgman), taken with the polygon's orientation (positive for a
-// counter-clockwise polygon). Periodic axes are not clipped.
-double clipped_area(const membrane::Polygon& p, const ib::Domain& d);
-// Whether the box [x0, x1] × [y0, y1] lies within the walls (periodic axes have none):
-// then clipped_area is the polygon's own signed area.
-bool within_walls(const ib::Domain& d, double x0, double x1, double y0, double y1);
-
-// Area of the polygon inside the box [x0, x1] × [y0, y1] (Sutherland–Hodgman), with the
-// polygon's orientation (positive for a counter-clockwise polygon); 0 when they miss.
-// E.g. the area fraction of node (i, j)'s square: area_in_box(p, i, i + 1, j, j + 1).
-double area_in_box(const membrane::Polygon& p, double x0, double x1, double y0, double y1);
 
 }  // namespace erythro::interior
 

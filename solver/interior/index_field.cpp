@@ -24,7 +24,7 @@ namespace erythro::interior {
 
 using detail::kFree;
 
-std::string detail::marker_box(const membrane::Polygon& p) {
+std::string detail::marker_box(const geometry::Polygon& p) {
   const auto [x0, x1] = std::minmax_element(p.x.begin(), p.x.end());
   const auto [y0, y1] = std::minmax_element(p.y.begin(), p.y.end());
   std::ostringstream s;
@@ -49,7 +49,7 @@ Method parse_method(std::string_view name) {
                               "' (allowed: indexless, band_only, flood_fill, ray_casting)");
 }
 
-IndexField::IndexField(const ib::Domain& domain, IndexFieldOptions options) : domain_(domain), options_(options) {
+IndexField::IndexField(const geometry::Domain& domain, IndexFieldOptions options) : domain_(domain), options_(options) {
   if (domain.grid.nx <= 0 || domain.grid.ny <= 0)
     throw std::invalid_argument("IndexField: the grid must have at least one node per axis");
   if (!std::isfinite(options.band_half_width) || options.band_half_width <= 0.0)
@@ -62,7 +62,7 @@ IndexField::IndexField(const ib::Domain& domain, IndexFieldOptions options) : do
   candidate_.assign(n, 0);
 }
 
-const FillReport& IndexField::update(std::span<const membrane::Polygon> cells) {
+const FillReport& IndexField::update(std::span<const geometry::Polygon> cells) {
   // (1) I = 1 everywhere: undo the previous update (its nodes are kept in previous_dirty_
   // for write_changed_relaxation_times).
   for (std::size_t k : dirty_) {
@@ -99,7 +99,7 @@ const FillReport& IndexField::update(std::span<const membrane::Polygon> cells) {
   return report_;
 }
 
-void IndexField::check_polygon(const membrane::Polygon& p, int cell) const {
+void IndexField::check_polygon(const geometry::Polygon& p, int cell) const {
   if (p.size() < 3 || p.y.size() != p.x.size())
     throw InputError("interior: cell " + std::to_string(cell) + " has " + std::to_string(p.size()) +
                      " markers; a closed membrane polygon needs at least 3 (and as many y as x)");
@@ -112,7 +112,7 @@ void IndexField::check_polygon(const membrane::Polygon& p, int cell) const {
                               std::to_string(p.y[m]) + ")");
 }
 
-void IndexField::check_area(const membrane::Polygon& p, int cell, const CellStats& stats) {
+void IndexField::check_area(const geometry::Polygon& p, int cell, const CellStats& stats) {
   // Σ(1 − I) of the cell against its enclosed area (clipped at walls). A valid fill agrees
   // to O(h²) (docs/verification-interior.md); the bound allows a band cut by a wall
   // (0.30 h per unit length, ∫₀^w (1 − H) = w(¼ − 1/π²)) and pinched bands with a margin.

@@ -29,9 +29,9 @@
 #include <vector>
 
 #include "common/error.hpp"
-#include "ib/domain.hpp"
+#include "geometry/domain.hpp"
+#include "geometry/polygon.hpp"
 #include "interior/edge_table.hpp"
-#include "membrane/polygon.hpp"
 
 namespace erythro::interior {
 
@@ -75,23 +75,19 @@ class FillLeakError : public InputError {
 // 0 for d ≤ −w, 1 for d ≥ w.
 double smoothed_heaviside(double d, double half_width = 2.0);
 
-// Shortest signed distance from (px, py) to the closed polygon's edges (segments),
-// negative inside (even–odd rule), in the polygon's units. O(markers).
-double signed_distance(const membrane::Polygon& p, double px, double py);
-
 class IndexField {
  public:
-  IndexField(const ib::Domain& domain, IndexFieldOptions options);
+  IndexField(const geometry::Domain& domain, IndexFieldOptions options);
 
   // Rebuilds I from the cells' polygons in lattice units (counter-clockwise; coordinates
   // may be unwrapped past a periodic side). Throws FillLeakError naming the cell and
   // where when a fill leaks (never silently accepted), std::domain_error for a non-finite
   // marker (a diverged membrane) and InputError for a polygon of fewer than 3 markers.
-  const FillReport& update(std::span<const membrane::Polygon> cells);
+  const FillReport& update(std::span<const geometry::Polygon> cells);
   std::span<const double> values() const { return index_; }  // I per node, index y*nx + x
   const FillReport& report() const { return report_; }
   const IndexFieldOptions& options() const { return options_; }
-  const ib::Domain& domain() const { return domain_; }
+  const geometry::Domain& domain() const { return domain_; }
 
   // Eq 27 with ν ∝ μ at ρ0 = 1: τ = ½ + 3[ν_in + (ν_ex − ν_in) I] per node (lattice units).
   void write_relaxation_times(std::span<double> tau, double nu_in, double nu_ex) const;
@@ -109,16 +105,16 @@ class IndexField {
     bool within_walls = true;  // no wall clips the polygon (then its area is signed_area)
     long filled = 0;           // nodes set to 0 for this cell
   };
-  void check_polygon(const membrane::Polygon& p, int cell) const;
-  void band_pass(const membrane::Polygon& p, int cell, CellStats& stats);
+  void check_polygon(const geometry::Polygon& p, int cell) const;
+  void band_pass(const geometry::Polygon& p, int cell, CellStats& stats);
   void classify_box(const BoxAxis& bx, const BoxAxis& by, int cell, CellStats& stats);
-  void flood_fill_cell(const membrane::Polygon& p, int cell, CellStats& stats);
-  void ray_cast_cell(const membrane::Polygon& p, int cell, CellStats& stats);
-  void window_starts(const membrane::Polygon& p, int cell, CellStats& stats, long limit);
-  void scan_line_fill(std::size_t start, int cell, CellStats& stats, long limit, const membrane::Polygon& p);
-  void check_area(const membrane::Polygon& p, int cell, const CellStats& stats);
+  void flood_fill_cell(const geometry::Polygon& p, int cell, CellStats& stats);
+  void ray_cast_cell(const geometry::Polygon& p, int cell, CellStats& stats);
+  void window_starts(const geometry::Polygon& p, int cell, CellStats& stats, long limit);
+  void scan_line_fill(std::size_t start, int cell, CellStats& stats, long limit, const geometry::Polygon& p);
+  void check_area(const geometry::Polygon& p, int cell, const CellStats& stats);
 
-  ib::Domain domain_;
+  geometry::Domain domain_;
   IndexFieldOptions options_;
   std::vector<double> index_;           // I per node
   std::vector<std::uint8_t> mark_;      // 0 free, 1 band (any cell), 2 filled
@@ -144,13 +140,5 @@ class IndexField {
   std::vector<CellStats> stats_;
   FillReport report_;
 };
-
-// Even–odd ray-casting interior mask (1 inside) of one polygon on a domain (periodic
-// wrap aware: a node is inside when any of its periodic images lies inside).
-std::vector<std::uint8_t> ray_cast_inside(const membrane::Polygon& p, const ib::Domain& d);
-// The same as a list of node indices (row by row over the polygon's rows), without a
-// full-grid mask: O(rows spanned + interior nodes), ascending, each node once. `nodes`
-// is cleared first.
-void ray_cast_inside_nodes(const membrane::Polygon& p, const ib::Domain& d, std::vector<std::size_t>& nodes);
 
 }  // namespace erythro::interior

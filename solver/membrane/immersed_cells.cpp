@@ -10,9 +10,9 @@
 namespace erythro::membrane {
 
 ImmersedCells::ImmersedCells(ib::KernelType kernel, const fluid::FluidLattice& lattice)
-    : transfer_(kernel, ib::Domain::from(lattice.grid(), lattice.boundaries())) {}
+    : transfer_(kernel, fluid::domain_of(lattice.grid(), lattice.boundaries())) {}
 
-int ImmersedCells::add_cell(const Polygon& shape, const RestShape& rest, const MembraneModel& model) {
+int ImmersedCells::add_cell(const geometry::Polygon& shape, const RestShape& rest, const MembraneModel& model) {
   if (shape.size() != rest.size()) {
     throw std::invalid_argument("ImmersedCells::add_cell: the shape and the rest shape differ in marker count");
   }
@@ -26,8 +26,8 @@ int ImmersedCells::add_cell(const Polygon& shape, const RestShape& rest, const M
   return cell_count() - 1;
 }
 
-Polygon ImmersedCells::polygon(int c) const {
-  Polygon p;
+geometry::Polygon ImmersedCells::polygon(int c) const {
+  geometry::Polygon p;
   p.x.assign(x(c).begin(), x(c).end());
   p.y.assign(y(c).begin(), y(c).end());
   return p;
@@ -74,7 +74,7 @@ void ImmersedCells::advance_after_forces(fluid::FluidLattice& lattice) {
 }
 
 void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
-  const ib::Domain& d = transfer_.domain();
+  const geometry::Domain& d = transfer_.domain();
   const std::size_t N = d.grid.size();
   grid_ux_.resize(N);
   grid_uy_.resize(N);
@@ -119,7 +119,7 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
 }
 
 void ImmersedCells::wrap_periodic() {
-  const ib::Domain& d = transfer_.domain();
+  const geometry::Domain& d = transfer_.domain();
   auto shift_of = [](double v, int n) { return v < 0.0 ? double(n) : (v >= n ? -double(n) : 0.0); };
   for (std::size_t c = 0; c < cells_.size(); ++c) {
     const std::size_t o = cells_[c].offset, n = cells_[c].rest.size();

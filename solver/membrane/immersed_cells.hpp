@@ -14,9 +14,9 @@
 #include <vector>
 
 #include "fluid/fluid_lattice.hpp"
+#include "geometry/polygon.hpp"
 #include "ib/transfer.hpp"
 #include "membrane/membrane_energy.hpp"
-#include "membrane/polygon.hpp"
 #include "membrane/rest_shape.hpp"
 
 namespace erythro::membrane {
@@ -27,7 +27,7 @@ class ImmersedCells {
 
   // Adds a cell with markers at `shape` (lattice units) and the given rest shape
   // and moduli; returns its index. Invalidates spans previously returned.
-  int add_cell(const Polygon& shape, const RestShape& rest, const MembraneModel& model);
+  int add_cell(const geometry::Polygon& shape, const RestShape& rest, const MembraneModel& model);
 
   int cell_count() const { return static_cast<int>(cells_.size()); }
   std::size_t marker_count() const { return x_.size(); }
@@ -47,7 +47,7 @@ class ImmersedCells {
   std::span<double> marker_y() { return y_; }
   std::span<double> marker_fx() { return fx_; }
   std::span<double> marker_fy() { return fy_; }
-  Polygon polygon(int c) const;
+  geometry::Polygon polygon(int c) const;
 
   // Step 1: overwrites the marker forces with the internal membrane forces
   // (other forces, e.g. aggregation, may be added to marker_fx/fy afterwards).

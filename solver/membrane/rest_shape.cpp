@@ -9,7 +9,7 @@ double turning_angle(double ax, double ay, double bx, double by) {
   return std::atan2(ax * by - ay * bx, ax * bx + ay * by);
 }
 
-RestShape RestShape::from_polygon(const Polygon& p) {
+RestShape RestShape::from_polygon(const geometry::Polygon& p) {
   const std::size_t n = p.size();
   if (n < 3) throw std::invalid_argument("RestShape: a closed membrane needs at least 3 markers");
   RestShape r;
@@ -26,7 +26,7 @@ RestShape RestShape::from_polygon(const Polygon& p) {
     r.dual[i] = 0.5 * (r.length[im] + r.length[i]);
     r.turning[i] = turning_angle(p.x[i] - p.x[im], p.y[i] - p.y[im], p.x[ip] - p.x[i], p.y[ip] - p.y[i]);
   }
-  r.area = signed_area(p);
+  r.area = geometry::signed_area(p);
   if (!(r.area > 0.0)) throw std::invalid_argument("RestShape: the polygon must be counter-clockwise with positive area");
   return r;
 }

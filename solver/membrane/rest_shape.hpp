@@ -3,7 +3,7 @@
 // energy (membrane_energy.hpp) measures deformation against.
 #include <vector>
 
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 
 namespace erythro::membrane {
 
@@ -17,7 +17,7 @@ struct RestShape {
 
   // Rest lengths, turning angles and area of a polygon. Its rest curvature is
   // κ0_i = θ0_i / D̄_i; call flatten_curvature() for a zero spontaneous curvature.
-  static RestShape from_polygon(const Polygon& p);
+  static RestShape from_polygon(const geometry::Polygon& p);
   void flatten_curvature();
 };
 

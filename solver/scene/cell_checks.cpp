@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "aggregation/morse_units.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/membrane_units.hpp"
-#include "membrane/shapes.hpp"
 #include "scene/units_detail.hpp"
 
 namespace erythro::scene::detail {
@@ -21,7 +21,7 @@ double axis_gap(double d, int n, bool periodic) {
 }
 
 // Even-odd rule: is (px, py) inside polygon p?
-bool inside(const membrane::Polygon& p, double px, double py) {
+bool inside(const geometry::Polygon& p, double px, double py) {
   bool in = false;
   for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
     if ((p.y[i] > py) != (p.y[j] > py) &&
@@ -77,9 +77,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(c.markers) + " must be >= 8");
     std::string size_key = cell_key(i, "radius_um"), size_shown = num(c.radius_um) + " µm";
     const auto make = [&](int count) {
-      if (c.shape == "circle") return membrane::circle(count, c.radius_um / h_um);
-      if (c.shape == "ellipse") return membrane::ellipse(count, c.semi_axes_um[0] / h_um, c.semi_axes_um[1] / h_um);
-      if (c.shape == "biconcave") return membrane::biconcave(count, c.radius_um / h_um);
+      if (c.shape == "circle") return geometry::circle(count, c.radius_um / h_um);
+      if (c.shape == "ellipse") return geometry::ellipse(count, c.semi_axes_um[0] / h_um, c.semi_axes_um[1] / h_um);
+      if (c.shape == "biconcave") return geometry::biconcave(count, c.radius_um / h_um);
       reject(s, "key '" + cell_key(i, "shape") + "' = \"" + c.shape + "\" is not one of \"circle\", \"ellipse\", \"biconcave\"");
     };
     if (c.shape == "ellipse") {
@@ -88,14 +88,14 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     }
     // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16.
     const int m = c.markers != 0 ? static_cast<int>(c.markers)
-                                 : std::max(16, static_cast<int>(std::ceil(membrane::perimeter(make(512)) * c.scale /
+                                 : std::max(16, static_cast<int>(std::ceil(geometry::perimeter(make(512)) * c.scale /
                                                                             kAutoMarkerSpacing)));
-    const membrane::Polygon base = make(m);
+    const geometry::Polygon base = make(m);
     CellSetup cell;
-    cell.shape = membrane::transformed(base, c.scale, c.angle_deg * std::numbers::pi / 180.0, c.center_um[0] / h_um,
+    cell.shape = geometry::transformed(base, c.scale, c.angle_deg * std::numbers::pi / 180.0, c.center_um[0] / h_um,
                                        c.center_um[1] / h_um);
-    membrane::make_counter_clockwise(cell.shape);
-    cell.equivalent_radius = std::sqrt(std::abs(membrane::signed_area(cell.shape)) / std::numbers::pi);
+    geometry::make_counter_clockwise(cell.shape);
+    cell.equivalent_radius = std::sqrt(std::abs(geometry::signed_area(cell.shape)) / std::numbers::pi);
     cell.min_edge = std::numeric_limits<double>::infinity();
     for (std::size_t e = 0; e < cell.shape.size(); ++e) {
       const std::size_t f = (e + 1) % cell.shape.size();
@@ -135,7 +135,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                       " h (overlaps the wall): move it inward or shrink it");
     }
     for (std::size_t j = 0; j < M.cells.size(); ++j) {
-      const membrane::Polygon& o = M.cells[j].shape;
+      const geometry::Polygon& o = M.cells[j].shape;
       double closest = std::numeric_limits<double>::infinity();
       for (std::size_t p = 0; p < cell.shape.size(); ++p)
         for (std::size_t q = 0; q < o.size(); ++q)

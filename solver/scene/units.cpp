@@ -405,7 +405,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
     for (std::size_t i = 0; i < M->cells.size(); ++i) {
       const CellSetup& c = M->cells[i];
       double cx = 0.0, cy = 0.0;
-      membrane::centroid(c.shape, cx, cy);
+      geometry::centroid(c.shape, cx, cy);
       rows.push_back({"cell " + std::to_string(i) + " (" + s.cells[i].shape + ")",
                       std::to_string(c.shape.size()) + " markers, R_eq = " + num(c.equivalent_radius),
                       "centre " + vec({cx * u.length_m * um, cy * u.length_m * um}) + " µm, spacing " +

@@ -5,14 +5,14 @@
 #include <string>
 #include <vector>
 
+#include "aggregation/morse.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
+#include "geometry/polygon.hpp"
 #include "ib/kernel.hpp"
-#include "aggregation/morse.hpp"
 #include "interior/index_field.hpp"
 #include "lattice/grid.hpp"
 #include "membrane/membrane_energy.hpp"
-#include "membrane/polygon.hpp"
 #include "membrane/stability.hpp"
 #include "scene/scene.hpp"
 #include "transport/hb_kinetics.hpp"
@@ -33,7 +33,7 @@ struct UnitScales {
 
 // One cell placed on the lattice (lattice units: nodes at i + ½, walls at 0 and n).
 struct CellSetup {
-  membrane::Polygon shape;        // markers, counter-clockwise; also the stress-free rest shape
+  geometry::Polygon shape;        // markers, counter-clockwise; also the stress-free rest shape
   double equivalent_radius = 0.0; // √(A/π)
   double min_edge = 0.0, max_edge = 0.0;  // marker spacing
 };

@@ -18,9 +18,9 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
   for (const scene::CellSetup& c : setup.cells)
     cells_.add_cell(c.shape, membrane::RestShape::from_polygon(c.shape), setup.model);
   if (setup.aggregation)
-    aggregation_.emplace(ib::Domain::from(lattice.grid(), lattice.boundaries()), *setup.aggregation);
+    aggregation_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()), *setup.aggregation);
   if (setup.indicator != interior::Method::indexless) {
-    index_.emplace(ib::Domain::from(lattice.grid(), lattice.boundaries()), interior::IndexFieldOptions{setup.indicator});
+    index_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()), interior::IndexFieldOptions{setup.indicator});
     polygons_.resize(static_cast<std::size_t>(cells_.cell_count()));
     lattice.enable_tau_field();
     index_->update(polygons_from_cells());
@@ -28,9 +28,9 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
   }
 }
 
-std::span<const membrane::Polygon> CellPhysics::polygons_from_cells() {
+std::span<const geometry::Polygon> CellPhysics::polygons_from_cells() {
   for (int c = 0; c < cells_.cell_count(); ++c) {
-    membrane::Polygon& p = polygons_[static_cast<std::size_t>(c)];
+    geometry::Polygon& p = polygons_[static_cast<std::size_t>(c)];
     p.x.assign(cells_.x(c).begin(), cells_.x(c).end());  // capacity kept: no allocation after the first step
     p.y.assign(cells_.y(c).begin(), cells_.y(c).end());
   }

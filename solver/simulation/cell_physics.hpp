@@ -49,13 +49,13 @@ class CellPhysics {
   void refresh_viscosity(fluid::FluidLattice& lattice);
   void compute_marker_forces();  // membrane forces [+ aggregation]
   void refresh_viscosity_beside_forces(fluid::FluidLattice& lattice);
-  std::span<const membrane::Polygon> polygons_from_cells();
+  std::span<const geometry::Polygon> polygons_from_cells();
 
   membrane::ImmersedCells cells_;
   std::optional<interior::IndexField> index_;
   std::optional<aggregation::MorseAggregation> aggregation_;
   aggregation::AggregationStats aggregation_stats_;
-  std::vector<membrane::Polygon> polygons_;  // scratch for the index field
+  std::vector<geometry::Polygon> polygons_;  // scratch for the index field
   double nu_interior_ = 0.0, nu_exterior_ = 0.0;
   long index_interval_ = 1;
   double index_seconds_ = 0.0, index_exposed_seconds_ = 0.0;

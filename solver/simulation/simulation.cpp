@@ -37,11 +37,11 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
     for (const scene::CellSetup& c : setup_.membrane->cells) fixed_cells_.push_back(c.shape);
   }
   if (setup_.transport) {
-    std::vector<membrane::Polygon> shapes = fixed_cells_;
+    std::vector<geometry::Polygon> shapes = fixed_cells_;
     if (cells_)
       for (int c = 0; c < cells_->cells().cell_count(); ++c) shapes.push_back(cells_->cells().polygon(c));
     transport_ = std::make_unique<TransportPhysics>(*setup_.transport,
-                                                    ib::Domain::from(setup_.grid, setup_.boundaries), shapes);
+                                                    fluid::domain_of(setup_.grid, setup_.boundaries), shapes);
   }
 }
 
@@ -103,9 +103,9 @@ DiagnosticsSample diagnose(long step, const fluid::Moments& m) {
   return d;
 }
 
-double taylor_deformation(const membrane::Polygon& p) {
+double taylor_deformation(const geometry::Polygon& p) {
   double cx = 0.0, cy = 0.0;
-  membrane::centroid(p, cx, cy);
+  geometry::centroid(p, cx, cy);
   // Second area moments about the centroid (Green's theorem over the polygon edges):
   //   ∫x² = (1/12) Σ c (x_i² + x_i x_j + x_j²), ∫y² likewise,
   //   ∫xy = (1/24) Σ c (x_i y_j + 2 x_i y_i + 2 x_j y_j + x_j y_i),  c = x_i y_j − x_j y_i.
@@ -220,8 +220,8 @@ RunSummary Simulation::run(RunObserver& observer) {
     d.step = step;
     const membrane::ImmersedCells& cells = cells_->cells();
     for (int c = 0; c < cells.cell_count(); ++c) {
-      const membrane::Polygon p = cells.polygon(c);
-      d.area_change.push_back(membrane::signed_area(p) / cells.rest(c).area - 1.0);
+      const geometry::Polygon p = cells.polygon(c);
+      d.area_change.push_back(geometry::signed_area(p) / cells.rest(c).area - 1.0);
       d.taylor_deformation.push_back(taylor_deformation(p));
     }
     observer.on_cell_diagnostics(d);
@@ -289,7 +289,7 @@ RunSummary Simulation::run(RunObserver& observer) {
   long step = 0;
   bool keep_going = observe(0, total == 0);
   const long transport_every = setup_.transport ? std::max(1L, setup_.transport->fluid_steps_per_step) : 0;
-  std::vector<membrane::Polygon> moved;
+  std::vector<geometry::Polygon> moved;
   while (keep_going && step < total) {
     if (!fluid_) {  // still medium: one transport step per step
       transport_->step({}, {});

@@ -7,11 +7,11 @@
 #include <memory>
 
 #include "fluid/fluid_lattice.hpp"
-#include "simulation/cell_physics.hpp"
-#include "simulation/transport_physics.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
+#include "simulation/cell_physics.hpp"
 #include "simulation/run_observer.hpp"
+#include "simulation/transport_physics.hpp"
 
 namespace erythro::sim {
 
@@ -43,7 +43,7 @@ class Simulation {
   scene::LatticeSetup setup_;
   std::unique_ptr<fluid::FluidLattice> fluid_;
   std::unique_ptr<CellPhysics> cells_;
-  std::vector<membrane::Polygon> fixed_cells_;  // cells without a fluid: fixed shapes
+  std::vector<geometry::Polygon> fixed_cells_;  // cells without a fluid: fixed shapes
   std::unique_ptr<TransportPhysics> transport_;
 };
 
@@ -52,7 +52,7 @@ DiagnosticsSample diagnose(long step, const fluid::Moments& m);
 
 // Taylor deformation D = (L − B)/(L + B) of a closed polygon: L, B are the semi-axes
 // of the ellipse with the same second area moments (L/B = √(λ_max/λ_min)).
-double taylor_deformation(const membrane::Polygon& p);
+double taylor_deformation(const geometry::Polygon& p);
 
 // "step 1200: velocity_x = nan at node (12, 3) (x = 6.25 µm, y = 1.75 µm): ..."
 std::string describe_divergence(long step, const HealthReport& report, const scene::LatticeSetup& setup);

@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/grid_polygon.hpp"
 #include "interior/index_field.hpp"
 #include "transport/hb_kinetics.hpp"
 
 namespace erythro::sim {
 
-TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const ib::Domain& domain,
-                                   std::span<const membrane::Polygon> cells)
+TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geometry::Domain& domain,
+                                   std::span<const geometry::Polygon> cells)
     : setup_(setup), domain_(domain) {
   lattices_.reserve(setup_.species.size());
   for (const scene::SpeciesSetup& sp : setup_.species) {
@@ -33,11 +34,11 @@ TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const ib:
   }
 }
 
-void TransportPhysics::place_cells(std::span<const membrane::Polygon> cells) {
+void TransportPhysics::place_cells(std::span<const geometry::Polygon> cells) {
   interior_.resize(cells.size());  // the lists keep their capacity from one call to the next
   for (std::size_t c = 0; c < cells.size(); ++c)
     // Interior = nodes whose centre lies inside the membrane polygon (even–odd rule).
-    interior::ray_cast_inside_nodes(cells[c], domain_, interior_[c]);
+    geometry::ray_cast_inside_nodes(cells[c], domain_, interior_[c]);
   apply_compartments();
 }
 

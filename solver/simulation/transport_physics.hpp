@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "common/health.hpp"
-#include "ib/domain.hpp"
-#include "membrane/polygon.hpp"
+#include "geometry/domain.hpp"
+#include "geometry/polygon.hpp"
 #include "scene/units.hpp"
 #include "transport/transport_lattice.hpp"
 
@@ -20,12 +20,12 @@ namespace erythro::sim {
 class TransportPhysics {
  public:
   // Cells (lattice units) define the interior compartment; may be empty.
-  TransportPhysics(const scene::TransportSetup& setup, const ib::Domain& domain,
-                   std::span<const membrane::Polygon> cells);
+  TransportPhysics(const scene::TransportSetup& setup, const geometry::Domain& domain,
+                   std::span<const geometry::Polygon> cells);
 
   // The cells moved: recomputes the interior node lists and the diffusivity field
   // (the species keep their concentrations).
-  void place_cells(std::span<const membrane::Polygon> cells);
+  void place_cells(std::span<const geometry::Polygon> cells);
 
   // One transport step. Velocity in FLUID lattice units (scaled by the set-up's
   // Δt_T/Δt_F), or empty spans for a still medium.
@@ -46,7 +46,7 @@ class TransportPhysics {
   void release_oxygen();
 
   scene::TransportSetup setup_;
-  ib::Domain domain_;
+  geometry::Domain domain_;
   std::vector<transport::TransportLattice> lattices_;
   std::vector<std::vector<std::size_t>> interior_;  // per cell: its interior nodes
   std::vector<double> saturation_;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "interior/geometry.hpp"
+#include "geometry/grid_polygon.hpp"
 
 namespace erythro::transport {
 namespace {
@@ -32,23 +32,23 @@ double clipped_length(double x0, double y0, double x1, double y1, double bx0, do
 
 }  // namespace
 
-std::vector<AreaFraction> area_fractions(const membrane::Polygon& p, int nx, int ny) {
+std::vector<AreaFraction> area_fractions(const geometry::Polygon& p, int nx, int ny) {
   const auto [xmin, xmax] = std::minmax_element(p.x.begin(), p.x.end());
   const auto [ymin, ymax] = std::minmax_element(p.y.begin(), p.y.end());
   const int i0 = std::max(0, static_cast<int>(std::floor(*xmin))), i1 = std::min(nx - 1, static_cast<int>(*xmax));
   const int j0 = std::max(0, static_cast<int>(std::floor(*ymin))), j1 = std::min(ny - 1, static_cast<int>(*ymax));
-  const double orientation = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;  // +1: counter-clockwise
+  const double orientation = geometry::signed_area(p) >= 0.0 ? 1.0 : -1.0;  // +1: counter-clockwise
   std::vector<AreaFraction> out;
   for (int j = j0; j <= j1; ++j)
     for (int i = i0; i <= i1; ++i) {
-      const double phi = std::clamp(orientation * interior::area_in_box(p, i, i + 1.0, j, j + 1.0), 0.0, 1.0);
+      const double phi = std::clamp(orientation * geometry::area_in_box(p, i, i + 1.0, j, j + 1.0), 0.0, 1.0);
       if (phi > 0.0) out.push_back({static_cast<std::size_t>(j) * static_cast<std::size_t>(nx) + static_cast<std::size_t>(i), phi});
     }
   return out;
 }
 
-std::vector<CutCell> cut_cells(const membrane::Polygon& p, int nx, int ny) {
-  const double orientation = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;  // +1: counter-clockwise
+std::vector<CutCell> cut_cells(const geometry::Polygon& p, int nx, int ny) {
+  const double orientation = geometry::signed_area(p) >= 0.0 ? 1.0 : -1.0;  // +1: counter-clockwise
   const std::size_t m = p.x.size();
   std::vector<CutCell> out;
   for (const AreaFraction& f : area_fractions(p, nx, ny)) {
@@ -99,13 +99,13 @@ void set_node_subpixel_tensor(TransportLattice& lat, const std::vector<CutCell>&
   }
 }
 
-std::vector<FaceTarget> subpixel_face_targets(const membrane::Polygon& p, int nx, int ny, double D_in, double D_out) {
+std::vector<FaceTarget> subpixel_face_targets(const geometry::Polygon& p, int nx, int ny, double D_in, double D_out) {
   const std::size_t N = static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny);
   std::vector<FaceTarget> out;
   for (int axis = 0; axis < 2; ++axis) {
     const bool x_face = axis == 0;
     // dual cells of the faces = the node squares of p shifted by −½ along the face normal
-    const auto shifted = membrane::transformed(p, 1.0, 0.0, x_face ? -0.5 : 0.0, x_face ? 0.0 : -0.5);
+    const auto shifted = geometry::transformed(p, 1.0, 0.0, x_face ? -0.5 : 0.0, x_face ? 0.0 : -0.5);
     std::vector<CutCell> dual(N);
     std::vector<char> has(N, 0);
     for (const auto& c : cut_cells(shifted, nx, ny)) {

@@ -16,7 +16,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 #include "transport/face_flux_correction.hpp"
 
 namespace erythro::transport {
@@ -48,12 +48,12 @@ struct AreaFraction {
 
 // Every node of an nx × ny grid (node (i, j) owning the square [i, i+1] × [j, j+1], lattice
 // units) with φ > 0 for polygon p, row by row: φ by exact polygon–square clipping
-// (interior::area_in_box).
-std::vector<AreaFraction> area_fractions(const membrane::Polygon& p, int nx, int ny);
+// (geometry::area_in_box).
+std::vector<AreaFraction> area_fractions(const geometry::Polygon& p, int nx, int ny);
 
 // The same nodes with, where 0 < φ < 1, the membrane's normal in the square (Liang–Barsky
 // clipping of each edge to the square).
-std::vector<CutCell> cut_cells(const membrane::Polygon& p, int nx, int ny);
+std::vector<CutCell> cut_cells(const geometry::Polygon& p, int nx, int ny);
 
 double series_diffusivity(double phi, double D_in, double D_out);    // eq T9
 double parallel_diffusivity(double phi, double D_in, double D_out);  // ⟨D⟩
@@ -72,6 +72,6 @@ void set_node_subpixel_tensor(TransportLattice& lat, const std::vector<CutCell>&
 // (F = −D_f ∇C discretised with the normal difference and the transverse mean difference).
 // Dual cells fully inside: K = D_in; fully outside: D_out. Faces within one node of p's
 // bounding box are listed (the correction drops those equal to the lattice's own flux).
-std::vector<FaceTarget> subpixel_face_targets(const membrane::Polygon& p, int nx, int ny, double D_in, double D_out);
+std::vector<FaceTarget> subpixel_face_targets(const geometry::Polygon& p, int nx, int ny, double D_in, double D_out);
 
 }  // namespace erythro::transport

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "fluid/fluid_lattice.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/immersed_cells.hpp"
-#include "membrane/shapes.hpp"
 
 namespace erythro::vv {
 
@@ -33,6 +33,7 @@ fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau)
 
 CapsuleResult run_capsule(const CapsuleConfig& c) {
   using namespace membrane;
+  using namespace geometry;
   const auto t_start = Clock::now();
   const int nx = static_cast<int>(std::lround(c.length * c.radius));
   const int ny = static_cast<int>(std::lround(c.height * c.radius));

@@ -4,8 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "interior/geometry.hpp"
-#include "interior/index_field.hpp"
+#include "geometry/grid_polygon.hpp"
 
 namespace erythro::deoxy {
 namespace {
@@ -25,15 +24,15 @@ double integrate01(const F& f) {
 
 }  // namespace
 
-Moment first_moment(const membrane::Polygon& p, int i, int j, double phi) {
-  const double sign = membrane::signed_area(p) >= 0.0 ? 1.0 : -1.0;
+Moment first_moment(const geometry::Polygon& p, int i, int j, double phi) {
+  const double sign = geometry::signed_area(p) >= 0.0 ? 1.0 : -1.0;
   const double X = i, Y = j;
-  const double Ax = integrate01([&](double s) { return sign * interior::area_in_box(p, X, X + s, Y, Y + 1.0); });
-  const double Ay = integrate01([&](double s) { return sign * interior::area_in_box(p, X, X + 1.0, Y, Y + s); });
+  const double Ax = integrate01([&](double s) { return sign * geometry::area_in_box(p, X, X + s, Y, Y + 1.0); });
+  const double Ay = integrate01([&](double s) { return sign * geometry::area_in_box(p, X, X + 1.0, Y, Y + s); });
   return {0.5 * phi - Ax, 0.5 * phi - Ay};
 }
 
-std::vector<NodeFraction> first_moment_weights(const membrane::Polygon& p, int nx, int ny,
+std::vector<NodeFraction> first_moment_weights(const geometry::Polygon& p, int nx, int ny,
                                                const std::vector<NodeFraction>& fractions) {
   std::map<std::size_t, double> w;
   const auto add = [&](int x, int y, double v) {
@@ -66,7 +65,7 @@ std::vector<NodeFraction> first_moment_weights(const membrane::Polygon& p, int n
 
 namespace erythro::deoxy {
 
-double segment_fraction_inside(const membrane::Polygon& p, double x0, double y0, double x1, double y1) {
+double segment_fraction_inside(const geometry::Polygon& p, double x0, double y0, double x1, double y1) {
   // Parameters t ∈ (0, 1) where the segment crosses an edge; inside/outside alternate.
   std::vector<double> t;
   const double dx = x1 - x0, dy = y1 - y0;
@@ -82,7 +81,7 @@ double segment_fraction_inside(const membrane::Polygon& p, double x0, double y0,
     if (s > 0.0 && s < 1.0 && u >= 0.0 && u < 1.0) t.push_back(s);
   }
   std::sort(t.begin(), t.end());
-  bool inside = interior::signed_distance(p, x0, y0) < 0.0;
+  bool inside = geometry::signed_distance(p, x0, y0) < 0.0;
   double last = 0.0, frac = 0.0;
   for (double s : t) {
     if (inside) frac += s - last;
@@ -93,7 +92,7 @@ double segment_fraction_inside(const membrane::Polygon& p, double x0, double y0,
   return frac;
 }
 
-std::vector<double> link_resistivities(const membrane::Polygon& p, int nx, int ny, double D_in, double D_out,
+std::vector<double> link_resistivities(const geometry::Polygon& p, int nx, int ny, double D_in, double D_out,
                                        const std::vector<double>& R_phi) {
   const auto idx = [nx](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(nx) + x; };
   std::vector<double> R = R_phi;

@@ -16,22 +16,22 @@
 #include <vector>
 
 #include "deoxy_run.hpp"
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 
 namespace erythro::deoxy {
 
 // First moment ∫ (x − x_c, y − y_c) dA of the part of node (i, j)'s unit square
 // [i, i+1] × [j, j+1] inside polygon p (lattice units, x_c = i + ½, y_c = j + ½), by
 //   ∫ (x − x_c) a(x) dx = ½ φ − ∫_0^1 A(i, i + s) ds   (integration by parts; A(x0, x1) =
-// area of p in [x0, x1] × [j, j+1], interior::area_in_box), composite 3-point Gauss–Legendre
+// area of p in [x0, x1] × [j, j+1], geometry::area_in_box), composite 3-point Gauss–Legendre
 // on 8 panels (A is C¹ and piecewise quadratic between marker abscissae).
 struct Moment {
   double mx = 0.0, my = 0.0;
 };
-Moment first_moment(const membrane::Polygon& p, int i, int j, double phi);
+Moment first_moment(const geometry::Polygon& p, int i, int j, double phi);
 
 // Heme weights w_k (node, w > 0) from the area fractions of an nx × ny grid (above).
-std::vector<NodeFraction> first_moment_weights(const membrane::Polygon& p, int nx, int ny,
+std::vector<NodeFraction> first_moment_weights(const geometry::Polygon& p, int nx, int ny,
                                                const std::vector<NodeFraction>& fractions);
 
 }  // namespace erythro::deoxy
@@ -47,10 +47,10 @@ namespace erythro::deoxy {
 // cut links minimise Σ_links ((R_n + R_m)/2 − R*_nm)² + μ Σ_n (R_n − R_n^φ)² (R^φ: the
 // area-fraction value; μ = 0.1 damps the near-checkerboard null mode), by Gauss–Seidel,
 // clamped to [1/D_out, 1/D_in]. Returns R_n for every node of the nx × ny grid.
-std::vector<double> link_resistivities(const membrane::Polygon& p, int nx, int ny, double D_in, double D_out,
+std::vector<double> link_resistivities(const geometry::Polygon& p, int nx, int ny, double D_in, double D_out,
                                        const std::vector<double>& R_phi);
 
 // Fraction of the segment (x0, y0) → (x1, y1) inside polygon p (even–odd crossings).
-double segment_fraction_inside(const membrane::Polygon& p, double x0, double y0, double x1, double y1);
+double segment_fraction_inside(const geometry::Polygon& p, double x0, double y0, double x1, double y1);
 
 }  // namespace erythro::deoxy

@@ -11,8 +11,9 @@
 #include "common/case_support.hpp"
 #include "common/error.hpp"
 #include "deoxy_mask.hpp"
+#include "geometry/grid_polygon.hpp"
+#include "geometry/shapes.hpp"
 #include "interior/index_field.hpp"
-#include "membrane/shapes.hpp"
 #include "transport/face_flux_correction.hpp"
 #include "transport/transport_lattice.hpp"
 #include "transport/transport_units.hpp"
@@ -69,15 +70,15 @@ Result run(const Setup& s) {
   const Grid grid{n, n};
   const transport::TransportUnits units{s.h_um, s.dt_s};
   // Cell centred in the box; lattice units, node (i, j) at (i + ½, j + ½).
-  const auto cell = membrane::transformed(membrane::biconcave(s.markers, s.a_um), 1.0 / s.h_um, 0.0,
+  const auto cell = geometry::transformed(geometry::biconcave(s.markers, s.a_um), 1.0 / s.h_um, 0.0,
                                           0.5 * n + s.offset_x_h, 0.5 * n + s.offset_y_h);
-  res.polygon_area_um2 = std::abs(membrane::signed_area(cell)) * s.h_um * s.h_um;
+  res.polygon_area_um2 = std::abs(geometry::signed_area(cell)) * s.h_um * s.h_um;
   // The cell's nodes: area fractions φ (D, C0), heme weights of the release (heme) and of the
   // mean P (sample) (Setup::representation).
   std::vector<Weighted> mask, heme, sample;
   if (s.representation == Representation::ray_cast) {
     std::vector<std::size_t> nodes;
-    interior::ray_cast_inside_nodes(cell, ib::Domain{grid, false, false}, nodes);
+    geometry::ray_cast_inside_nodes(cell, geometry::Domain{grid, false, false}, nodes);
     for (std::size_t k : nodes) mask.push_back({k, 1.0});
     heme = mask;
   } else {

@@ -1,6 +1,6 @@
 #pragma once
 // The 2D single-RBC deoxygenation model of the validation case (docs/validation-deoxygenation.md):
-// a still Evans–Fung biconcave section (membrane::biconcave) centred in a square box of
+// a still Evans–Fung biconcave section (geometry::biconcave) centred in a square box of
 // half-width L held at C_b on all four sides (fixed_concentration), D2Q5 O2 transport
 // (transport::TransportLattice, no fluid lattice; BGK or TRT, Setup::collision), the cell
 // by area fractions or ray casting (Setup::representation) and ONE cell-averaged saturation
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "common/calibration.hpp"
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 #include "transport/hb_kinetics.hpp"
 #include "transport/subpixel_diffusivity.hpp"
 #include "transport/transport_lattice.hpp"
@@ -20,7 +20,7 @@ namespace erythro::deoxy {
 
 // How the cell is put on the lattice (docs/validation-deoxygenation.md, "Representation").
 enum class Representation {
-  // Nodes inside the polygon by ray casting (interior::ray_cast_inside_nodes), each a full
+  // Nodes inside the polygon by ray casting (geometry::ray_cast_inside_nodes), each a full
   // heme node (weight 1), D_in there, D_out elsewhere. The cell's area is N_int h²: a
   // first-order staircase (13.44 / 13.64 µm² at h = 0.2 / 0.1 µm, exact 13.627).
   ray_cast,

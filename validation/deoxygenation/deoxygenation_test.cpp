@@ -119,7 +119,7 @@ void describe(io::ResultRecord& rec, double t_end) {
                                  "finite-volume equivalence, harmonic face D)");
   rec.set_parameter("coupling", "cell-implicit with the outflow of the previous step: P_end = P^k - o^(k-1) + (1 + "
                                 "kappa) r^k (deoxy_run.hpp); the fitted M no longer depends on dt");
-  rec.set_parameter("mask", "area fraction phi of each node's square inside membrane::biconcave(800 markers, a = 3.91 "
+  rec.set_parameter("mask", "area fraction phi of each node's square inside geometry::biconcave(800 markers, a = 3.91 "
                             "um) (exact clipping): heme weight phi, P mean weighted by phi, node 1/D = phi/D_in + "
                             "(1-phi)/D_out, C0 = phi*130 + (1-phi)*20 uM (the reference's volume-fraction mask)");
   rec.set_parameter("interface", "face subpixel tensor (transport eqs T10-T11): on each face's dual cell D_f = "

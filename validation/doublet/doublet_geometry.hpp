@@ -4,12 +4,12 @@
 // expected next to cell 0 (the caller applies the minimum image on a periodic x axis).
 #include <span>
 
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 
 namespace erythro::vv {
 
 // Smallest marker-to-marker distance between two polygons.
-double min_marker_gap(const membrane::Polygon& a, const membrane::Polygon& b);
+double min_marker_gap(const geometry::Polygon& a, const geometry::Polygon& b);
 
 // Equivalent ellipse of the union of the cells (second area moments about the joint
 // centroid, shoelace formulas): axis ratio sqrt(μ_max/μ_min), which is a/b for an
@@ -17,7 +17,7 @@ double min_marker_gap(const membrane::Polygon& a, const membrane::Polygon& b);
 struct EquivalentEllipse {
   double axis_ratio = 1.0, angle_deg = 0.0, cx = 0.0, cy = 0.0, area = 0.0;
 };
-EquivalentEllipse equivalent_ellipse(std::span<const membrane::Polygon> cells);
+EquivalentEllipse equivalent_ellipse(std::span<const geometry::Polygon> cells);
 
 // Contact line of cell `a` (thesis §III.2 contact: markers whose aggregation force
 // exceeds 1.2 % of the largest, `in_contact`), in the frame of the line of centres
@@ -30,7 +30,7 @@ struct ContactShape {
   int points = 0;
   double sigmoid = 0.0, bow = 0.0, length = 0.0;
 };
-ContactShape contact_shape(const membrane::Polygon& a, std::span<const char> in_contact, double cx, double cy,
+ContactShape contact_shape(const geometry::Polygon& a, std::span<const char> in_contact, double cx, double cy,
                            double ex, double ey);
 
 }  // namespace erythro::vv

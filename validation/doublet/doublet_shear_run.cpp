@@ -13,9 +13,9 @@
 #include "capsule_run.hpp"  // make_shear_lattice: the undisturbed shear flow
 #include "doublet_geometry.hpp"
 #include "fluid/fluid_lattice.hpp"
-#include "ib/domain.hpp"
+#include "geometry/domain.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/immersed_cells.hpp"
-#include "membrane/shapes.hpp"
 #include "membrane/stability.hpp"
 
 namespace erythro::vv {
@@ -28,6 +28,7 @@ double wrap(double d, double period) { return d - period * std::round(d / period
 
 DoubletShearResult run_doublet_shear(const DoubletShearConfig& c) {
   using namespace membrane;
+  using namespace geometry;
   const auto t_start = std::chrono::steady_clock::now();
   DoubletShearResult r;
   if (c.cells != 1 && c.cells != 2) throw std::invalid_argument("doublet run: cells must be 1 or 2");
@@ -108,7 +109,7 @@ DoubletShearResult run_doublet_shear(const DoubletShearConfig& c) {
     A0.push_back(rest.area);
   }
   r.markers = c.markers;
-  const ib::Domain dom = ib::Domain::from(lat.grid(), lat.boundaries());
+  const geometry::Domain dom = fluid::domain_of(lat.grid(), lat.boundaries());
   std::optional<aggregation::MorseAggregation> agg;
   if (c.cells == 2) agg.emplace(dom, morse);
   const std::vector<std::size_t> offsets = aggregation::cell_offsets(cells);

@@ -10,10 +10,10 @@
 
 #include "capsule_run.hpp"  // make_shear_lattice: the undisturbed shear flow
 #include "fluid/fluid_lattice.hpp"
-#include "ib/domain.hpp"
+#include "geometry/domain.hpp"
+#include "geometry/shapes.hpp"
 #include "interior/index_field.hpp"
 #include "membrane/immersed_cells.hpp"
-#include "membrane/shapes.hpp"
 #include "membrane/stability.hpp"
 
 namespace erythro::vv {
@@ -51,6 +51,7 @@ std::string classify(const RbcResult& r) {
 
 RbcResult run_rbc(const RbcConfig& c) {
   using namespace membrane;
+  using namespace geometry;
   const auto t_start = std::chrono::steady_clock::now();
   RbcResult r;
   // Dimensionless groups of the physical cell (model.md §3, parameters.md).
@@ -83,7 +84,7 @@ RbcResult run_rbc(const RbcConfig& c) {
   std::optional<interior::IndexField> field;
   if (varying) {
     lat.enable_tau_field();
-    field.emplace(ib::Domain::from(lat.grid(), lat.boundaries()), interior::IndexFieldOptions{c.indicator, 2.0});
+    field.emplace(fluid::domain_of(lat.grid(), lat.boundaries()), interior::IndexFieldOptions{c.indicator, 2.0});
   }
 
   // Biconcave cell, long axis along the flow (tilted 0.01 rad), centred slightly off the lattice symmetry.

@@ -22,10 +22,10 @@
 #include "aggregation/morse_aggregation.hpp"
 #include "configs.hpp"
 #include "fluid/fluid_lattice.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/immersed_cells.hpp"
-#include "membrane/polygon.hpp"
 #include "membrane/rest_shape.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::aggregation;
@@ -111,13 +111,13 @@ int main(int argc, char** argv) {
                             fluid::BoundaryConfig{});
     membrane::ImmersedCells cells(ib::KernelType::cosine4, lat);
     const double a = 3.91 / 0.15;
-    const membrane::Polygon s = membrane::biconcave(100, a);
+    const geometry::Polygon s = geometry::biconcave(100, a);
     const membrane::RestShape rest = membrane::RestShape::from_polygon(s);
     const membrane::MembraneModel model{{membrane::TensionLawType::neo_hookean, 0.01}, 0.1, 0.01};
     // Rotated upright, rims ~0.62a thick; centres 0.62a + r0 apart.
     const double d = 0.62 * a + kP.r0;
-    cells.add_cell(membrane::transformed(s, 1.0, 0.5 * 3.141592653589793, 100.5 - 0.5 * d, 100.5), rest, model);
-    cells.add_cell(membrane::transformed(s, 1.0, 0.5 * 3.141592653589793, 100.5 + 0.5 * d, 100.5), rest, model);
+    cells.add_cell(geometry::transformed(s, 1.0, 0.5 * 3.141592653589793, 100.5 - 0.5 * d, 100.5), rest, model);
+    cells.add_cell(geometry::transformed(s, 1.0, 0.5 * 3.141592653589793, 100.5 + 0.5 * d, 100.5), rest, model);
     MorseAggregation agg(cells.transfer().domain(), kP);
     AggregationStats st;
     cells.compute_forces();

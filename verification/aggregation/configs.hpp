@@ -5,12 +5,12 @@
 #include <vector>
 
 #include "aggregation/morse_aggregation.hpp"
-#include "ib/domain.hpp"
+#include "geometry/domain.hpp"
 
 namespace erythro::vv {
 
 struct MarkerConfig {
-  ib::Domain domain;
+  geometry::Domain domain;
   std::vector<double> x, y;
   std::vector<std::size_t> offsets{0};
   aggregation::MarkerView view() const { return {x, y, offsets}; }

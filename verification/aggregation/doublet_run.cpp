@@ -8,10 +8,10 @@
 #include "aggregation/morse_aggregation.hpp"
 #include "common/case_support.hpp"
 #include "fluid/fluid_lattice.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/immersed_cells.hpp"
-#include "membrane/polygon.hpp"
 #include "membrane/rest_shape.hpp"
-#include "membrane/shapes.hpp"
 
 namespace erythro::vv {
 
@@ -37,7 +37,7 @@ Shape measure(std::span<const double> x, std::span<const double> y) {
 
 // Net Morse force on rigid polygon b, shifted by s along the unit vector e (from a's
 // centre to b's), projected on e: > 0 pushes b away from a (repulsion).
-double force_along(aggregation::MorseAggregation& agg, const membrane::Polygon& a, const membrane::Polygon& b,
+double force_along(aggregation::MorseAggregation& agg, const geometry::Polygon& a, const geometry::Polygon& b,
                    double ex, double ey, double s) {
   std::vector<double> x(a.x), y(a.y);
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -54,7 +54,7 @@ double force_along(aggregation::MorseAggregation& agg, const membrane::Polygon& 
 
 // The shift s ∈ (lo, hi) of b along e where that force changes sign from + to −
 // (first sign change on a 0.05 grid, then bisection).
-double balance_root(aggregation::MorseAggregation& agg, const membrane::Polygon& a, const membrane::Polygon& b,
+double balance_root(aggregation::MorseAggregation& agg, const geometry::Polygon& a, const geometry::Polygon& b,
                     double ex, double ey, double lo, double hi) {
   double l = lo, h = lo;
   bool found = false;
@@ -75,8 +75,8 @@ double balance_root(aggregation::MorseAggregation& agg, const membrane::Polygon&
 }
 
 // Gap where the discrete Morse force between the rigid INITIAL polygons vanishes.
-double discrete_rigid_gap(const ib::Domain& dom, const aggregation::MorseParameters& p, const membrane::Polygon& a,
-                          const membrane::Polygon& b, double R) {
+double discrete_rigid_gap(const geometry::Domain& dom, const aggregation::MorseParameters& p, const geometry::Polygon& a,
+                          const geometry::Polygon& b, double R) {
   aggregation::MorseAggregation agg(dom, p);
   const double gap0 = measure(b.x, b.y).cx - measure(a.x, a.y).cx - 2.0 * R;
   return gap0 + balance_root(agg, a, b, 1.0, 0.0, 0.1 * p.r0 - gap0, p.cutoff - gap0);
@@ -90,14 +90,14 @@ DoubletResult run_doublet(const DoubletSetup& s, bool verbose) {
   fluid::FluidLattice lat(Grid{s.nx, s.ny}, fluid::CollisionConfig{fluid::CollisionModel::bgk, s.tau, 3.0 / 16.0},
                           fluid::BoundaryConfig{});
   membrane::ImmersedCells cells(s.kernel, lat);
-  const membrane::Polygon circle = membrane::circle(s.markers, s.radius);
+  const geometry::Polygon circle = geometry::circle(s.markers, s.radius);
   const membrane::RestShape rest = membrane::RestShape::from_polygon(circle);
   const double xm = 0.5 * s.nx, D0 = 2.0 * s.radius + s.initial_gap;
-  const membrane::Polygon p0 = membrane::transformed(circle, 1.0, s.angle0, xm - 0.5 * D0, s.y0);
-  const membrane::Polygon p1 = membrane::transformed(circle, 1.0, s.angle1, xm + 0.5 * D0, s.y0);
+  const geometry::Polygon p0 = geometry::transformed(circle, 1.0, s.angle0, xm - 0.5 * D0, s.y0);
+  const geometry::Polygon p1 = geometry::transformed(circle, 1.0, s.angle1, xm + 0.5 * D0, s.y0);
   cells.add_cell(p0, rest, s.model);
   cells.add_cell(p1, rest, s.model);
-  const ib::Domain dom = cells.transfer().domain();
+  const geometry::Domain dom = cells.transfer().domain();
   aggregation::MorseAggregation agg(dom, s.morse);
   r.discrete_rigid_gap = discrete_rigid_gap(dom, s.morse, p0, p1, measure(p0.x, p0.y).R);
 
@@ -152,7 +152,7 @@ DoubletResult run_doublet(const DoubletSetup& s, bool verbose) {
   {
     // Force balance of the final state: the shift of cell 1 (frozen shape) along the
     // line of centres at which the net Morse force between the two membranes vanishes.
-    membrane::Polygon fa = cells.polygon(0), fb = cells.polygon(1);
+    geometry::Polygon fa = cells.polygon(0), fb = cells.polygon(1);
     double ex = image(b.cx - a.cx, s.nx), ey = image(b.cy - a.cy, s.ny);
     const double D = std::hypot(ex, ey);
     ex /= D;

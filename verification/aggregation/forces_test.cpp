@@ -20,8 +20,8 @@
 #include "aggregation/morse_aggregation.hpp"
 #include "common/case_support.hpp"
 #include "configs.hpp"
-#include "membrane/polygon.hpp"
-#include "membrane/shapes.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::aggregation;
@@ -37,16 +37,16 @@ const MorseParameters kP{1e-3, 0.49 / 0.15, 3.84 * 0.15, 0.49 / 0.15 + 5.0 / (3.
 vv::MarkerConfig doublet(bool wrap, std::uint64_t seed) {
   vv::MarkerConfig c;
   const int L = 64;
-  c.domain = ib::Domain{Grid{L, L}, true, true};
+  c.domain = geometry::Domain{Grid{L, L}, true, true};
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u(-0.5, 0.5);
   const double a = 10.0;
-  const membrane::Polygon s = membrane::biconcave(100, a);  // long axis along x
+  const geometry::Polygon s = geometry::biconcave(100, a);  // long axis along x
   // Rotate by π/2: long axes vertical, the flat faces (thickness ≈ 0.2a… 0.7a) face each other.
   const double half = 0.5 * 0.7 * a;
   for (int k = 0; k < 2; ++k) {
     const double cx = (wrap ? 2.0 : 32.0) + (k == 0 ? -1 : 1) * (half + 0.5 * kP.r0);
-    membrane::Polygon p = membrane::transformed(s, 1.0, 0.5 * 3.141592653589793 + 0.05 * u(rng), cx, 30.0 + u(rng));
+    geometry::Polygon p = geometry::transformed(s, 1.0, 0.5 * 3.141592653589793 + 0.05 * u(rng), cx, 30.0 + u(rng));
     for (std::size_t i = 0; i < p.size(); ++i) {
       p.x[i] += 0.3 * u(rng);
       p.y[i] += 0.3 * u(rng);

@@ -20,6 +20,7 @@
 
 using namespace erythro;
 using namespace erythro::ib;
+using geometry::Domain;
 
 namespace {
 const double kCosineFirstMax = std::sqrt((1.0 - 8.0 / (std::numbers::pi * std::numbers::pi)) / 2.0) -

@@ -26,11 +26,12 @@
 
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
+#include "geometry/shapes.hpp"
 #include "interior/index_field.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::interior;
+using namespace erythro::geometry;
 
 namespace {
 constexpr double kW = 2.0;
@@ -40,26 +41,26 @@ constexpr double kOrderTolerance = 0.1;
 struct Shape {
   std::string name;
   std::vector<double> sizes;  // a in h
-  membrane::Polygon (*make)(double a);
+  geometry::Polygon (*make)(double a);
 };
 
-membrane::Polygon make_circle(double a) { return membrane::circle(std::max(100, int(std::ceil(4 * a))), a); }
-membrane::Polygon make_ellipse(double a) { return membrane::ellipse(std::max(100, int(std::ceil(4 * a))), a, 0.55 * a); }
-membrane::Polygon make_biconcave(double a) { return membrane::biconcave(std::max(100, int(std::ceil(4 * a))), a); }
+geometry::Polygon make_circle(double a) { return geometry::circle(std::max(100, int(std::ceil(4 * a))), a); }
+geometry::Polygon make_ellipse(double a) { return geometry::ellipse(std::max(100, int(std::ceil(4 * a))), a, 0.55 * a); }
+geometry::Polygon make_biconcave(double a) { return geometry::biconcave(std::max(100, int(std::ceil(4 * a))), a); }
 
 struct AreaRun {
   double area, represented, error_rel, residual;
   long interior;
 };
 
-AreaRun measure(const membrane::Polygon& shape, double a) {
+AreaRun measure(const geometry::Polygon& shape, double a) {
   const int n = static_cast<int>(std::ceil(2.6 * a)) + 12;
-  const auto p = membrane::transformed(shape, 1.0, 0.37, 0.5 * n + 0.213, 0.5 * n + 0.071);
-  IndexField f(ib::Domain{Grid{n, n}, true, true}, {Method::flood_fill, kW});
-  const FillReport& r = f.update(std::vector<membrane::Polygon>{p});
+  const auto p = geometry::transformed(shape, 1.0, 0.37, 0.5 * n + 0.213, 0.5 * n + 0.071);
+  IndexField f(geometry::Domain{Grid{n, n}, true, true}, {Method::flood_fill, kW});
+  const FillReport& r = f.update(std::vector<geometry::Polygon>{p});
   double s = 0.0;
   for (double I : f.values()) s += 1.0 - I;
-  const double A = membrane::signed_area(p);
+  const double A = geometry::signed_area(p);
   return {A, s, std::abs(s - A) / A, s - A - kCurvatureTerm, r.interior_nodes};
 }
 }  // namespace

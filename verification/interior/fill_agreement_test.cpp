@@ -6,7 +6,7 @@
 // horseshoes, cells across periodic sides, small cells, pairs closer than the band width,
 // cells at walls); and the band values are eq 26 of the true signed distance.
 // Reference: the even–odd rule (a node is inside iff a ray from it crosses the polygon an
-// odd number of times) evaluated independently per node (interior::signed_distance, which
+// odd number of times) evaluated independently per node (geometry::signed_distance, which
 // loops over every edge of every periodic image), and eq 26 H(d) with the minimum over
 // cells where bands overlap (the rule of index_field.hpp).
 // Why exact: away from the band the fill and the rule are both set-valued and the band is
@@ -20,11 +20,13 @@
 #include <limits>
 
 #include "common/case_support.hpp"
+#include "geometry/grid_polygon.hpp"
 #include "interior/index_field.hpp"
 #include "test_shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::interior;
+using namespace erythro::geometry;
 
 namespace {
 constexpr double kW = 2.0;  // band half-width, lattice units (eq 26)
@@ -72,7 +74,7 @@ TEST(InteriorFillAgreement, FloodFillEqualsRayCasting) {
       "(minimum over cells) in the band, on circles, ellipses, biconcave cells, random Fourier-mode stars, folded "
       "horseshoes, cells across periodic sides, small cells, pairs closer than the band width and cells at walls.");
   record.set_reference(
-      "Even-odd rule per node, independently (interior::signed_distance over all edges and periodic images); "
+      "Even-odd rule per node, independently (geometry::signed_distance over all edges and periodic images); "
       "eq 26 H(d) = (1 + d/2h + sin(pi d/2h)/pi)/2, thesis section II.4; overlap rule: minimum I (index_field.hpp).");
   record.set_parameter("band_half_width_h", kW);
   record.set_parameter("suite", std::string("smooth shapes; 6 random-star scenes (seeds 1-6, 4 cells, 2-6 modes); 4 "

@@ -48,6 +48,7 @@
 
 using namespace erythro;
 using namespace erythro::interior;
+using namespace erythro::geometry;
 
 namespace {
 constexpr double kNuEx = 0.2 / 3.0;        // plasma, τ = 0.7
@@ -73,14 +74,14 @@ LayerRun run(vv::LayerFlow flow, fluid::CollisionModel model, Blend blend, int N
   p.drive = 0.32 / N / umax;
 
   // The membrane: slab y ∈ [N/2, N + 8], markers every 0.5 h along its edges.
-  membrane::Polygon slab;
+  geometry::Polygon slab;
   const double a = 0.5 * N, top = N + 8.0;
   for (double x = -8.0; x < 9.0; x += 0.5) { slab.x.push_back(x); slab.y.push_back(a); }
   for (double y = a; y < top; y += 0.5) { slab.x.push_back(9.0); slab.y.push_back(y); }
   for (double x = 9.0; x > -8.0; x -= 0.5) { slab.x.push_back(x); slab.y.push_back(top); }
   for (double y = top; y > a; y -= 0.5) { slab.x.push_back(-8.0); slab.y.push_back(y); }
-  IndexField field(ib::Domain{Grid{1, N}, false, false}, {Method::flood_fill, 2.0});
-  const FillReport& rep = field.update(std::vector<membrane::Polygon>{slab});
+  IndexField field(geometry::Domain{Grid{1, N}, false, false}, {Method::flood_fill, 2.0});
+  const FillReport& rep = field.update(std::vector<geometry::Polygon>{slab});
 
   fluid::BoundaryConfig walls;
   walls.bottom.type = fluid::SideType::wall;

@@ -7,15 +7,15 @@
 #include <string>
 #include <vector>
 
-#include "ib/domain.hpp"
-#include "membrane/polygon.hpp"
+#include "geometry/domain.hpp"
+#include "geometry/polygon.hpp"
 
 namespace erythro::vv {
 
 struct CellScene {
   std::string name;
-  ib::Domain domain;
-  std::vector<membrane::Polygon> cells;
+  geometry::Domain domain;
+  std::vector<geometry::Polygon> cells;
 };
 
 // Deterministic uniform numbers in [0, 1) (64-bit LCG; identical on every platform).
@@ -33,10 +33,10 @@ class Uniform {
 
 // Star-shaped r(θ) = R[1 + Σ_{k=2}^{modes+1} a_k cos(kθ + φ_k)], Σ|a_k| ≤ amplitude < 1,
 // `markers` equally spaced in θ, centred at (cx, cy).
-membrane::Polygon random_star(Uniform& u, int markers, double R, double amplitude, int modes, double cx, double cy);
+geometry::Polygon random_star(Uniform& u, int markers, double R, double amplitude, int modes, double cx, double cy);
 // A folded (strongly non-convex, not star-shaped about its centroid) horseshoe: an annular
 // sector of mid radius R, thickness t, opening `gap` radians, rotated by `angle`.
-membrane::Polygon horseshoe(int markers, double R, double t, double gap, double angle, double cx, double cy);
+geometry::Polygon horseshoe(int markers, double R, double t, double gap, double angle, double cx, double cy);
 
 // The fill-agreement suite (verification.interior_fill_agreement).
 std::vector<CellScene> agreement_suite();

@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "common/case_support.hpp"
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 
 namespace erythro::vv {
 
@@ -19,7 +19,7 @@ ImmersedBox make_periodic_box(int L, double tau, ib::KernelType kernel) {
 AdvanceResult advance(ImmersedBox& box, long steps, const std::function<void(long)>& each) {
   Stopwatch sw;
   AdvanceResult r;
-  const double p0 = membrane::perimeter(box.cells->polygon(0));
+  const double p0 = geometry::perimeter(box.cells->polygon(0));
   for (long s = 0; s < steps; ++s) {
     try {
       box.cells->advance(*box.lattice);
@@ -30,7 +30,7 @@ AdvanceResult advance(ImmersedBox& box, long steps, const std::function<void(lon
     r.steps_done = s + 1;
     if (each) each(s);
     if (s % 100 == 0) {
-      const double p = membrane::perimeter(box.cells->polygon(0));
+      const double p = geometry::perimeter(box.cells->polygon(0));
       if (!(std::abs(p / p0 - 1.0) < 0.05)) {
         r.diverged = true;
         break;

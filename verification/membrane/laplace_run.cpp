@@ -3,14 +3,15 @@
 #include <cmath>
 #include <numbers>
 
+#include "geometry/shapes.hpp"
 #include "immersed_setup.hpp"
 #include "lattice/d2q9.hpp"
-#include "membrane/shapes.hpp"
 
 namespace erythro::vv {
 
 LaplaceResult run_laplace(const LaplaceConfig& c) {
   using namespace membrane;
+  using namespace geometry;
   const int L = static_cast<int>(std::lround(4 * c.radius));
   const int n = static_cast<int>(std::lround(8 * c.radius));
   auto box = make_periodic_box(L, c.tau, c.kernel);

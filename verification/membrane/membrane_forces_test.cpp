@@ -11,11 +11,12 @@
 #include <random>
 
 #include "common/case_support.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/membrane_energy.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::membrane;
+using namespace erythro::geometry;
 
 namespace {
 

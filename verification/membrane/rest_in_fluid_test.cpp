@@ -13,11 +13,12 @@
 #include <cmath>
 
 #include "common/case_support.hpp"
+#include "geometry/shapes.hpp"
 #include "immersed_setup.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::membrane;
+using namespace erythro::geometry;
 
 TEST(RestInFluid, CellAtRestStaysAtRest) {
   vv::Stopwatch total;

@@ -15,12 +15,13 @@
 #include <numbers>
 
 #include "common/case_support.hpp"
+#include "geometry/shapes.hpp"
 #include "immersed_setup.hpp"
-#include "membrane/shapes.hpp"
 #include "membrane/stability.hpp"
 
 using namespace erythro;
 using namespace erythro::membrane;
+using namespace erythro::geometry;
 
 namespace {
 constexpr double kR = 12, kStretch = 1.05, kTau = 0.8;

@@ -18,11 +18,12 @@
 
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/membrane_energy.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::membrane;
+using namespace erythro::geometry;
 
 namespace {
 constexpr double kA = 1.3, kB = 0.8, kR0 = 1.0;

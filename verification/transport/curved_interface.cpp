@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "common/case_support.hpp"
-#include "membrane/shapes.hpp"
+#include "geometry/shapes.hpp"
 #include "transport/face_flux_correction.hpp"
 #include "transport/subpixel_diffusivity.hpp"
 #include "transport_run.hpp"
@@ -109,7 +109,7 @@ namespace {
 
 // Series node D on the cut nodes; the node tensor or the face correction per treatment.
 std::unique_ptr<transport::FaceFluxCorrection> apply_treatment(transport::TransportLattice& lat,
-                                                               const membrane::Polygon& shape,
+                                                               const geometry::Polygon& shape,
                                                                const std::vector<transport::CutCell>& cells,
                                                                InterfaceTreatment t, double Din, double Dout) {
   using namespace transport;
@@ -152,7 +152,7 @@ double biconcave_steady_mean(double h_um, InterfaceTreatment t) {
   lat.set_collision({Collision::trt, 0.25});
   const double Dout = 0.5, Din = Dout * 950.0 / 2800.0;
   lat.set_uniform_diffusivity(Dout);
-  const auto cell = membrane::transformed(membrane::biconcave(800, 3.91), 1.0 / h_um, 0.0, 0.5 * n, 0.5 * n);
+  const auto cell = geometry::transformed(geometry::biconcave(800, 3.91), 1.0 / h_um, 0.0, 0.5 * n, 0.5 * n);
   const auto cells = cut_cells(cell, n, n);
   auto correction = apply_treatment(lat, cell, cells, t, Din, Dout);
   // q L²/D_out fixed (L = n nodes): the steady C is the same at every h
@@ -191,7 +191,7 @@ InclusionRun run_inclusion(const Inclusion& p, int n, InterfaceTreatment t, doub
   lat.set_uniform_diffusivity(D_out_lattice);
   // The inclusion as a fine polygon in lattice units (node (i, j) owns [i, i+1] × [j, j+1]).
   const int markers = 4096;
-  const auto circle = membrane::transformed(membrane::circle(markers, p.a / h), 1.0, 0.0, 0.5 * n, 0.5 * n);
+  const auto circle = geometry::transformed(geometry::circle(markers, p.a / h), 1.0, 0.0, 0.5 * n, 0.5 * n);
   const auto cells = cut_cells(circle, n, n);
   const double Din = p.D_in * scale_D, Dout = D_out_lattice;
   auto correction = apply_treatment(lat, circle, cells, t, Din, Dout);

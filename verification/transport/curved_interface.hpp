@@ -56,7 +56,7 @@ struct InclusionRun {
 InclusionRun run_inclusion(const Inclusion& p, int n, InterfaceTreatment t, double D_out_lattice = 0.5);
 
 // The deoxygenation cell's steady analogue (no exact solution; docs/validation-deoxygenation.md):
-// membrane::biconcave(800, 3.91 µm) centred in a box of half-width 6 µm held at 0, a uniform
+// geometry::biconcave(800, 3.91 µm) centred in a box of half-width 6 µm held at 0, a uniform
 // source inside (φ q at cut nodes), D_in/D_out = 950/2800; returns the φ-weighted mean of Ĉ
 // (the case's P̄) in units of q L²/D_out at spacing h_um.
 double biconcave_steady_mean(double h_um, InterfaceTreatment t);

@@ -11,8 +11,8 @@
 #include "aggregation/morse_aggregation.hpp"
 #include "aggregation/morse_units.hpp"
 #include "fluid/fluid_lattice.hpp"
+#include "geometry/shapes.hpp"
 #include "membrane/immersed_cells.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::aggregation;
@@ -127,7 +127,7 @@ TEST(MorseAggregation, TwoTrianglesMatchHandSum) {
   // Two 3-marker cells; E = Σ_{m in A, n in B} Φ_s(r) ℓ_m ℓ_n written out here independently.
   const std::vector<double> x{0, 2, 1, 4, 6, 5}, y{0, 0, 1.5, 0.2, 0.1, 1.8};
   const std::vector<std::size_t> off{0, 3, 6};
-  const ib::Domain dom{Grid{40, 40}, false, false};
+  const geometry::Domain dom{Grid{40, 40}, false, false};
   const MorseParameters p{0.3, 2.5, 0.8, 6.0};
   auto ell = [&](std::size_t m) {
     const std::size_t o = m < 3 ? 0 : 3, a = o + (m - o + 2) % 3, b = o + (m - o + 1) % 3;
@@ -154,7 +154,7 @@ TEST(MorseAggregation, TwoTrianglesMatchHandSum) {
 TEST(MorseAggregation, SameCellNeverInteracts) {
   const std::vector<double> x{0, 1, 0.5}, y{0, 0, 1};
   const std::vector<std::size_t> off{0, 3};
-  MorseAggregation agg(ib::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
+  MorseAggregation agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
   std::vector<double> fx(3, 0.0), fy(3, 0.0);
   const auto st = agg.add_forces(MarkerView{x, y, off}, fx, fy);
   EXPECT_EQ(st.pairs, 0u);
@@ -164,9 +164,9 @@ TEST(MorseAggregation, SameCellNeverInteracts) {
 
 TEST(MorseAggregation, RejectsBadInput) {
   // A cut-off of half a periodic side or more would see two images.
-  EXPECT_THROW(MorseAggregation(ib::Domain{Grid{12, 40}, true, false}, {0.3, 2.5, 0.8, 6.0}), std::invalid_argument);
-  EXPECT_NO_THROW(MorseAggregation(ib::Domain{Grid{12, 40}, false, false}, {0.3, 2.5, 0.8, 6.0}));
-  MorseAggregation agg(ib::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
+  EXPECT_THROW(MorseAggregation(geometry::Domain{Grid{12, 40}, true, false}, {0.3, 2.5, 0.8, 6.0}), std::invalid_argument);
+  EXPECT_NO_THROW(MorseAggregation(geometry::Domain{Grid{12, 40}, false, false}, {0.3, 2.5, 0.8, 6.0}));
+  MorseAggregation agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
   const std::vector<double> x{0, 1, 0.5, 0, 1, 0.5}, y{0, 0, 1, 0, 0, 1};
   std::vector<double> fx(6, 0.0), fy(6, 0.0);
   const std::vector<std::size_t> bad{0, 2, 6};  // a cell of 2 markers
@@ -189,15 +189,15 @@ TEST(MorseAggregation, ImmersedCellsWrapperMatchesRawPath) {
   fluid::FluidLattice lat(Grid{48, 40}, fluid::CollisionConfig{fluid::CollisionModel::bgk, 1.0, 3.0 / 16.0},
                           fluid::BoundaryConfig{});
   membrane::ImmersedCells cells(ib::KernelType::cosine4, lat);
-  const membrane::Polygon c = membrane::circle(40, 8.0);
-  const membrane::RestShape rest = membrane::RestShape::from_polygon(membrane::transformed(c, 1.02, 0.0, 0.0, 0.0));
+  const geometry::Polygon c = geometry::circle(40, 8.0);
+  const membrane::RestShape rest = membrane::RestShape::from_polygon(geometry::transformed(c, 1.02, 0.0, 0.0, 0.0));
   const membrane::MembraneModel model{{membrane::TensionLawType::neo_hookean, 0.01}, 0.0, 0.0};
-  cells.add_cell(membrane::transformed(c, 1.0, 0.0, 14.0, 20.0), rest, model);
-  cells.add_cell(membrane::transformed(c, 1.0, 0.2, 33.5, 21.0), rest, model);
+  cells.add_cell(geometry::transformed(c, 1.0, 0.0, 14.0, 20.0), rest, model);
+  cells.add_cell(geometry::transformed(c, 1.0, 0.2, 33.5, 21.0), rest, model);
   cells.compute_forces();
   const std::vector<double> mfx(cells.marker_fx().begin(), cells.marker_fx().end());
   const MorseParameters p{1e-3, 3.0, 0.6, 11.0};
-  MorseAggregation agg(ib::Domain::from(lat.grid(), lat.boundaries()), p);
+  MorseAggregation agg(fluid::domain_of(lat.grid(), lat.boundaries()), p);
   const AggregationStats st = agg.add_forces(cells);
   const std::vector<std::size_t> off = cell_offsets(cells);
   ASSERT_EQ(off, (std::vector<std::size_t>{0, 40, 80}));
@@ -209,14 +209,14 @@ TEST(MorseAggregation, ImmersedCellsWrapperMatchesRawPath) {
   EXPECT_EQ(agg.energy(cells), st.energy);
   EXPECT_EQ(agg.force_magnitude().size(), 80u);
   // A model built for another domain is refused.
-  MorseAggregation other(ib::Domain{Grid{64, 64}, true, true}, p);
+  MorseAggregation other(geometry::Domain{Grid{64, 64}, true, true}, p);
   EXPECT_THROW(other.add_forces(cells), std::invalid_argument);
 }
 
 TEST(MorseAggregation, NonFiniteMarkerIsReported) {
   const std::vector<double> x{0, 1, 0.5, 5, 6, NAN}, y{0, 0, 1, 0, 0, 1};
   const std::vector<std::size_t> off{0, 3, 6};
-  MorseAggregation agg(ib::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
+  MorseAggregation agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
   std::vector<double> fx(6, 0.0), fy(6, 0.0);
   EXPECT_THROW(agg.add_forces(MarkerView{x, y, off}, fx, fy), std::domain_error);
 }
@@ -227,7 +227,7 @@ TEST(MorseAggregation, FarOutsideWallsStillBinned) {
   const std::vector<double> x{-1e6, -1e6 + 1, -1e6 + 0.5, -1e6 + 3, -1e6 + 4, -1e6 + 3.5},
       y{0, 0, 1, 0.2, 0.1, 1.3};
   const std::vector<std::size_t> off{0, 3, 6};
-  const ib::Domain dom{Grid{40, 40}, false, false};
+  const geometry::Domain dom{Grid{40, 40}, false, false};
   const MorseParameters p{0.3, 2.5, 0.8, 6.0};
   MorseAggregation agg(dom, p);
   std::vector<double> fx(6, 0.0), fy(6, 0.0), bx(6, 0.0), by(6, 0.0);

@@ -1,6 +1,6 @@
 // Spreading and interpolation (model.md §2, thesis eqs 23–25): conservation of force
 // and torque, adjointness, reproduction of constant and linear fields, periodic wrap
-// and the documented loss of partition of unity at a wall (ib/domain.hpp).
+// and the documented loss of partition of unity at a wall (geometry/domain.hpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +14,7 @@
 
 using namespace erythro;
 using namespace erythro::ib;
+using geometry::Domain;
 
 namespace {
 constexpr double kRoundOff = 1e-13;  // relative: sums of O(100) products of O(1) numbers

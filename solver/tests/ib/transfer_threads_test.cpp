@@ -10,6 +10,7 @@
 
 using namespace erythro;
 using namespace erythro::ib;
+using geometry::Domain;
 
 namespace {
 std::vector<double> spread_with(int threads, KernelType t, bool periodic) {

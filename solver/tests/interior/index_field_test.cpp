@@ -6,19 +6,21 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "geometry/grid_polygon.hpp"
+#include "geometry/shapes.hpp"
 #include "interior/geometry.hpp"
 #include "interior/index_field.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::interior;
+using namespace erythro::geometry;
 
 namespace {
-membrane::Polygon disc(double r, double cx, double cy, int markers = 100) {
-  return membrane::transformed(membrane::circle(markers, r), 1.0, 0.0, cx, cy);
+geometry::Polygon disc(double r, double cx, double cy, int markers = 100) {
+  return geometry::transformed(geometry::circle(markers, r), 1.0, 0.0, cx, cy);
 }
 IndexField field(int nx, int ny, Method m, bool px = true, bool py = true) {
-  return IndexField(ib::Domain{Grid{nx, ny}, px, py}, IndexFieldOptions{m, 2.0});
+  return IndexField(geometry::Domain{Grid{nx, ny}, px, py}, IndexFieldOptions{m, 2.0});
 }
 }  // namespace
 
@@ -37,14 +39,14 @@ TEST(Method, NamesRoundTripAndUnknownThrows) {
 }
 
 TEST(IndexField, RejectsBadOptions) {
-  EXPECT_THROW(IndexField(ib::Domain{Grid{0, 5}}, {}), std::invalid_argument);
-  EXPECT_THROW(IndexField(ib::Domain{Grid{5, 5}}, IndexFieldOptions{Method::flood_fill, 0.0}), std::invalid_argument);
+  EXPECT_THROW(IndexField(geometry::Domain{Grid{0, 5}}, {}), std::invalid_argument);
+  EXPECT_THROW(IndexField(geometry::Domain{Grid{5, 5}}, IndexFieldOptions{Method::flood_fill, 0.0}), std::invalid_argument);
 }
 
 TEST(IndexField, FloodFillDiscValuesFollowEq26) {
   auto f = field(40, 40, Method::flood_fill);
   const auto c = disc(10.0, 20.0, 20.0, 400);
-  const std::vector<membrane::Polygon> cells{c};
+  const std::vector<geometry::Polygon> cells{c};
   const FillReport& r = f.update(cells);
   EXPECT_EQ(r.cells, 1);
   EXPECT_EQ(r.fill_starts, 1);
@@ -67,11 +69,11 @@ TEST(IndexField, FloodFillDiscValuesFollowEq26) {
   // (the curvature term of eq 26's first moment: docs/verification-interior.md).
   double s = 0;
   for (double I : f.values()) s += 1 - I;
-  EXPECT_NEAR(s - membrane::signed_area(c), 4.0 * (std::numbers::pi / 3 - 2 / std::numbers::pi), 0.02);
+  EXPECT_NEAR(s - geometry::signed_area(c), 4.0 * (std::numbers::pi / 3 - 2 / std::numbers::pi), 0.02);
 }
 
 TEST(IndexField, MethodsDifferAsSpecified) {
-  const std::vector<membrane::Polygon> cells{disc(9.0, 16.0, 15.0)};
+  const std::vector<geometry::Polygon> cells{disc(9.0, 16.0, 15.0)};
   auto none = field(32, 32, Method::indexless), band = field(32, 32, Method::band_only),
        fill = field(32, 32, Method::flood_fill), ray = field(32, 32, Method::ray_casting);
   none.update(cells);
@@ -97,8 +99,8 @@ TEST(IndexField, PeriodicWrapGivesTheShiftedField) {
   // A cell across the corner equals the same cell in the middle, cyclically shifted.
   const int n = 36;
   auto a = field(n, n, Method::flood_fill), b = field(n, n, Method::flood_fill);
-  const std::vector<membrane::Polygon> mid{membrane::transformed(membrane::biconcave(100, 12.0), 1.0, 0.3, 18.0, 18.0)};
-  const std::vector<membrane::Polygon> corner{membrane::transformed(membrane::biconcave(100, 12.0), 1.0, 0.3, 0.0, 36.0)};
+  const std::vector<geometry::Polygon> mid{geometry::transformed(geometry::biconcave(100, 12.0), 1.0, 0.3, 18.0, 18.0)};
+  const std::vector<geometry::Polygon> corner{geometry::transformed(geometry::biconcave(100, 12.0), 1.0, 0.3, 0.0, 36.0)};
   a.update(mid);
   b.update(corner);
   for (int j = 0; j < n; ++j)
@@ -108,13 +110,13 @@ TEST(IndexField, PeriodicWrapGivesTheShiftedField) {
 
 TEST(IndexField, UpdateResetsThePreviousField) {
   auto f = field(40, 40, Method::flood_fill);
-  f.update(std::vector<membrane::Polygon>{disc(8.0, 12.0, 12.0)});
-  const std::vector<membrane::Polygon> moved{disc(8.0, 27.0, 26.0)};
+  f.update(std::vector<geometry::Polygon>{disc(8.0, 12.0, 12.0)});
+  const std::vector<geometry::Polygon> moved{disc(8.0, 27.0, 26.0)};
   f.update(moved);
   auto fresh = field(40, 40, Method::flood_fill);
   fresh.update(moved);
   for (std::size_t k = 0; k < 1600; ++k) EXPECT_EQ(f.values()[k], fresh.values()[k]);
-  f.update(std::vector<membrane::Polygon>{});
+  f.update(std::vector<geometry::Polygon>{});
   for (double I : f.values()) EXPECT_EQ(I, 1.0);
 }
 
@@ -122,7 +124,7 @@ TEST(IndexField, OverlappingBandsKeepTheMinimum) {
   // Gap 1.5 h between two discs: their bands (±2 h) overlap.
   const auto c1 = disc(8.0, 12.0, 16.0), c2 = disc(8.0, 29.5, 16.0);
   auto f = field(44, 32, Method::flood_fill);
-  const std::vector<membrane::Polygon> cells{c1, c2};
+  const std::vector<geometry::Polygon> cells{c1, c2};
   const FillReport& r = f.update(cells);
   EXPECT_GT(r.overlap_nodes, 0);
   EXPECT_EQ(r.fill_starts, 2);
@@ -137,7 +139,7 @@ TEST(IndexField, OverlappingBandsKeepTheMinimum) {
 TEST(IndexField, SmallCellFallsBackToRayCasting) {
   // Radius 2.2: every interior node lies within the band (no node with −d > 2) → no start.
   auto f = field(20, 20, Method::flood_fill);
-  const FillReport& r = f.update(std::vector<membrane::Polygon>{disc(2.2, 10.0, 10.0, 20)});
+  const FillReport& r = f.update(std::vector<geometry::Polygon>{disc(2.2, 10.0, 10.0, 20)});
   EXPECT_EQ(r.fallback_cells, 1);
   EXPECT_EQ(r.fill_starts + r.completion_starts, 0);
   EXPECT_EQ(r.interior_nodes, 0);
@@ -148,11 +150,11 @@ TEST(IndexField, FlatMembraneNeedsTheCompletionPass) {
   // A slab y ∈ [4, 14] across a non-periodic 6-wide domain: in a 4h × 4h window of a
   // marker on a flat edge every node has |d| ≤ 2, so the thesis rule finds no start node;
   // the completion pass starts from a node with 2 ≤ −d < 3 instead.
-  membrane::Polygon slab;
+  geometry::Polygon slab;
   for (int k = -3; k <= 9; ++k) { slab.x.push_back(k); slab.y.push_back(4.0); }
   for (int k = 9; k >= -3; --k) { slab.x.push_back(k); slab.y.push_back(14.0); }
   auto f = field(6, 20, Method::flood_fill, false, false);
-  const FillReport& r = f.update(std::vector<membrane::Polygon>{slab});
+  const FillReport& r = f.update(std::vector<geometry::Polygon>{slab});
   EXPECT_EQ(r.fill_starts, 0);
   EXPECT_EQ(r.completion_starts, 1);
   EXPECT_EQ(r.fallback_cells, 0);
@@ -165,7 +167,7 @@ TEST(IndexField, FlatMembraneNeedsTheCompletionPass) {
 
 TEST(IndexField, WriteRelaxationTimesEq27) {
   auto f = field(30, 30, Method::flood_fill);
-  f.update(std::vector<membrane::Polygon>{disc(8.0, 15.0, 15.0)});
+  f.update(std::vector<geometry::Polygon>{disc(8.0, 15.0, 15.0)});
   std::vector<double> tau(900);
   const double nu_in = 1.0 / 3.0, nu_ex = 0.2 / 3.0;
   f.write_relaxation_times(tau, nu_in, nu_ex);
@@ -181,27 +183,27 @@ TEST(IndexField, WriteRelaxationTimesEq27) {
 
 TEST(IndexField, ClockwisePolygonGivesTheSameField) {
   auto c = disc(9.0, 15.0, 15.0);
-  membrane::Polygon cw{{c.x.rbegin(), c.x.rend()}, {c.y.rbegin(), c.y.rend()}};
+  geometry::Polygon cw{{c.x.rbegin(), c.x.rend()}, {c.y.rbegin(), c.y.rend()}};
   auto a = field(30, 30, Method::flood_fill), b = field(30, 30, Method::flood_fill);
-  a.update(std::vector<membrane::Polygon>{c});
-  b.update(std::vector<membrane::Polygon>{cw});
+  a.update(std::vector<geometry::Polygon>{c});
+  b.update(std::vector<geometry::Polygon>{cw});
   for (std::size_t k = 0; k < 900; ++k) EXPECT_NEAR(a.values()[k], b.values()[k], 1e-12);
 }
 
 TEST(IndexField, WedgeAndCapsuleBandPassesAgree) {
   // A smooth biconcave cell takes the wedge path; the same polygon with a repeated marker
   // (a zero-length edge) takes the whole-capsule path. The fields must be identical.
-  const auto c = membrane::transformed(membrane::biconcave(100, 20.0), 1.0, 0.4, 24.3, 23.8);
-  membrane::Polygon dup = c;
+  const auto c = geometry::transformed(geometry::biconcave(100, 20.0), 1.0, 0.4, 24.3, 23.8);
+  geometry::Polygon dup = c;
   dup.x.insert(dup.x.begin() + 10, dup.x[10]);
   dup.y.insert(dup.y.begin() + 10, dup.y[10]);
   auto a = field(48, 48, Method::flood_fill), b = field(48, 48, Method::flood_fill);
-  EXPECT_EQ(a.update(std::vector<membrane::Polygon>{c}).wedge_cells, 1);
-  EXPECT_EQ(b.update(std::vector<membrane::Polygon>{dup}).wedge_cells, 0);
+  EXPECT_EQ(a.update(std::vector<geometry::Polygon>{c}).wedge_cells, 1);
+  EXPECT_EQ(b.update(std::vector<geometry::Polygon>{dup}).wedge_cells, 0);
   for (std::size_t k = 0; k < 48 * 48; ++k) EXPECT_EQ(a.values()[k], b.values()[k]) << k;
   // Deterministic: a second update gives the same field bit for bit.
   const std::vector<double> first(a.values().begin(), a.values().end());
-  a.update(std::vector<membrane::Polygon>{c});
+  a.update(std::vector<geometry::Polygon>{c});
   for (std::size_t k = 0; k < first.size(); ++k) EXPECT_EQ(a.values()[k], first[k]);
 }
 
@@ -214,7 +216,7 @@ TEST(IndexField, ChangedRelaxationTimesEqualTheFullWrite) {
     const double nu_in = 5.0 / 6.0, nu_ex = 1.0 / 6.0;
     std::vector<double> incremental(60 * 50, 0.0), full(60 * 50, 0.0);
     f.write_relaxation_times(incremental, nu_in, nu_ex);  // the starting field, as CellPhysics does
-    const std::vector<std::vector<membrane::Polygon>> frames = {
+    const std::vector<std::vector<geometry::Polygon>> frames = {
         {disc(8.0, 20.0, 20.0), disc(6.0, 42.0, 30.0)},
         {disc(8.0, 21.3, 20.7), disc(6.0, 41.2, 29.5)},
         {disc(7.0, 24.0, 22.0)},
@@ -257,7 +259,7 @@ TEST(IndexField, FoldedAndWallClippedBoxesMatchBruteForce) {
                         Case{40, 40, false, true, 9.0, 10.5, 38.0}}) {
     const auto c = disc(k.r, k.cx, k.cy, 160);
     IndexField f = field(k.nx, k.ny, Method::flood_fill, k.px, k.py);
-    f.update(std::vector<membrane::Polygon>{c});
+    f.update(std::vector<geometry::Polygon>{c});
     for (int j = 0; j < k.ny; ++j)
       for (int i = 0; i < k.nx; ++i) {
         double best = 1e300;
@@ -272,4 +274,23 @@ TEST(IndexField, FoldedAndWallClippedBoxesMatchBruteForce) {
             << "case " << k.nx << "x" << k.ny << " node " << i << " " << j;
       }
   }
+}
+
+TEST(Heaviside, Eq26Values) {
+  // H(d) = ½[1 + d/w + (1/π) sin(πd/w)], w = 2.
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(-2.0), 0.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(-5.0), 0.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(2.0), 1.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(7.0), 1.0);
+  EXPECT_DOUBLE_EQ(smoothed_heaviside(0.0), 0.5);
+  EXPECT_NEAR(smoothed_heaviside(1.0), 0.5 * (1.5 + 1.0 / std::numbers::pi), 1e-15);
+  EXPECT_NEAR(smoothed_heaviside(-1.0), 0.5 * (0.5 - 1.0 / std::numbers::pi), 1e-15);
+  // Odd symmetry about ½, monotone, C¹ at ±w (H' = (1 + cos(πd/w))/(2w) → 0).
+  for (double d = -1.99; d < 2.0; d += 0.01) {
+    EXPECT_NEAR(smoothed_heaviside(d) + smoothed_heaviside(-d), 1.0, 1e-14);
+    EXPECT_LE(smoothed_heaviside(d - 0.01), smoothed_heaviside(d));
+  }
+  EXPECT_NEAR(smoothed_heaviside(-1.9999), 0.0, 1e-10);
+  EXPECT_NEAR(smoothed_heaviside(3.0, 3.0), 1.0, 0.0);
+  EXPECT_NEAR(smoothed_heaviside(1.5, 3.0), 0.5 * (1.5 + 1.0 / std::numbers::pi), 1e-15);
 }

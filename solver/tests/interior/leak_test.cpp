@@ -8,14 +8,15 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "geometry/shapes.hpp"
 #include "interior/index_field.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::interior;
+using namespace erythro::geometry;
 
 namespace {
-std::string message_of(IndexField& f, const std::vector<membrane::Polygon>& cells) {
+std::string message_of(IndexField& f, const std::vector<geometry::Polygon>& cells) {
   try {
     f.update(cells);
   } catch (const FillLeakError& e) {
@@ -28,8 +29,8 @@ std::string message_of(IndexField& f, const std::vector<membrane::Polygon>& cell
 TEST(Leak, BandWithGapsLeaksAndThrows) {
   // Band half-width 0.3 h < 0.5 h: a tilted membrane passes between nodes without band
   // nodes, the scan-line fill escapes into the whole periodic domain.
-  IndexField f(ib::Domain{Grid{48, 48}}, IndexFieldOptions{Method::flood_fill, 0.3});
-  const auto tilted = membrane::transformed(membrane::ellipse(200, 14.0, 8.0), 1.0, 0.61, 24.0, 24.0);
+  IndexField f(geometry::Domain{Grid{48, 48}}, IndexFieldOptions{Method::flood_fill, 0.3});
+  const auto tilted = geometry::transformed(geometry::ellipse(200, 14.0, 8.0), 1.0, 0.61, 24.0, 24.0);
   const std::string what = message_of(f, {tilted});
   EXPECT_NE(what.find("cell 0"), std::string::npos) << what;
   EXPECT_NE(what.find("leaked"), std::string::npos) << what;
@@ -39,15 +40,15 @@ TEST(Leak, SelfIntersectingPolygonThrows) {
   // A figure eight: shoelace area ≈ 0, but both lobes hold interior nodes. The lobes
   // turn in opposite senses, so one lobe's band signs are inverted and its fill starts
   // outside (a leak), or the interior disagrees with the area: either way, cell 1 throws.
-  membrane::Polygon eight;
+  geometry::Polygon eight;
   for (int k = 0; k < 200; ++k) {
     const double t = 2 * std::numbers::pi * k / 200;
     eight.x.push_back(30 + 20 * std::sin(t));
     eight.y.push_back(30 + 10 * std::sin(2 * t));
   }
   for (Method m : {Method::flood_fill, Method::ray_casting}) {
-    IndexField f(ib::Domain{Grid{60, 60}}, IndexFieldOptions{m, 2.0});
-    const auto ok = membrane::transformed(membrane::circle(100, 5.0), 1.0, 0.0, 8.0, 8.0);
+    IndexField f(geometry::Domain{Grid{60, 60}}, IndexFieldOptions{m, 2.0});
+    const auto ok = geometry::transformed(geometry::circle(100, 5.0), 1.0, 0.0, 8.0, 8.0);
     const std::string what = message_of(f, {ok, eight});
     EXPECT_NE(what.find("cell 1"), std::string::npos) << to_string(m) << ": " << what;
     EXPECT_TRUE(what.find("self-intersects") != std::string::npos || what.find("leaked") != std::string::npos)
@@ -57,20 +58,20 @@ TEST(Leak, SelfIntersectingPolygonThrows) {
 
 TEST(Leak, DoublyTraversedPolygonThrows) {
   // The same circle traversed twice: shoelace area 2πr², interior πr².
-  auto c = membrane::transformed(membrane::circle(100, 10.0), 1.0, 0.0, 20.0, 20.0);
-  membrane::Polygon twice = c;
+  auto c = geometry::transformed(geometry::circle(100, 10.0), 1.0, 0.0, 20.0, 20.0);
+  geometry::Polygon twice = c;
   twice.x.insert(twice.x.end(), c.x.begin(), c.x.end());
   twice.y.insert(twice.y.end(), c.y.begin(), c.y.end());
-  IndexField f(ib::Domain{Grid{40, 40}}, {});
+  IndexField f(geometry::Domain{Grid{40, 40}}, {});
   EXPECT_NE(message_of(f, {twice}).find("cell 0"), std::string::npos);
 }
 
 TEST(Leak, NonFiniteMarkerIsADomainError) {
-  auto c = membrane::transformed(membrane::circle(50, 6.0), 1.0, 0.0, 10.0, 10.0);
+  auto c = geometry::transformed(geometry::circle(50, 6.0), 1.0, 0.0, 10.0, 10.0);
   c.x[7] = std::numeric_limits<double>::quiet_NaN();
-  IndexField f(ib::Domain{Grid{20, 20}}, {});
+  IndexField f(geometry::Domain{Grid{20, 20}}, {});
   try {
-    f.update(std::vector<membrane::Polygon>{c});
+    f.update(std::vector<geometry::Polygon>{c});
     FAIL() << "no throw";
   } catch (const std::domain_error& e) {  // a diverged membrane (simulation: diverged)
     EXPECT_NE(std::string(e.what()).find("marker 7"), std::string::npos) << e.what();
@@ -80,10 +81,10 @@ TEST(Leak, NonFiniteMarkerIsADomainError) {
 TEST(Leak, ValidCellsDoNotThrowAndReportSmallMismatch) {
   // Biconcave cells with a = 13 h: the dimple is 0.207 a ≈ 2.7 h thick, all band, so each
   // interior is two lobes: the thesis start fills one, the completion pass the other.
-  IndexField f(ib::Domain{Grid{80, 80}}, {});
-  std::vector<membrane::Polygon> cells;
+  IndexField f(geometry::Domain{Grid{80, 80}}, {});
+  std::vector<geometry::Polygon> cells;
   for (int k = 0; k < 4; ++k)
-    cells.push_back(membrane::transformed(membrane::biconcave(100, 13.0), 1.0, 0.4 * k, 20.0 + 40 * (k % 2), 20.0 + 40 * (k / 2)));
+    cells.push_back(geometry::transformed(geometry::biconcave(100, 13.0), 1.0, 0.4 * k, 20.0 + 40 * (k % 2), 20.0 + 40 * (k / 2)));
   const FillReport& r = f.update(cells);
   // The curvature term (π/3 − 2/π) w² = 1.64 h² plus lattice quadrature (docs/verification-interior.md).
   EXPECT_LT(r.max_area_mismatch, 2.5);
@@ -93,6 +94,6 @@ TEST(Leak, ValidCellsDoNotThrowAndReportSmallMismatch) {
 }
 
 TEST(Leak, TooFewMarkersIsAnInputError) {
-  IndexField f(ib::Domain{Grid{20, 20}}, {});
-  EXPECT_THROW(f.update(std::vector<membrane::Polygon>{membrane::Polygon{{1, 2}, {1, 2}}}), InputError);
+  IndexField f(geometry::Domain{Grid{20, 20}}, {});
+  EXPECT_THROW(f.update(std::vector<geometry::Polygon>{geometry::Polygon{{1, 2}, {1, 2}}}), InputError);
 }

@@ -9,10 +9,12 @@
 #include <cstdint>
 #include <numbers>
 
+#include "geometry/grid_polygon.hpp"
 #include "interior/index_field.hpp"
 
 using namespace erythro;
 using namespace erythro::interior;
+using namespace erythro::geometry;
 
 namespace {
 struct Lcg {
@@ -23,7 +25,7 @@ struct Lcg {
   }
 };
 
-membrane::Polygon star(Lcg& u, double cx, double cy) {
+geometry::Polygon star(Lcg& u, double cx, double cy) {
   const double s = u(), R = 1.5 + 18.5 * s * s, amp = 0.6 * u();
   const int markers = 8 + static_cast<int>(192 * u()), modes = 1 + static_cast<int>(6 * u());
   double a[6], ph[6], sum = 0;
@@ -32,7 +34,7 @@ membrane::Polygon star(Lcg& u, double cx, double cy) {
     ph[k] = 2 * std::numbers::pi * u();
     sum += a[k];
   }
-  membrane::Polygon p;
+  geometry::Polygon p;
   for (int m = 0; m < markers; ++m) {
     const double th = 2 * std::numbers::pi * m / markers;
     double r = 1.0;
@@ -50,8 +52,8 @@ TEST(Randomized, BandAndInteriorMatchBruteForce) {
   int wedge = 0, capsule = 0, fallback = 0;
   for (int trial = 0; trial < 80; ++trial) {
     const auto p = star(u, n * u(), n * u());
-    IndexField f(ib::Domain{Grid{n, n}, true, true}, {Method::flood_fill, 2.0});
-    const FillReport& r = f.update(std::vector<membrane::Polygon>{p});
+    IndexField f(geometry::Domain{Grid{n, n}, true, true}, {Method::flood_fill, 2.0});
+    const FillReport& r = f.update(std::vector<geometry::Polygon>{p});
     wedge += r.wedge_cells;
     capsule += 1 - r.wedge_cells;
     fallback += r.fallback_cells;

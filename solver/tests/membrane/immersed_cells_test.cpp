@@ -7,11 +7,12 @@
 #include <cmath>
 #include <vector>
 
+#include "geometry/shapes.hpp"
 #include "membrane/immersed_cells.hpp"
-#include "membrane/shapes.hpp"
 
 using namespace erythro;
 using namespace erythro::membrane;
+using namespace erythro::geometry;
 
 namespace {
 std::vector<double> run(int threads, double ux, int steps, double* centre_x = nullptr) {

@@ -5,6 +5,7 @@
 
 using namespace erythro::membrane;
 
+
 TEST(MembraneUnits, ThesisDoubletNumbers) {
   // Thesis ch. III: h = 0.15 µm; plasma ν = 1.2e-6 m²/s with τ = 1 (ν_lat = 1/6)
   // gives Δt = ν_lat h²/ν = 3.125e-9 s; ρ0 = 1000 kg/m³.

@@ -8,6 +8,7 @@
 
 using namespace erythro;
 using namespace erythro::membrane;
+using namespace erythro::geometry;
 
 TEST(Stability, SoftMembraneIsAccepted) {
   StabilityInput in;

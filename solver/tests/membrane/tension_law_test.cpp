@@ -8,6 +8,7 @@
 
 using namespace erythro::membrane;
 
+
 namespace {
 constexpr TensionLawType kLaws[] = {TensionLawType::neo_hookean, TensionLawType::skalak, TensionLawType::hookean};
 }

@@ -10,7 +10,7 @@
 #include <omp.h>
 #endif
 
-#include "membrane/shapes.hpp"
+#include "geometry/shapes.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
 #include "simulation/simulation.hpp"
@@ -21,10 +21,10 @@ namespace {
 // Ellipse with semi-axes a, b: D = (a − b)/(a + b) exactly for the smooth curve;
 // a 256-gon inscribed in it is within 1e-3.
 TEST(CellDiagnostics, TaylorDeformationOfAnEllipse) {
-  EXPECT_NEAR(taylor_deformation(membrane::ellipse(256, 6.0, 3.0)), 1.0 / 3.0, 1e-3);
-  EXPECT_NEAR(taylor_deformation(membrane::transformed(membrane::ellipse(256, 6.0, 3.0), 2.0, 0.7, 5.0, -3.0)),
+  EXPECT_NEAR(taylor_deformation(geometry::ellipse(256, 6.0, 3.0)), 1.0 / 3.0, 1e-3);
+  EXPECT_NEAR(taylor_deformation(geometry::transformed(geometry::ellipse(256, 6.0, 3.0), 2.0, 0.7, 5.0, -3.0)),
               1.0 / 3.0, 1e-3);
-  EXPECT_NEAR(taylor_deformation(membrane::circle(64, 4.0)), 0.0, 1e-12);
+  EXPECT_NEAR(taylor_deformation(geometry::circle(64, 4.0)), 0.0, 1e-12);
 }
 
 struct Collect : RunObserver {
@@ -77,7 +77,7 @@ TEST(CellSimulation, InteriorViscosityByFloodFill) {
   const auto tau = sim.fluid()->tau_field();
   ASSERT_EQ(tau.size(), g.size());
   double cx = 0, cy = 0;
-  membrane::centroid(sim.cells()->polygon(0), cx, cy);
+  geometry::centroid(sim.cells()->polygon(0), cx, cy);
   const double ratio = *s.membrane->interior_viscosity_cP / s.fluid.viscosity_cP;
   EXPECT_NEAR(tau[g.index(static_cast<int>(cx), static_cast<int>(cy))], 0.5 + ratio * (L.collision.tau - 0.5), 1e-12);
   EXPECT_NEAR(tau[g.index(0, g.ny / 2)], L.collision.tau, 1e-12);
@@ -108,8 +108,8 @@ TEST(CellSimulation, AggregatingPairAttracts) {
   ASSERT_NE(sim.cells(), nullptr);
   const auto gap = [&] {
     double cx0 = 0, cy0 = 0, cx1 = 0, cy1 = 0;
-    membrane::centroid(sim.cells()->polygon(0), cx0, cy0);
-    membrane::centroid(sim.cells()->polygon(1), cx1, cy1);
+    geometry::centroid(sim.cells()->polygon(0), cx0, cy0);
+    geometry::centroid(sim.cells()->polygon(1), cx1, cy1);
     return cx1 - cx0;
   };
   const double before = gap();

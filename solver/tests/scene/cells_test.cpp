@@ -8,11 +8,11 @@
 #include <string>
 
 #include "common/error.hpp"
+#include "geometry/polygon.hpp"
 #include "input_error_matchers.hpp"
-#include "scene_fixtures.hpp"
-#include "membrane/polygon.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
+#include "scene_fixtures.hpp"
 
 namespace erythro::scene {
 namespace {
@@ -86,9 +86,9 @@ TEST(SceneCells, ShapesArePlacedRotatedAndScaled) {
                                      "angle_deg = 90\nscale = 1.2\nmarkers = 48") +
                                 cell("shape = \"biconcave\"\nradius_um = 3.0\ncenter_um = [14, 5]\nmarkers = 48"));
   ASSERT_EQ(L.membrane->cells.size(), 2u);
-  const membrane::Polygon& e = L.membrane->cells[0].shape;
+  const geometry::Polygon& e = L.membrane->cells[0].shape;
   double cx = 0.0, cy = 0.0;
-  membrane::centroid(e, cx, cy);
+  geometry::centroid(e, cx, cy);
   EXPECT_NEAR(cx, 12.0, 1e-9);  // 6 µm / 0.5 µm
   EXPECT_NEAR(cy, 10.0, 1e-9);
   // Rotated by 90°: the long semi-axis 3 µm × 1.2 = 7.2 h lies along y.
@@ -100,12 +100,12 @@ TEST(SceneCells, ShapesArePlacedRotatedAndScaled) {
   EXPECT_NEAR(ymax, 7.2, 0.05);
   EXPECT_NEAR(xmax, 3.6, 0.05);
   // Ellipse area π a b (polygon inscribed: slightly less).
-  EXPECT_NEAR(membrane::signed_area(e) / (std::numbers::pi * 7.2 * 3.6), 1.0, 0.01);
+  EXPECT_NEAR(geometry::signed_area(e) / (std::numbers::pi * 7.2 * 3.6), 1.0, 0.01);
   // Evans–Fung section: long axis 2a = 12 h along x.
-  const membrane::Polygon& b = L.membrane->cells[1].shape;
+  const geometry::Polygon& b = L.membrane->cells[1].shape;
   const auto [lo, hi] = std::minmax_element(b.x.begin(), b.x.end());
   EXPECT_NEAR(*hi - *lo, 12.0, 0.05);
-  EXPECT_GT(membrane::signed_area(b), 0.0);  // counter-clockwise
+  EXPECT_GT(geometry::signed_area(b), 0.0);  // counter-clockwise
 }
 
 // Without `markers`: perimeter / 0.7 h. Circle of radius 4 h: ⌈2π·4 / 0.7⌉ = ⌈35.9⌉ = 36;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "busy_lattice.hpp"
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 #include "transport/face_flux_correction.hpp"
 #include "transport/subpixel_diffusivity.hpp"
 #include "transport/transport_lattice.hpp"
@@ -111,7 +111,7 @@ TEST(SubpixelDiffusivity, CutCellsHaveExactAreasAndNormals) {
   const double th = 0.4, c = std::cos(th), s = std::sin(th);
   // square of side 40 rotated by th; its right side passes through (10.3, 10.1) with outward
   // normal (cos th, sin th); the rest lies far outside the grid to the left
-  membrane::Polygon p;
+  geometry::Polygon p;
   const double cx = 10.3 - 20.0 * c, cy = 10.1 - 20.0 * s;
   const double u[4][2] = {{20, -20}, {20, 20}, {-20, 20}, {-20, -20}};  // counter-clockwise
   for (const auto& v : u) {
@@ -213,7 +213,7 @@ TEST(FaceFluxCorrection, SteadyStateIsFiniteVolumeWithTargetFluxes) {
 // is for). docs/transport.md, "Stability of the face-flux correction".
 TEST(FaceFluxCorrection, LaggedGainRejectsHighContrastsThatDiverge) {
   const int n = 30;
-  membrane::Polygon disc;
+  geometry::Polygon disc;
   for (int k = 0; k < 200; ++k) {
     const double a = 2.0 * kPi * k / 200.0;
     disc.x.push_back(15.2 + 9.0 * std::cos(a));

@@ -1,10 +1,10 @@
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-namespace erythro::membrane {
+namespace erythro::geometry {
 
 double signed_area(const Polygon& p) {
   const std::size_t n = p.size();
@@ -97,4 +97,4 @@ Polygon transformed(const Polygon& p, double scale, double angle, double cx, dou
   return q;
 }
 
-}  // namespace erythro::membrane
+}  // namespace erythro::geometry

@@ -1,4 +1,4 @@
-#include "membrane/shapes.hpp"
+#include "geometry/shapes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace erythro::membrane {
+namespace erythro::geometry {
 
 namespace {
 
@@ -68,7 +68,7 @@ Polygon equal_arc(int n, double t0, double t1, Curve curve) {
 }  // namespace
 
 Polygon circle(int markers, double r) {
-  if (markers < 3) throw std::invalid_argument("membrane::circle: needs at least 3 markers");
+  if (markers < 3) throw std::invalid_argument("geometry::circle: needs at least 3 markers");
   Polygon p;
   for (int k = 0; k < markers; ++k) {
     const double t = 2.0 * std::numbers::pi * k / markers;
@@ -94,4 +94,4 @@ Polygon biconcave(int markers, double a, EvansFung c) {
   });
 }
 
-}  // namespace erythro::membrane
+}  // namespace erythro::geometry

@@ -1,40 +1,20 @@
-// Geometry of the index field (interior/index_field.hpp, geometry.hpp): eq 26, signed
-// distance sign and accuracy, even–odd ray casting with periodic wrap, clipped area.
+// Polygons on the grid (geometry/grid_polygon.hpp): signed distance sign and accuracy,
+// even–odd ray casting with periodic wrap, clipped area, area in a node's square.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "interior/geometry.hpp"
-#include "interior/index_field.hpp"
-#include "membrane/polygon.hpp"
-#include "membrane/shapes.hpp"
+#include "geometry/grid_polygon.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/shapes.hpp"
 
 using namespace erythro;
-using namespace erythro::interior;
-
-TEST(Heaviside, Eq26Values) {
-  // H(d) = ½[1 + d/w + (1/π) sin(πd/w)], w = 2.
-  EXPECT_DOUBLE_EQ(smoothed_heaviside(-2.0), 0.0);
-  EXPECT_DOUBLE_EQ(smoothed_heaviside(-5.0), 0.0);
-  EXPECT_DOUBLE_EQ(smoothed_heaviside(2.0), 1.0);
-  EXPECT_DOUBLE_EQ(smoothed_heaviside(7.0), 1.0);
-  EXPECT_DOUBLE_EQ(smoothed_heaviside(0.0), 0.5);
-  EXPECT_NEAR(smoothed_heaviside(1.0), 0.5 * (1.5 + 1.0 / std::numbers::pi), 1e-15);
-  EXPECT_NEAR(smoothed_heaviside(-1.0), 0.5 * (0.5 - 1.0 / std::numbers::pi), 1e-15);
-  // Odd symmetry about ½, monotone, C¹ at ±w (H' = (1 + cos(πd/w))/(2w) → 0).
-  for (double d = -1.99; d < 2.0; d += 0.01) {
-    EXPECT_NEAR(smoothed_heaviside(d) + smoothed_heaviside(-d), 1.0, 1e-14);
-    EXPECT_LE(smoothed_heaviside(d - 0.01), smoothed_heaviside(d));
-  }
-  EXPECT_NEAR(smoothed_heaviside(-1.9999), 0.0, 1e-10);
-  EXPECT_NEAR(smoothed_heaviside(3.0, 3.0), 1.0, 0.0);
-  EXPECT_NEAR(smoothed_heaviside(1.5, 3.0), 0.5 * (1.5 + 1.0 / std::numbers::pi), 1e-15);
-}
+using namespace erythro::geometry;
 
 TEST(SignedDistance, SquareSignAndValue) {
-  membrane::Polygon sq{{0, 4, 4, 0}, {0, 0, 4, 4}};  // counter-clockwise
+  Polygon sq{{0, 4, 4, 0}, {0, 0, 4, 4}};  // counter-clockwise
   EXPECT_NEAR(signed_distance(sq, 2.0, 2.0), -2.0, 1e-15);
   EXPECT_NEAR(signed_distance(sq, 1.0, 2.0), -1.0, 1e-15);
   EXPECT_NEAR(signed_distance(sq, 5.0, 2.0), 1.0, 1e-15);
@@ -44,7 +24,7 @@ TEST(SignedDistance, SquareSignAndValue) {
 
 TEST(SignedDistance, CircleAccuracy) {
   // A 400-gon of radius 10: d = r − 10 to within the chord sagitta 10(1 − cos(π/400)) ≈ 3e-4.
-  const auto c = membrane::circle(400, 10.0);
+  const auto c = geometry::circle(400, 10.0);
   for (double r : {0.5, 7.3, 9.5, 10.4, 13.0})
     for (double th = 0.1; th < 6.2; th += 0.7)
       EXPECT_NEAR(signed_distance(c, r * std::cos(th), r * std::sin(th)), r - 10.0, 3.1e-4) << r << " " << th;
@@ -52,8 +32,8 @@ TEST(SignedDistance, CircleAccuracy) {
 
 TEST(RayCast, PeriodicWrapMatchesUnwrappedImage) {
   // A circle centred at (1, 1) on a 20 × 16 periodic grid: its nodes wrap to the far sides.
-  const ib::Domain d{Grid{20, 16}, true, true};
-  const auto c = membrane::transformed(membrane::circle(64, 4.0), 1.0, 0.0, 1.0, 1.0);
+  const geometry::Domain d{Grid{20, 16}, true, true};
+  const auto c = geometry::transformed(geometry::circle(64, 4.0), 1.0, 0.0, 1.0, 1.0);
   const auto mask = ray_cast_inside(c, d);
   long inside = 0;
   for (int j = 0; j < 16; ++j)
@@ -68,24 +48,24 @@ TEST(RayCast, PeriodicWrapMatchesUnwrappedImage) {
     }
   EXPECT_GT(inside, 40);
   // Without periodic wrap the images beyond x = 0 and y = 0 are dropped.
-  const auto walls = ray_cast_inside(c, ib::Domain{Grid{20, 16}, false, false});
+  const auto walls = ray_cast_inside(c, geometry::Domain{Grid{20, 16}, false, false});
   long kept = 0;
   for (auto v : walls) kept += v;
   EXPECT_LT(kept, inside / 2);
 }
 
 TEST(ClippedArea, ClipsOnlyNonPeriodicAxes) {
-  membrane::Polygon r{{-2, 6, 6, -2}, {1, 1, 3, 3}};  // 8 × 2, crossing x = 0
-  EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{10, 10}, true, false}), 16.0, 1e-12);
-  EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{10, 10}, false, false}), 12.0, 1e-12);
-  EXPECT_NEAR(clipped_area(r, ib::Domain{Grid{4, 10}, false, true}), 8.0, 1e-12);
+  Polygon r{{-2, 6, 6, -2}, {1, 1, 3, 3}};  // 8 × 2, crossing x = 0
+  EXPECT_NEAR(clipped_area(r, geometry::Domain{Grid{10, 10}, true, false}), 16.0, 1e-12);
+  EXPECT_NEAR(clipped_area(r, geometry::Domain{Grid{10, 10}, false, false}), 12.0, 1e-12);
+  EXPECT_NEAR(clipped_area(r, geometry::Domain{Grid{4, 10}, false, true}), 8.0, 1e-12);
 }
 
 // The node list is the mask's set, ascending and without repeats, also across a periodic side.
 TEST(RayCast, NodeListEqualsTheMask) {
   for (double cx : {20.0, 2.0}) {  // inside, and wrapping across x = 0
-    const ib::Domain d{Grid{40, 30}, true, true};
-    const membrane::Polygon p = membrane::transformed(membrane::biconcave(120, 16.0), 1.0, 0.3, cx, 15.0);
+    const geometry::Domain d{Grid{40, 30}, true, true};
+    const Polygon p = geometry::transformed(geometry::biconcave(120, 16.0), 1.0, 0.3, cx, 15.0);
     const std::vector<std::uint8_t> mask = ray_cast_inside(p, d);
     std::vector<std::size_t> nodes, expected;
     ray_cast_inside_nodes(p, d, nodes);
@@ -98,7 +78,7 @@ TEST(RayCast, NodeListEqualsTheMask) {
 
 TEST(AreaInBox, CoverFractionsOfNodeSquares) {
   // Square [0.5, 2.5]² (counter-clockwise): node squares fully in, half in, a quarter in, out.
-  membrane::Polygon sq;
+  Polygon sq;
   sq.x = {0.5, 2.5, 2.5, 0.5};
   sq.y = {0.5, 0.5, 2.5, 2.5};
   EXPECT_DOUBLE_EQ(area_in_box(sq, 1, 2, 1, 2), 1.0);
@@ -107,12 +87,12 @@ TEST(AreaInBox, CoverFractionsOfNodeSquares) {
   EXPECT_DOUBLE_EQ(area_in_box(sq, 3, 4, 0, 1), 0.0);
   // Fractions over the covering node squares sum to the polygon's area; a clockwise
   // polygon gives negative areas.
-  const membrane::Polygon c = membrane::transformed(membrane::circle(400, 2.3), 1.0, 0.0, 3.1, 2.9);
+  const Polygon c = geometry::transformed(geometry::circle(400, 2.3), 1.0, 0.0, 3.1, 2.9);
   double sum = 0.0;
   for (int j = 0; j < 7; ++j)
     for (int i = 0; i < 7; ++i) sum += area_in_box(c, i, i + 1, j, j + 1);
-  EXPECT_NEAR(sum, membrane::signed_area(c), 1e-12);
-  membrane::Polygon cw = sq;
+  EXPECT_NEAR(sum, geometry::signed_area(c), 1e-12);
+  Polygon cw = sq;
   std::reverse(cw.x.begin(), cw.x.end());
   std::reverse(cw.y.begin(), cw.y.end());
   EXPECT_DOUBLE_EQ(area_in_box(cw, 1, 2, 1, 2), -1.0);

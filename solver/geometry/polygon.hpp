@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace erythro::membrane {
+namespace erythro::geometry {
 
 struct Polygon {
   std::vector<double> x, y;
@@ -36,4 +36,4 @@ void make_counter_clockwise(Polygon& p);
 // about the origin, then translates by (cx, cy): X ← R(angle)·s·X + c.
 Polygon transformed(const Polygon& p, double scale, double angle, double cx, double cy);
 
-}  // namespace erythro::membrane
+}  // namespace erythro::geometry

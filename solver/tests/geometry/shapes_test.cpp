@@ -1,13 +1,14 @@
-// Cell shapes (membrane/shapes.hpp): counter-clockwise, equally spaced in arc length,
+// Cell shapes (geometry/shapes.hpp): counter-clockwise, equally spaced in arc length,
 // the Evans–Fung section's area and perimeter (parameters.md), transforms.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 
-#include "membrane/shapes.hpp"
+#include "geometry/shapes.hpp"
 
-using namespace erythro::membrane;
+
+using namespace erythro::geometry;
 
 namespace {
 // Arc length of the ellipse (a cos t, b sin t) between parameters t0 < t1, fine Simpson.

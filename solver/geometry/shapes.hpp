@@ -1,12 +1,12 @@
 #pragma once
 // Cell shapes as closed polygons, centred at the origin, counter-clockwise, with
 // markers EQUALLY SPACED IN ARC LENGTH of the smooth curve (not in its parameter).
-// Place, rotate and scale them with membrane::transformed (polygon.hpp).
+// Place, rotate and scale them with geometry::transformed (polygon.hpp).
 #include <array>
 
-#include "membrane/polygon.hpp"
+#include "geometry/polygon.hpp"
 
-namespace erythro::membrane {
+namespace erythro::geometry {
 
 // Circle of radius r; marker 0 at (r, 0).
 Polygon circle(int markers, double r);
@@ -23,4 +23,4 @@ struct EvansFung {
 };
 Polygon biconcave(int markers, double a, EvansFung coefficients = {});
 
-}  // namespace erythro::membrane
+}  // namespace erythro::geometry
