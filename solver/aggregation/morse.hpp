@@ -1,5 +1,5 @@
 #pragma once
-// The Morse potential of RBC aggregation (model.md §4, thesis eq 13; Liu et al.):
+// The Morse potential of RBC aggregation (docs/model.md §4 eq 4.1, thesis eq 13; Liu et al.):
 //
 //   Φ(r) = D_e [e^{2β(r0−r)} − 2 e^{β(r0−r)}],   Φ'(r) = 2βD_e [e^{β(r0−r)} − e^{2β(r0−r)}]
 //

@@ -1,5 +1,5 @@
 #pragma once
-// Morse aggregation between the membranes of DIFFERENT cells (model.md §4), as a
+// Morse aggregation between the membranes of DIFFERENT cells (docs/model.md §4), as a
 // discrete energy and its exact negative gradient. Lattice units, per unit depth.
 //
 // Each marker m carries the membrane length ℓ_m = (|X_m − X_{m−1}| + |X_{m+1} − X_m|)/2

@@ -18,7 +18,7 @@ inline Rates rates_for(CollisionModel model, double tau, double magic) {
 
 // f: the nine streamed populations of the node, stored as deviations from the rest
 // weights, f̃_i = f_i − w_i (see fluid_lattice.hpp), overwritten with post-collision ones.
-// Moments (model.md §1): ρ = 1 + Σf̃, ρu = Σ f̃ c + F/2.
+// Moments (docs/model.md eq 1.3): ρ = 1 + Σf̃, ρu = Σ f̃ c + F/2.
 //  BGK (eq 14, 17): f' = f − ω(f − f^eq) + (1 − ω/2) S = (1 − ω) f + ω f^eq + (1 − ω/2) S,
 //  TRT: f' = f − ω+(f⁺ − f^eq⁺) − ω−(f⁻ − f^eq⁻) + (1 − ω+/2) S⁺ + (1 − ω−/2) S⁻,
 //  S_i = w_i [ (c_i − u)·F/c_s² + (c_i·u)(c_i·F)/c_s⁴ ]  (Guo et al. 2002),

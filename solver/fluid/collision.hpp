@@ -1,7 +1,7 @@
 #pragma once
 // Collision operators (thesis §II.3 eq 14 for BGK; Ginzburg's two-relaxation-time
 // operator for TRT; projective regularisation of Latt & Chopard 2006, Math Comput
-// Simul 72:165, for `regularized`) with Guo et al. 2002 forcing (model.md §1 eq 17).
+// Simul 72:165, for `regularized`) with Guo et al. 2002 forcing (docs/model.md eq 1.4; thesis eq 17).
 // Why the third model is the regularised one and not MRT: docs/stability.md.
 #include <string_view>
 

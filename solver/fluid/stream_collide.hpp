@@ -10,7 +10,7 @@
 //  streamed: the population pulled by node n along j sits in the slot it was pulled
 //            from, source_slot(n, j), swapped: F[source_slot(n, j)] = f*_ĵ(n).
 // A pull_swap step takes natural to streamed: node n pulls f_j from source_slot(n, j)
-// (the pull scheme, model.md §1, with the boundary rules of fluid/boundary.hpp),
+// (the pull scheme, docs/model.md §1, with the boundary rules of fluid/boundary.hpp),
 // collides, and writes f*_ĵ(n) back into that slot. A local step takes streamed to
 // natural: node n's incoming f_j(n) sits at F[ĵ·N + n] (plus the wall term for a
 // direction that bounced off a moving wall); it collides and writes F[k·N + n].

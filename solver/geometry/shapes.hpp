@@ -14,12 +14,12 @@ Polygon circle(int markers, double r);
 // Ellipse with semi-axes a (along x) and b (along y); marker 0 at (a, 0).
 Polygon ellipse(int markers, double a, double b);
 
-// Evans–Fung biconcave section (model.md §3, thesis eq 29):
+// Evans–Fung biconcave section (docs/model.md eq 3.9, thesis eq 29):
 //   x = a sin χ, y = (a/2) cos χ (c0 + c1 sin²χ + c2 sin⁴χ), χ ∈ [−π/2, 3π/2].
-// a = equivalent radius (3.91 µm for a human RBC, parameters.md); the long axis
+// a = equivalent radius (3.91 µm for a human RBC, docs/parameters.md); the long axis
 // lies along x, marker 0 at (−a, 0).
 struct EvansFung {
-  double c0 = 0.207161, c1 = 2.002558, c2 = -1.122762;  // full precision (model.md §3)
+  double c0 = 0.207161, c1 = 2.002558, c2 = -1.122762;  // full precision (docs/parameters.md)
 };
 Polygon biconcave(int markers, double a, EvansFung coefficients = {});
 

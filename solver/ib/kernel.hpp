@@ -1,5 +1,5 @@
 #pragma once
-// Immersed-boundary kernels φ (model.md §2): δ_h(x) = φ(x/h) φ(y/h) / h², h = 1.
+// Immersed-boundary kernels φ (docs/model.md §2): δ_h(x) = φ(x/h) φ(y/h) / h², h = 1.
 //
 // The kernel is chosen at run time (KernelType) but the transfer loops are
 // templated on a kernel struct, so φ is inlined: dispatch() switches once per

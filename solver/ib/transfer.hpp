@@ -1,6 +1,6 @@
 #pragma once
 // Immersed-boundary transfer between Lagrangian markers and the lattice
-// (model.md §2, thesis eqs 23–25), over the full width × width support square of
+// (docs/model.md §2, thesis eqs 23–25), over the full width × width support square of
 // the kernel (4 × 4 nodes for the 4-point kernels), h = 1:
 //
 //   spreading      f(x) += Σ_m F_m δ_h(x − X_m)           (eq 23)

@@ -1,4 +1,4 @@
-// The index field I(x) of the thesis (§II.4, eqs 26–27; model.md §5). One update:
+// The index field I(x) of the thesis (§II.4, eqs 26–27; docs/model.md §5). One update:
 //  (1) I = 1 everywhere (only the nodes the previous update changed are reset);
 //  (2) per cell, a band pass: each edge visits the nodes of its capsule |d| < w (or, for a
 //      smooth polygon, of its wedge between the bisector lines at its ends), so the cost

@@ -1,5 +1,5 @@
 #pragma once
-// The interior index field of the thesis (§II.4, eqs 26–27; model.md §5): I = 1 outside
+// The interior index field of the thesis (§II.4, eqs 26–27; docs/model.md §5): I = 1 outside
 // every cell, 0 inside, and the smoothed step H(d) of eq 26 in a band |d| < 2h around each
 // membrane, d the shortest signed distance to the membrane polygon (negative inside).
 // The local viscosity follows eq 27: ν(x) = ν_in + (ν_ex − ν_in) I(x).

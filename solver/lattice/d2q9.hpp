@@ -1,5 +1,5 @@
 #pragma once
-// D2Q9 velocity set (model.md §1, thesis §II.3). Lattice units: h = Δt = 1.
+// D2Q9 velocity set (docs/model.md §1, thesis §II.3). Lattice units: h = Δt = 1.
 #include <array>
 
 namespace erythro::d2q9 {

@@ -3,7 +3,7 @@
 // Lattice units; energies per unit depth. For a closed polygon X_i, i = 0 … n−1:
 //
 //  tension  E_T = Σ_e L_e W(λ_e),  λ_e = ℓ_e / L_e         (W: tension_law.hpp, dW/dλ = T)
-//           → edge e pulls its ends together with T(λ_e) along the edge (model.md §3).
+//           → edge e pulls its ends together with T(λ_e) along the edge (docs/model.md §3).
 //  bending  E_B = ½ E_B Σ_i (κ_i − κ0_i)² D̄_i,  κ_i = θ_i / D̄_i
 //           θ_i: turning angle at marker i, D̄_i: REST dual length (Lagrangian curvature,
 //           curvature per rest arc length; κ_i → λκ as n → ∞). It agrees with the thesis's
@@ -11,7 +11,7 @@
 //           inextensible motion; a uniform dilation leaves θ_i unchanged, so a stretched
 //           circle feels no bending force, as q = dm/dl = 0 in the shell model.
 //  area     E_A = ½ k_A (A − A0)² / A0                      (penalty: the 2D model keeps
-//           the enclosed area by penalty, model.md §3; k_A has pressure units)
+//           the enclosed area by penalty, docs/model.md eq 3.8; k_A has pressure units)
 //
 // All three depend only on lengths, angles and area, so the energy is invariant
 // under rigid motions: the internal forces have zero net force and torque.

@@ -1,5 +1,5 @@
 #pragma once
-// In-plane tension laws of the 2D membrane, per unit depth (model.md §3).
+// In-plane tension laws of the 2D membrane, per unit depth (docs/model.md §3).
 // λ = ℓ/L is the stretch of a membrane element (current over rest length).
 // Each law gives the tension T(λ), its energy per unit REST length W(λ) with
 // W(1) = 0 and dW/dλ = T (so an element of rest length L stores L·W(λ) and pulls

@@ -25,7 +25,7 @@ struct TimeSpec {
 };
 
 struct FluidSpec {
-  double density_kg_m3 = 1025.0;  // [fluid] density_kg_m3 (plasma, parameters.md)
+  double density_kg_m3 = 1025.0;  // [fluid] density_kg_m3 (plasma, docs/parameters.md)
   double viscosity_cP = 1.2;      // [fluid] viscosity_cP (plasma, thesis §II.4)
   std::string collision = "bgk";  // [fluid] collision = "bgk" | "trt"
   double trt_magic = 3.0 / 16.0;  // [fluid] trt_magic (Λ)
@@ -77,7 +77,7 @@ struct OutputSpec {
   std::vector<std::string> fields{"density", "velocity"};  // allowed: density, velocity
 };
 
-// [membrane]: one membrane model shared by every cell (thesis §II.3, model.md §3).
+// [membrane]: one membrane model shared by every cell (thesis §II.3, docs/model.md §3).
 struct MembraneSpec {
   std::string law = "neo_hookean";     // "neo_hookean" | "skalak" | "hookean" (tension_law.hpp)
   double shear_modulus_dyn_cm = 6e-3;  // E_s [dyn/cm] (RBC ≈ 6e-3 dyn/cm = 6 µN/m)
@@ -87,7 +87,7 @@ struct MembraneSpec {
   std::string kernel = "cosine4";      // "cosine4" | "peskin4" | "roma3" | "linear2"
   // Interior (cytoplasm) viscosity by the index field (thesis §II.4, eqs 26–27). Absent:
   // the interior has the fluid's viscosity and no index field is built.
-  std::optional<double> interior_viscosity_cP;  // RBC cytoplasm ≈ 6.0 cP (parameters.md)
+  std::optional<double> interior_viscosity_cP;  // RBC cytoplasm ≈ 6.0 cP (docs/parameters.md)
   std::string interior_method = "flood_fill";   // "flood_fill" | "ray_casting" | "band_only" | "indexless"
   long index_update_interval = 1;               // rebuild the index field every k steps
 };
@@ -104,7 +104,7 @@ struct CellSpec {
                                            // 0: automatic, spacing ≈ 0.7 h (units.cpp)
 };
 
-// [aggregation]: Morse aggregation between the membranes of different cells (model.md
+// [aggregation]: Morse aggregation between the membranes of different cells (docs/model.md
 // §4; docs/verification-aggregation.md). The strength is exactly one of: the
 // dimensionless surface energy De* = γ/E_S (the thesis's levels 1…5), the adhesion
 // energy γ of a flat contact, or the 2D pair density D_e itself; the first two are
@@ -113,8 +113,8 @@ struct AggregationSpec {
   std::optional<double> de_star;               // De* = γ / E_S ([membrane] shear modulus)
   std::optional<double> surface_energy_J_m2;   // γ
   std::optional<double> pair_density_Pa;       // D_e of the 2D pair model (J/m³)
-  double zero_force_distance_um = 0.49;        // r0 (Zhang et al. 2008; parameters.md)
-  double decay_per_um = 3.84;                  // β (parameters.md, R)
+  double zero_force_distance_um = 0.49;        // r0 (Zhang et al. 2008; docs/parameters.md)
+  double decay_per_um = 3.84;                  // β (docs/parameters.md, R)
   std::optional<double> cutoff_um;             // r_c > r0; default r0 + 5/β
 };
 
@@ -144,7 +144,7 @@ struct SpeciesSpec {
 };
 
 // [hemoglobin]: Hb–O2 kinetics inside every cell, cell-averaged saturation
-// (docs/transport.md §4.2; parameters.md "Haemoglobin and O2 release").
+// (docs/transport.md §4.2; docs/parameters.md "Haemoglobin and O2 release").
 struct HemoglobinSpec {
   std::string species = "O2";         // the [[species]] entry that is O2
   double k_off_per_s = 44.0;          // Eggleton et al. 2000

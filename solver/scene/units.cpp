@@ -2,7 +2,7 @@
 // several values at once. Formulas (docs/scenes.md "Unit conversion"):
 //   n = L / h                               nodes per direction (must be a whole number)
 //   ν = μ / ρ                               physical kinematic viscosity [m²/s]
-//   ν_lat = c_s² (τ − ½) = (τ − ½) / 3      (model.md §1)
+//   ν_lat = c_s² (τ − ½) = (τ − ½) / 3      (docs/model.md eq 1.6)
 //   Δt = (τ − ½) h² / (3ν)   ⇔   τ = ½ + 3 ν Δt / h²
 //   u_lat = u Δt / h,   F_lat = F Δt² / (ρ h),   f_lat = f Δt
 #include "scene/units.hpp"

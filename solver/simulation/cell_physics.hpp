@@ -3,7 +3,7 @@
 // of membrane::ImmersedCells (thesis §II.3, eqs 23–25) with, when the scene asks for
 // them, the interior viscosity of the index field (thesis §II.4, eqs 26–27) refreshed
 // every k steps before the fluid step, and the Morse aggregation forces between cells
-// (model.md §4) added to the membrane forces. Only what the scene declares is built.
+// (docs/model.md §4) added to the membrane forces. Only what the scene declares is built.
 #include <memory>
 #include <optional>
 #include <vector>

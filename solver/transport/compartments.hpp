@@ -37,7 +37,7 @@ struct NoO2Model {
   CompartmentProperties& operator[](Compartment c) { return compartments[static_cast<std::size_t>(c)]; }
   const CompartmentProperties& operator[](Compartment c) const { return compartments[static_cast<std::size_t>(c)]; }
 
-  // parameters.md (Kim-laboratory arteriole set): RBC scavenging 1.4e5 M⁻¹s⁻¹ × 20.3 mM,
+  // docs/parameters.md (Kim-laboratory arteriole set): RBC scavenging 1.4e5 M⁻¹s⁻¹ × 20.3 mM,
   // EC R_max at τ_w = 2.4 Pa (50 µM/s), SM Q_max 5 µM/s, tissue Q_max 50 µM/s, NO
   // consumption 1 s⁻¹ in SM and tissue.
   static NoO2Model arteriole_defaults();

@@ -1,13 +1,13 @@
 #pragma once
 // Haemoglobin–O2 kinetics of one red blood cell (docs/transport.md §4.2; thesis ch. V;
-// parameters.md "Haemoglobin and O2 release"). Units: Torr, µM, s (any consistent
+// docs/parameters.md "Haemoglobin and O2 release"). Units: Torr, µM, s (any consistent
 // set works: k_off·dt is all that enters the update).
 #include <cstddef>
 #include <span>
 
 namespace erythro::transport {
 
-// Hill saturation S = Pⁿ / (Pⁿ + P50ⁿ) (Severinghaus; parameters.md), P ≥ 0.
+// Hill saturation S = Pⁿ / (Pⁿ + P50ⁿ) (Severinghaus; docs/parameters.md), P ≥ 0.
 double hill_saturation(double P_torr, double P50 = 26.8, double n = 2.7);
 
 struct HbParameters {

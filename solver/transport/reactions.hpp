@@ -1,6 +1,6 @@
 #pragma once
 // Reaction rates of the NO/O2 model, one small function each (docs/transport.md §4;
-// parameters.md "NO / O2 transport"). Units: µM, Torr, s unless stated; rates are
+// docs/parameters.md "NO / O2 transport"). Units: µM, Torr, s unless stated; rates are
 // amounts per unit volume per unit time (µM/s). Consumption rates are returned
 // positive (a sink of −rate in eq T1).
 namespace erythro::transport {
@@ -9,7 +9,7 @@ namespace erythro::transport {
 // uses O2 1:1 with NO produced: the O2 sink equals this rate.
 double no_production(double P_torr, double R_max, double Km_eNOS = 4.7);
 
-// R_max of eq R1 from the wall shear stress (parameters.md): 50 µM/s × τ_w / 2.4 Pa.
+// R_max of eq R1 from the wall shear stress (docs/parameters.md): 50 µM/s × τ_w / 2.4 Pa.
 double no_r_max_from_shear(double wall_shear_pa);
 
 // First-order consumption (R2): rate = k C (NO in SM / tissue, k = 1 s⁻¹; NO scavenging
@@ -21,7 +21,7 @@ double first_order_consumption(double C, double k);
 // (1.4e5 M⁻¹s⁻¹ × 20.3 mM = 2842 s⁻¹).
 double no_scavenging_rate(double k2_per_molar_second = 1.4e5, double heme_uM = 20.3e3);
 
-// Whole-blood core scavenging with a cell-free layer δ (parameters.md, R4):
+// Whole-blood core scavenging with a cell-free layer δ (docs/parameters.md, core rate; R4):
 // λ_core = (λ_b/2)[1 + R²/(R − δ)²].
 double no_core_scavenging_rate(double lambda_blood, double R, double delta);
 

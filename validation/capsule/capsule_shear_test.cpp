@@ -5,7 +5,7 @@
 // shear reaches the steady Taylor deformation D and inclination θ of the Re = 0,
 // unbounded 2D boundary-integral reference (D within 0.01, θ within 2°) once the
 // lattice results are extrapolated to a/h → ∞ (Richardson), Re → 0 and a large domain.
-// Reference: /work/shared/reference/capsule_2d.md (2D Stokes boundary integrals,
+// Reference: docs/validation-capsule.md, "Reference" (2D Stokes boundary integrals,
 // converged to 1e−6 in D); published comparison Breyiannis & Pozrikidis 2000,
 // Theor Comput Fluid Dyn 13:327.
 //
@@ -37,7 +37,7 @@ namespace {
 struct Reference {
   double G, D, theta;
 };
-// capsule_2d.md table.
+// docs/validation-capsule.md, "Reference" table.
 constexpr Reference kReference[] = {{0.01, 0.1630, 36.0}, {0.02, 0.2044, 33.8}, {0.05, 0.2748, 30.4}, {0.1, 0.3423, 27.4}};
 // a/h levels (issue 4 item 7: about 6 to 24): five for the two largest G, four for the
 // smaller G, whose a/h = 24 runs would double the case's time (their a/h = 16 level
@@ -112,7 +112,7 @@ void describe(io::ResultRecord& record) {
       "steady Taylor deformation D within 0.01 and inclination theta within 2 deg of the Re = 0 unbounded 2D "
       "reference, after Richardson extrapolation in a/h and measured corrections for Re and domain size.");
   record.set_reference(
-      "/work/shared/reference/capsule_2d.md: 2D Stokes boundary-integral computation (viscosity ratio 1, neo-Hookean "
+      "docs/validation-capsule.md (Reference): 2D Stokes boundary-integral computation (viscosity ratio 1, neo-Hookean "
       "T = E_s(lambda^3 - 1)/lambda^1.5), D converged to 1e-6: G = 0.05: D = 0.2748, theta = 30.4 deg; G = 0.1: "
       "D = 0.3423, theta = 27.4 deg. Published comparison: Breyiannis & Pozrikidis 2000, Theor Comput Fluid Dyn 13:327.");
   record.set_parameter("collision", "BGK tau = 1 (nu = 1/6), equal viscosity inside and outside");

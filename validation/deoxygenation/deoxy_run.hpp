@@ -73,9 +73,9 @@ struct Setup {
   // Initial free O2 in the cell, µM; < 0: α P0 (in equilibrium with S0 = Hill(P0), the case).
   // A probe value (e.g. C_b) removes the initial jump of C at the membrane (deoxy_probe).
   double C0_in_uM = -1.0;
-  double D_out = 2800.0;      // µm²/s (parameters.md)
+  double D_out = 2800.0;      // µm²/s (docs/parameters.md)
   double D_in = 950.0;        // µm²/s (Clark et al. 1985, R; PROVENANCE.md)
-  double a_um = 3.91;         // equivalent radius (parameters.md)
+  double a_um = 3.91;         // equivalent radius (docs/parameters.md)
   int markers = 800;          // polygon resolution of the mask (spacing ≈ 0.024 µm)
   // Offset of the cell's centre from the box centre, in units of h (probe of how the
   // lattice cuts the cell; the centred cell is a symmetric point, so the continuum S̄(t)

@@ -27,7 +27,7 @@ TEST(DoubletShear, CiSubset) {
       "with surface energy De* = 1 stays aggregated and turns as one body through a quarter revolution, and its "
       "contact zone is larger than at De* = 0.25; coarse lattice h = 0.5 um.");
   rec.set_reference(
-      "Thesis ch. III (model.md section 6): doublets at 100 1/s rotate as one when aggregated; Zhang, Johnson & "
+      "Thesis ch. III (docs/model.md section 6): doublets at 100 1/s rotate as one when aggregated; Zhang, Johnson & "
       "Popel 2008 (J Biomech 41:47): a rouleau rotates or separates depending on the relative strength of the "
       "intercellular interaction and the viscous forces. validation.doublet_surface_energy is the full study.");
   vv::DoubletShearConfig strong = vv::ci_config();

@@ -29,7 +29,7 @@ TEST(DoubletShear, Deformability50) {
       "case I to IV the mean contact area falls and the centres stay further apart (the thesis: a deformability "
       "difference retards aggregation). The thesis's case III dissociation is compared, not asserted (see the page).");
   rec.set_reference(
-      "Thesis ch. III (model.md section 6): a deformability difference retards aggregation, case III dissociates; "
+      "Thesis ch. III (docs/model.md section 6): a deformability difference retards aggregation, case III dissociates; "
       "thesis Table III-2 lists the dimensionless shear rates (its definition is not in our copy: Ca_i = "
       "mu*gamma*a/E_S,i and Ca/De* are reported).");
   const double de = vv::deformability_de_star();

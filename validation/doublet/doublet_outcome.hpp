@@ -25,7 +25,7 @@ double mean_contact(const DoubletShearResult& r, double from, double to = 1e300)
 double max_deformation_change(const DoubletShearResult& r, int cell);
 double final_sigmoid(const DoubletShearResult& r);
 
-// Jeffery (1922): full period γ̇T = 2π(a/b + b/a) of a rigid ellipse (parameters.md).
+// Jeffery (1922): full period γ̇T = 2π(a/b + b/a) of a rigid ellipse (docs/parameters.md, exact solution E1).
 double jeffery_period(double axis_ratio);
 // Measured γ̇T from the quadrant θ: 0 → −90° (each quadrant of a Jeffery orbit takes
 // T/4 exactly: ∫ over a quadrant of dθ/(a²sin²θ + b²cos²θ) = π/(2ab)); −1 if not reached.

@@ -32,7 +32,7 @@ DoubletShearResult run_doublet_shear(const DoubletShearConfig& c) {
   const auto t_start = std::chrono::steady_clock::now();
   DoubletShearResult r;
   if (c.cells != 1 && c.cells != 2) throw std::invalid_argument("doublet run: cells must be 1 or 2");
-  // Dimensionless groups of the physical cells (model.md §3, §6).
+  // Dimensionless groups of the physical cells (docs/model.md §3, §6).
   r.capillary0 = c.mu_Pa_s * c.shear_rate * c.a_m / c.Es0_N_m;  // Ca = μγ̇a/E_S
   r.capillary1 = c.mu_Pa_s * c.shear_rate * c.a_m / c.Es1_N_m;
   r.bending_reduced = c.Eb_J / (c.a_m * c.a_m * c.Es0_N_m);
@@ -58,7 +58,7 @@ DoubletShearResult run_doublet_shear(const DoubletShearConfig& c) {
     throw std::invalid_argument("doublet run: relaxation times outside (0.5, 5]");
   if (c.index_update_interval < 1) throw std::invalid_argument("doublet run: index_update_interval must be >= 1");
 
-  // Morse (model.md §4) in lattice units; D_e from the surface energy γ = De*·E_S0
+  // Morse (docs/model.md §4) in lattice units; D_e from the surface energy γ = De*·E_S0
   // through the flat-contact integral (morse_units.hpp).
   aggregation::MorseParameters morse{1.0, c.r0_m / c.h_m, c.beta_per_m * c.h_m, 0.0};
   morse.cutoff = morse.r0 + c.cutoff_k / morse.beta;

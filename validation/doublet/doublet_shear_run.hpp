@@ -1,11 +1,11 @@
 #pragma once
-// One run of the RBC doublet in simple shear (thesis ch. III, model.md §6), or of a
+// One run of the RBC doublet in simple shear (thesis ch. III, docs/model.md §6), or of a
 // single elliptical cell (the rigid limit, issue 6 item 7): cells between two walls
 // moving at ±U (γ̇ = 2U/H), periodic in x, with
-//   - the membrane of model.md §3 (neo-Hookean tension, bending about the rest
+//   - the membrane of docs/model.md §3 (neo-Hookean tension, bending about the rest
 //     curvature, area penalty; rest shape = initial shape), one E_S per cell;
-//   - the cytoplasm viscosity by the flood-fill index field (model.md §5, eqs 26–27);
-//   - Morse aggregation between the cells (model.md §4, eq 13) at surface-energy
+//   - the cytoplasm viscosity by the flood-fill index field (docs/model.md §5, eqs 26–27);
+//   - Morse aggregation between the cells (docs/model.md §4, thesis eq 13) at surface-energy
 //     level De* = γ/E_S (docs/verification-aggregation.md §3).
 // Hemodynamic time mapping (as validation/rbc/rbc_run): the physical inputs fix the
 // dimensionless groups Ca = μγ̇a/E_S, E_B* = E_B/(a²E_S), k_A a/E_S, De* = γ/E_S,
@@ -23,7 +23,7 @@ enum class CellShape { biconcave, ellipse };
 
 struct DoubletShearConfig {
   ib::KernelType kernel = ib::KernelType::cosine4;
-  // Physical inputs (SI), model.md §6 / parameters.md.
+  // Physical inputs (SI), docs/model.md §6 / docs/parameters.md.
   double a_m = 3.91e-6;            // equivalent radius (biconcave) or semi-major axis (ellipse)
   double h_m = 0.3e-6;             // lattice spacing (thesis: 0.15 µm)
   double box_m = 30e-6;            // square box 30 × 30 µm (walls at y = 0, H)
@@ -36,8 +36,8 @@ struct DoubletShearConfig {
   double Eb_J = 3.6e-19;           // E_B = 3.6e-12 dyn·cm (thesis), both cells
   double area_modulus = 100.0;     // k_A in units of E_S0/a (as validation/rbc)
   double de_star = 2.0;            // γ = De*·E_S0 (surface energy; the same for both cells)
-  double r0_m = 0.49e-6;           // Morse zero-force separation (parameters.md)
-  double beta_per_m = 3.84e6;      // Morse decay (parameters.md, confidence R)
+  double r0_m = 0.49e-6;           // Morse zero-force separation (docs/parameters.md)
+  double beta_per_m = 3.84e6;      // Morse decay (docs/parameters.md, confidence R)
   double cutoff_k = 5.0;           // r_c = r0 + k/β (docs/verification-aggregation.md §1)
   // Lattice choices.
   double tau = 1.0;                // BGK exterior relaxation time (ν = (τ − ½)/3)

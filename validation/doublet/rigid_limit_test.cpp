@@ -21,7 +21,7 @@ TEST(DoubletShear, RigidLimit) {
       "An elliptical cell (a/b = 2) in simple shear tumbles, and as its membrane stiffens (Ca down) and its "
       "interior viscosity rises (ratio up) its tumbling period rises to Jeffery's period and reaches it within the "
       "confinement effect at the stiff end (|T/T_J - 1| <= 0.1).");
-  rec.set_reference("Jeffery 1922, Bretherton 1962 (parameters.md): rigid ellipse in 2D simple shear at Re -> 0, "
+  rec.set_reference("Jeffery 1922, Bretherton 1962 (docs/parameters.md, E1): rigid ellipse in 2D simple shear at Re -> 0, "
                     "gamma T = 2 pi (a/b + b/a) = 5 pi for a/b = 2; a quadrant of the orbit takes T/4.");
   const auto levels = vv::rigid_levels();
   std::vector<double> gaps;

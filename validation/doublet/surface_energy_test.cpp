@@ -35,10 +35,10 @@ TEST(DoubletShear, SurfaceEnergy100) {
       "non-adhering pair's membrane gap opens more on the thesis lattice (h = 0.15 um) than on the study lattice; from "
       "a second start with the rims 1.0 um apart the non-adhering pair dissociates and De* = 0.25 rotates as one.");
   rec.set_reference(
-      "Thesis ch. III (model.md section 6; De* = 1..5 at 100 1/s; contact modes flat / sigmoid / relaxed sigmoid); "
+      "Thesis ch. III (docs/model.md section 6; De* = 1..5 at 100 1/s; contact modes flat / sigmoid / relaxed sigmoid); "
       "Zhang, Johnson & Popel 2008 J Biomech 41:47 (a rouleau rotates or separates depending on the relative "
       "strength of the intercellular interaction and the viscous forces) and Bagchi, Johnson & Popel 2005 J Biomech "
-      "Eng 127:1070; Jeffery 1922: gamma T = 2 pi (a/b + b/a) (parameters.md).");
+      "Eng 127:1070; Jeffery 1922: gamma T = 2 pi (a/b + b/a) (docs/parameters.md, E1).");
   const std::vector<double> levels = vv::surface_energy_levels();
   std::vector<vv::DoubletShearResult> runs;
   for (double de : levels) {

@@ -18,7 +18,7 @@ using interior::Method;
 namespace {
 
 constexpr double kStrain = 3.0;     // γ̇t of the Fig. II-3 shapes
-constexpr double kRatio = 5.0;      // 6.0 cP / 1.2 cP (parameters.md)
+constexpr double kRatio = 5.0;      // 6.0 cP / 1.2 cP (docs/parameters.md)
 constexpr double kAreaBound = 0.005;  // as validation.rbc_shear (docs/validation-rbc.md)
 
 struct Triple {

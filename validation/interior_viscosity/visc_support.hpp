@@ -15,7 +15,7 @@ namespace erythro::vv {
 // printf-style formatting of one number.
 std::string fmt(const char* format, double value);
 
-// Thesis Fig. II-3 set-up (thesis §II.4; parameters.md): Evans–Fung RBC, a = 3.91 µm,
+// Thesis Fig. II-3 set-up (thesis §II.4; docs/parameters.md): Evans–Fung RBC, a = 3.91 µm,
 // plasma 1.2 cP, γ̇ = 100 1/s, thesis moduli, at lattice spacing h_um; cytoplasm
 // μ_in = ratio·1.2 cP marked by `method` (indexless: one fluid).
 RbcConfig thesis_config(double h_um, interior::Method method, double ratio, double strain);

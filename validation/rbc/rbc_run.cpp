@@ -54,7 +54,7 @@ RbcResult run_rbc(const RbcConfig& c) {
   using namespace geometry;
   const auto t_start = std::chrono::steady_clock::now();
   RbcResult r;
-  // Dimensionless groups of the physical cell (model.md §3, parameters.md).
+  // Dimensionless groups of the physical cell (docs/model.md §3, docs/parameters.md).
   r.capillary = c.mu_Pa_s * c.shear_rate * c.a_m / c.Es_N_m;  // Ca = μγ̇a/E_S
   r.bending_reduced = c.Eb_J / (c.a_m * c.a_m * c.Es_N_m);     // E_B* = E_B/(a²E_S)
   r.reynolds_physical = 1000.0 * c.shear_rate * c.a_m * c.a_m / c.mu_Pa_s;
@@ -71,7 +71,7 @@ RbcResult run_rbc(const RbcConfig& c) {
   const int nx = r.nx, ny = r.ny;
   const double gamma = r.gamma_lat;
   fluid::FluidLattice lat = make_shear_lattice(nx, ny, gamma, c.tau);  // undisturbed shear u = γ̇(y − H/2)
-  // Interior viscosity (model.md §5): eq 27 with ν_ex from τ and ν_in = ratio·ν_ex, so
+  // Interior viscosity (docs/model.md §5): eq 27 with ν_ex from τ and ν_in = ratio·ν_ex, so
   // τ_in = ½ + ratio(τ_ex − ½). Indexless leaves the lattice untouched (no τ field).
   const bool varying = c.indicator != interior::Method::indexless;
   const double nu_in = varying ? c.viscosity_ratio * nu : nu;
@@ -88,7 +88,7 @@ RbcResult run_rbc(const RbcConfig& c) {
   }
 
   // Biconcave cell, long axis along the flow (tilted 0.01 rad), centred slightly off the lattice symmetry.
-  const double perimeter_over_a = 19.271 / 3.91;  // parameters.md
+  const double perimeter_over_a = 19.271 / 3.91;  // docs/parameters.md (2D biconcave section)
   const int n = static_cast<int>(std::lround(perimeter_over_a * a / c.marker_spacing));
   r.markers = n;
   const double xc0 = 0.5 * nx + 0.123, yc0 = 0.5 * ny;

@@ -1,8 +1,8 @@
 #pragma once
 // One run of the red-blood-cell-in-shear set-up (validation.rbc_shear): a 2D
-// Evans–Fung biconcave cell (model.md §3, thesis eq 29) between two walls moving
+// Evans–Fung biconcave cell (docs/model.md eq 3.9, thesis eq 29) between two walls moving
 // at ±U (simple shear γ̇ = 2U/H), periodic in x. Interior viscosity (issue 5,
-// model.md §5, thesis eqs 26–27): `indicator` picks how the cytoplasm is marked —
+// docs/model.md §5, thesis eqs 26–27): `indicator` picks how the cytoplasm is marked —
 // indexless (one fluid, today's behaviour bit for bit), band_only or flood_fill —
 // and the per-node τ field is rewritten from the index field every
 // `index_update_interval` steps with ν_in = viscosity_ratio·ν_ex.
@@ -21,7 +21,7 @@ namespace erythro::vv {
 
 struct RbcConfig {
   ib::KernelType kernel = ib::KernelType::cosine4;
-  // Physical (SI) inputs, parameters.md.
+  // Physical (SI) inputs, docs/parameters.md.
   double a_m = 3.91e-6;          // Evans–Fung equivalent radius
   double h_m = 0.25e-6;          // lattice spacing
   double mu_Pa_s = 1.2e-3;       // plasma viscosity (1.2 cP): the exterior viscosity μ_ex

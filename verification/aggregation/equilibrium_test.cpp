@@ -34,7 +34,7 @@
 // Set-up: 96 × 64 periodic box, BGK τ = 0.6, cosine4 kernel; circles R = 8 h, 64 markers
 // (ℓ = 0.785 h), neo-Hookean E_s = 0.3, E_B = 1.0, k_A = 0.04 (stability factor 1.06,
 // membrane/stability.hpp), rest shape = the initial circle; Morse r0 = 0.49 µm, β =
-// 3.84 µm⁻¹ at h = 0.15 µm (parameters.md; thesis doublet lattice): r0 = 3.267 h,
+// 3.84 µm⁻¹ at h = 0.15 µm (docs/parameters.md; thesis doublet lattice): r0 = 3.267 h,
 // β = 0.576 /h, r_c = r0 + 5/β = 11.95 h; D_e = 3, 4, 5 × 1e-4 (lattice); initial gap 4 h
 // along x; cells rotated 0.3 and 1.1 rad, centres at y = 31.3 (off every lattice symmetry).
 #include <gtest/gtest.h>
@@ -62,7 +62,7 @@ vv::DoubletSetup base_setup() {
   s.radius = 8.0;
   s.markers = 64;
   s.model = membrane::MembraneModel{{membrane::TensionLawType::neo_hookean, 0.3}, 1.0, 0.04};
-  const double r0 = 0.49 / 0.15, beta = 3.84 * 0.15;  // parameters.md rows Morse r0, Morse β; h = 0.15 µm
+  const double r0 = 0.49 / 0.15, beta = 3.84 * 0.15;  // docs/parameters.md rows Morse r0, Morse β; h = 0.15 µm
   s.morse = MorseParameters{4e-4, r0, beta, r0 + 5.0 / beta};
   s.initial_gap = 4.0;
   s.y0 = 31.3;
@@ -107,7 +107,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
       "<= 1e-9 h (mirror-symmetric) and <= half a marker spacing (asymmetric).");
   record.set_reference(
       "At rest the pressure jump across each membrane is constant, so each cell's net Morse force vanishes: gap d* "
-      "of two rigid circles from -dE/dD = 0, E = D_e oint oint phi_s ds dt (model.md sec. 4; flat-membrane analogue "
+      "of two rigid circles from -dE/dD = 0, E = D_e oint oint phi_s ds dt (docs/model.md sec. 4; flat-membrane analogue "
       "in aggregation/morse_units.hpp).");
   vv::DoubletSetup s = base_setup();
   record.set_parameter("box", std::string("96 x 64 periodic, BGK tau = 0.6, cosine4 kernel"));
@@ -159,7 +159,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
                                    "rigid shift of the final cell 1 at which the net Morse force between the final "
                                    "membranes vanishes",
                                    "h", std::abs(r.balance_shift), 0.1, 0.0, io::Comparison::at_most,
-                                   "the brief's h/10; a state at rest needs zero net Morse force per cell"}))
+                                   "issue 6 item 3: h/10; a state at rest needs zero net Morse force per cell"}))
         << r.balance_shift;
     EXPECT_TRUE(record.add_metric({"drift " + n, "displacement of the pair's centre over the run", "h", r.com_drift,
                                    0.5 * ell, 0.0, io::Comparison::at_most,
@@ -200,7 +200,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
   record.add_series(ex);
   EXPECT_TRUE(record.add_metric({"extrapolated_gap", "settled gap extrapolated to D_e -> 0 vs rigid-circle prediction",
                                  "h", intercept, dstar, 0.1, io::Comparison::absolute,
-                                 "the brief's h/10; the residual of the linear fit is reported"}))
+                                 "issue 6 item 3: h/10; the residual of the linear fit is reported"}))
       << intercept << " vs " << dstar;
   EXPECT_TRUE(record.add_metric({"extrapolation_linearity", "max residual of the linear fit gap(D_e)", "h", resid, 0.02,
                                  0.0, io::Comparison::at_most,

@@ -28,7 +28,7 @@ using namespace erythro::aggregation;
 
 namespace {
 
-// Lattice parameters of the thesis doublet (h = 0.15 µm, parameters.md rows Morse r0,
+// Lattice parameters of the thesis doublet (h = 0.15 µm, docs/parameters.md rows Morse r0,
 // Morse β): r0 = 0.49/0.15 = 3.27, β = 3.84·0.15 = 0.576, cut-off r0 + 5/β ≈ 11.95 h.
 const MorseParameters kP{1e-3, 0.49 / 0.15, 3.84 * 0.15, 0.49 / 0.15 + 5.0 / (3.84 * 0.15)};
 
@@ -97,7 +97,7 @@ TEST(AggregationForces, All) {
       "<= 1e-7), total force and torque of the pair forces vanish to round-off (<= 1e-13 relative), and the cell-list "
       "search gives bit-for-bit the brute-force forces and energy on random configurations.");
   record.set_reference(
-      "E = sum Phi_s(r_mn) l_m l_n over markers of different cells (model.md sec. 4, force-shifted cut-off); "
+      "E = sum Phi_s(r_mn) l_m l_n over markers of different cells (docs/model.md sec. 4, force-shifted cut-off); "
       "F = -dE/dX incl. the dl/dX edge terms; Newton's third law per pair.");
   record.set_parameter("morse", std::string("De = 1e-3, r0 = 3.267, beta = 0.576, cutoff = r0 + 5/beta = 11.95 (lattice)"));
   record.set_parameter("fd_step", 1e-5);

@@ -5,7 +5,7 @@
 // the impulse of the applied body force, for BGK and TRT, with a uniform force and
 // with a non-uniform per-node force field.
 // Reference: the collision conserves Σf exactly and adds exactly F per node and step
-// (Guo et al. 2002; model.md §1); streaming only moves populations.
+// (Guo et al. 2002; docs/model.md §1); streaming only moves populations.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -70,7 +70,7 @@ using vv::LayerFlow;
 
 namespace {
 constexpr double kTauPlasma = 0.7;                          // ν2 = 0.2/3 (lattice)
-constexpr double kViscosityRatio = 6.0 / 1.2;                // cytoplasm / plasma (model.md §5)
+constexpr double kViscosityRatio = 6.0 / 1.2;                // cytoplasm / plasma (docs/model.md §5)
 constexpr double kNuPlasma = (kTauPlasma - 0.5) / 3.0;
 constexpr double kNuCytoplasm = kViscosityRatio * kNuPlasma;  // τ = 1.5
 constexpr double kMagic = 3.0 / 16.0;

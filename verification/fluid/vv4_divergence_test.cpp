@@ -149,7 +149,7 @@ TEST(DivergenceDiagnosis, EveryDivergedRunStopsWithDiagnosis) {
       "run stops exactly at the predicted check.");
   record.set_reference(
       "Health monitor of solver/simulation/simulation.cpp (scan before any observer call; describe_divergence) and "
-      "FluidLattice::check_health; runaway force: u_s = (s - 1/2) F under Guo forcing (model.md sec. 1), stop at "
+      "FluidLattice::check_health; runaway force: u_s = (s - 1/2) F under Guo forcing (docs/model.md sec. 1), stop at "
       "the first observed step (multiple of the monitor, fields or diagnostics interval) after u_s/c_s exceeds "
       "max_mach.");
   record.set_parameter("monitor_interval_steps", 10.0);

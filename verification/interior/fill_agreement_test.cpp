@@ -1,6 +1,6 @@
 // Case verification.interior_fill_agreement (issue 5 item 4).
 //
-// Requirement: the thesis's scan-line flood fill (model.md §5 step 3) marks exactly the
+// Requirement: the thesis's scan-line flood fill (docs/model.md §5 step 3) marks exactly the
 // nodes that even–odd ray casting marks as inside, node for node away from the band, on
 // a suite of configurations (circle, ellipse, biconcave, random Fourier-mode stars, folded
 // horseshoes, cells across periodic sides, small cells, pairs closer than the band width,
@@ -69,7 +69,7 @@ TEST(InteriorFillAgreement, FloodFillEqualsRayCasting) {
   vv::Stopwatch total;
   io::ResultRecord record("verification.interior_fill_agreement", "interior");
   record.set_requirement(
-      "The scan-line flood fill of the thesis (model.md section 5) sets I = 0 on exactly the nodes that the "
+      "The scan-line flood fill of the thesis (docs/model.md section 5) sets I = 0 on exactly the nodes that the "
       "even-odd ray-casting rule finds inside a cell, node for node away from the band, and I = H(d) of eq 26 "
       "(minimum over cells) in the band, on circles, ellipses, biconcave cells, random Fourier-mode stars, folded "
       "horseshoes, cells across periodic sides, small cells, pairs closer than the band width and cells at walls.");

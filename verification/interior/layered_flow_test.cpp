@@ -52,7 +52,7 @@ using namespace erythro::geometry;
 
 namespace {
 constexpr double kNuEx = 0.2 / 3.0;        // plasma, τ = 0.7
-constexpr double kNuIn = 5.0 * kNuEx;      // cytoplasm, ratio 6.0/1.2 (model.md §5), τ = 1.5
+constexpr double kNuIn = 5.0 * kNuEx;      // cytoplasm, ratio 6.0/1.2 (docs/model.md §5), τ = 1.5
 constexpr double kMagic = 3.0 / 16.0;
 constexpr double kResidual = 1e-12;
 constexpr int kResolutions[] = {8, 16, 32, 64};

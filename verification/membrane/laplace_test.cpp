@@ -36,7 +36,7 @@ void laplace_case(const std::string& case_name, const std::vector<ib::KernelType
       "A pre-stressed circular membrane (lambda = 1.05) in a periodic box reaches the Laplace jump dp = T/R "
       "within twice the membrane-polygon deficit pi^2/(6 n^2) at every resolution where the run is stable; "
       "peskin4 converges at order 2 +- 0.25 in h/R.");
-  record.set_reference("2D Young-Laplace law dp = T/R with T = E_s(lambda^3 - 1)/lambda^(3/2) (model.md sec. 3).");
+  record.set_reference("2D Young-Laplace law dp = T/R with T = E_s(lambda^3 - 1)/lambda^(3/2) (docs/model.md sec. 3).");
   record.set_parameter("stretch", 1.05);
   record.set_parameter("modulus", 0.02);
   record.set_parameter("tau", 1.0);

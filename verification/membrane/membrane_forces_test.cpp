@@ -3,7 +3,7 @@
 // Requirement: the discrete membrane forces (membrane/membrane_energy.hpp) are the
 // exact negative gradient of the discrete energy, vanish at the rest shape, and have
 // zero net force and torque for any deformation.
-// Reference: E = Σ L_e W(λ_e) + ½E_B Σ(θ_i − θ0_i)²/D̄_i + ½k_A(A − A0)²/A0 (model.md §3);
+// Reference: E = Σ L_e W(λ_e) + ½E_B Σ(θ_i − θ0_i)²/D̄_i + ½k_A(A − A0)²/A0 (docs/model.md §3);
 // F = −∂E/∂X checked by central differences; translation and rotation invariance of E.
 #include <gtest/gtest.h>
 
@@ -61,7 +61,7 @@ TEST(MembraneForces, GradientRestAndInvariance) {
       "<= 1e-7), vanish at the rest shape (<= 1e-12 of the force scale) and have zero net force and torque "
       "(<= 1e-13 relative) for random deformations; three laws x three shapes, with bending and area terms.");
   record.set_reference(
-      "Discrete energy of membrane/membrane_energy.hpp (model.md sec. 3: tension law, bending m = E_B(kappa - "
+      "Discrete energy of membrane/membrane_energy.hpp (docs/model.md sec. 3: tension law, bending m = E_B(kappa - "
       "kappa0), area penalty); forces as its exact gradient; invariance under rigid motions.");
   record.set_parameter("moduli", std::string("E_s = 0.02, Skalak C = 2, E_B = 0.5, k_A = 0.01 (lattice)"));
   record.set_parameter("fd_step", 1e-5);

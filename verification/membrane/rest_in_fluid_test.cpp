@@ -48,7 +48,7 @@ TEST(RestInFluid, CellAtRestStaysAtRest) {
                     {"max_displacement", max_disp}, {"wall_time_s", r.wall_time_s}});
     EXPECT_TRUE(record.add_metric({"speed " + name, "largest marker speed over 1e4 steps", "lattice", max_speed,
                                    1e-12, 0.0, io::Comparison::at_most,
-                                   "the brief's bound; forces from round-off (~1e-17) give speeds ~1e-16"}))
+                                   "issue 4 item 5's bound; forces from round-off (~1e-17) give speeds ~1e-16"}))
         << name << " " << max_speed;
     EXPECT_TRUE(record.add_metric({"displacement " + name, "largest marker displacement after 1e4 steps", "lattice",
                                    max_disp, 1e-10, 0.0, io::Comparison::at_most,

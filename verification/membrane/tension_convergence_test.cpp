@@ -1,7 +1,7 @@
 // Case verification.membrane_tension_convergence (issue 4 §5).
 //
 // Requirement: the discrete tension force converges at second order to the
-// continuum membrane force per unit rest length, f = d(T t)/dS (model.md §3,
+// continuum membrane force per unit rest length, f = d(T t)/dS (docs/model.md §3,
 // F = −dT/dl with the sign of a force on the membrane), for a non-uniform stretch.
 // Set-up: rest shape a circle of radius R0 = 1 with n equally spaced markers,
 // deformed affinely to the ellipse (a cos θ, b sin θ), a = 1.3, b = 0.8 (every
@@ -76,7 +76,7 @@ TEST(TensionConvergence, SecondOrderForAllLaws) {
       "order (observed order 2 +- 0.1) for the neo-Hookean, Skalak and Hookean laws, on a circle deformed "
       "affinely into a 1.3 x 0.8 ellipse.");
   record.set_reference(
-      "Continuum membrane force f = d(T t)/dS, T = T(lambda) of model.md sec. 3 (neo-Hookean eqs 2-6), "
+      "Continuum membrane force f = d(T t)/dS, T = T(lambda) of docs/model.md sec. 3 (neo-Hookean eqs 2-6), "
       "differentiated analytically for the affine ellipse map.");
   record.set_parameter("rest_radius", kR0);
   record.set_parameter("ellipse_axes", std::string("a = 1.3, b = 0.8"));

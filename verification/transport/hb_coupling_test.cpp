@@ -92,7 +92,7 @@ TEST(TransportHbCoupling, FirstOrderInTimeAndExactClosure) {
       "equilibrium; bound + free O2 conserved to <= 1e-13 relative; mass balance <= 1e-13 in every step.");
   record.set_reference(
       "dS/dt = -k_off (1 + (P/P50)^n)/M (S - Hill(P)), dC/dt = -C_heme dS/dt, P = C/alpha (thesis ch. V law as in "
-      "docs/transport.md eq H1), RK4 with 2e5 steps; parameters.md (Eggleton et al. 2000; Severinghaus). Linear "
+      "docs/transport.md eq H1), RK4 with 2e5 steps; docs/parameters.md (Eggleton et al. 2000; Severinghaus). Linear "
       "stability of the lagged coupling: amplification e^{-l dt} - a (1 - e^{-l dt}), a = C_heme S_eq'(P)/alpha.");
   record.set_parameter("t_end_s", kTEnd);
   record.set_parameter("S0", kS0);

@@ -1,7 +1,7 @@
 // Case verification.transport_layered_slab (issue 7 item 6).
 //
 // Requirement: steady NO across lumen / endothelium / smooth muscle / tissue (1D
-// across y, periodic in x) with the EC source and first-order sinks of parameters.md
+// across y, periodic in x) with the EC source and first-order sinks of docs/parameters.md
 // converges at second order (2 ± 0.15) to the exact piecewise exp/cosh solution,
 // with the interfaces midway between node rows; the concentration and the flux at
 // the interfaces converge at second order too; mass balance closes in every step.
@@ -12,7 +12,7 @@
 // TRT collision at Λ = 1/4 (transport_lattice.hpp, Collision::trt): the same orders.
 // Reference: layered_slab.hpp (derivation: docs/verification-transport.md): in each
 // layer D C'' − k C + q = 0, C and D C' continuous at interfaces, zero flux at the
-// lumen centre (symmetry) and at the tissue edge. Parameters (parameters.md): lumen
+// lumen centre (symmetry) and at the tissue edge. Parameters (docs/parameters.md): lumen
 // half-width 25 µm with whole-blood scavenging λ_b = 382.5 s⁻¹; EC 2.5 µm producing
 // R_NO = R_max P/(P + K_m,eNOS) at P = 70 Torr, R_max = 50 µM/s; SM 10 µm and tissue
 // 100 µm consuming NO at 1 s⁻¹; D_NO = 3300 µm²/s everywhere.
@@ -137,7 +137,7 @@ void layered_slab_case(const std::string& case_name, const std::vector<int>& ref
   record.set_reference(
       "Piecewise exact solution of D C'' - k C + q = 0 with C and D C' continuous at interfaces, zero flux at the "
       "lumen centre and tissue edge (exp basis per layer, 8x8 linear system; docs/verification-transport.md); "
-      "parameter values parameters.md (Kim-laboratory arteriole set).");
+      "parameter values docs/parameters.md (Kim-laboratory arteriole set).");
   std::string levels;
   for (int m : refinements) levels += (levels.empty() ? "" : ", ") + std::to_string(m);
   record.set_parameter("refinements", "h = 2.5 um / m, m = " + levels + " (55 m rows)");

@@ -6,7 +6,7 @@
 // profile; the mass balance closes to round-off in every step, and at steady state
 // the boundary inflow equals the consumption.
 // Reference: D C'' = Q, C(0) = C_b, C'(H) = 0 ⇒ C(y) = C_b − (Q/D)(H y − y²/2),
-// valid while C(H) = C_b − Q H²/(2D) > 0 (Krogh-type slab; parameters.md: D_O2 =
+// valid while C(H) = C_b − Q H²/(2D) > 0 (Krogh-type slab; docs/parameters.md: D_O2 =
 // 2800 µm²/s, tissue Q_max = 50 µM/s in its zero-order limit P ≫ K_m, α = 1.3 µM/Torr).
 // Variant "flux-fed" (D2Q5): bottom fixed_flux J = Q H/2, top C = C_b; exact
 // C = C_b + (Q/(2D))(y² − H²) − (J/D)(y − H) (checks the fixed-flux side on a curved profile).
@@ -94,7 +94,7 @@ TEST(TransportZeroOrderSlab, QuadraticProfileAndMassBalance) {
       "closes to <= 1e-13 relative in every step and at steady state inflow = consumption to 1e-9.");
   record.set_reference(
       "C(y) = C_b - (Q/D)(H y - y^2/2) (exact solution of D C'' = Q, C(0) = C_b, C'(H) = 0, valid while C > 0); "
-      "parameters.md: D_O2 2800 um^2/s, tissue Q_max 50 uM/s, alpha 1.3 uM/Torr, 70 Torr.");
+      "docs/parameters.md: D_O2 2800 um^2/s, tissue Q_max 50 uM/s, alpha 1.3 uM/Torr, 70 Torr.");
   record.set_parameter("resolutions", std::string("N = 16, 32, 64, 128 nodes across H"));
   record.set_parameter("H_um", kH);
   record.set_parameter("C_b_uM", kCb);

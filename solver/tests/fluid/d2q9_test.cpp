@@ -1,4 +1,4 @@
-// Unit checks of the D2Q9 velocity set and equilibrium (model.md §1).
+// Unit checks of the D2Q9 velocity set and equilibrium (docs/model.md §1).
 #include <gtest/gtest.h>
 
 #include "lattice/d2q9.hpp"

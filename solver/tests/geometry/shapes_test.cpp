@@ -1,5 +1,5 @@
 // Cell shapes (geometry/shapes.hpp): counter-clockwise, equally spaced in arc length,
-// the Evans–Fung section's area and perimeter (parameters.md), transforms.
+// the Evans–Fung section's area and perimeter (docs/parameters.md), transforms.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -47,7 +47,7 @@ TEST(Shapes, EllipseMarkersAreEquallySpacedInArcLength) {
 }
 
 TEST(Shapes, EvansFungSectionMatchesTabulatedGeometry) {
-  // parameters.md (computed, conf. D): a = 3.91 µm → area 13.627 µm², perimeter
+  // docs/parameters.md (computed, conf. D): a = 3.91 µm → area 13.627 µm², perimeter
   // 19.271 µm, reduced area 4πA/L² = 0.4611. 2000 markers: polygon error ~1e-6.
   const auto p = biconcave(2000, 3.91);
   const double A = signed_area(p), L = perimeter(p);

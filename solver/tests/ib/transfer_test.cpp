@@ -1,4 +1,4 @@
-// Spreading and interpolation (model.md §2, thesis eqs 23–25): conservation of force
+// Spreading and interpolation (docs/model.md §2, thesis eqs 23–25): conservation of force
 // and torque, adjointness, reproduction of constant and linear fields, periodic wrap
 // and the documented loss of partition of unity at a wall (geometry/domain.hpp).
 #include <gtest/gtest.h>

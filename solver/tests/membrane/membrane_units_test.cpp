@@ -20,7 +20,7 @@ TEST(MembraneUnits, ThesisDoubletNumbers) {
   const double reduced_si = EB / (a * a * Es);
   const double a_lat = a / s.h_m;
   EXPECT_NEAR(bending_to_lattice(EB, s) / (a_lat * a_lat * tension_to_lattice(Es, s)), reduced_si, 1e-12 * reduced_si);
-  EXPECT_NEAR(reduced_si, 0.0039, 0.0001);  // model.md §3: ≈ 0.004, not the thesis's 0.01
+  EXPECT_NEAR(reduced_si, 0.0039, 0.0001);  // docs/model.md eq 3.10: ≈ 0.004, not the thesis's 0.01
   // Pressure: ρ0 (h/Δt)² is the lattice unit.
   EXPECT_NEAR(pressure_to_lattice(1000 * (s.h_m / s.dt_s) * (s.h_m / s.dt_s), s), 1.0, 1e-12);
   EXPECT_THROW(tension_to_lattice(1.0, LatticeScales{0, 1, 1}), std::invalid_argument);

@@ -1,5 +1,5 @@
 // Tension laws (membrane/tension_law.hpp): T(1) = W(1) = 0, dW/dλ = T and
-// dT/dλ = stiffness (central differences), and the closed forms of model.md §3.
+// dT/dλ = stiffness (central differences), and the closed forms of docs/model.md §3.
 #include <gtest/gtest.h>
 
 #include <cmath>
