@@ -6,12 +6,14 @@
 
 namespace erythro::geometry {
 
-double signed_area(const Polygon& p) {
-  const std::size_t n = p.size();
+double signed_area(const Polygon& p) { return signed_area(p.x, p.y); }
+
+double signed_area(std::span<const double> x, std::span<const double> y) {
+  const std::size_t n = x.size();
   double a = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = (i + 1) % n;
-    a += p.x[i] * p.y[j] - p.x[j] * p.y[i];
+    a += x[i] * y[j] - x[j] * y[i];
   }
   return 0.5 * a;
 }

@@ -2,6 +2,7 @@
 // A closed polygon of membrane markers, structure of arrays; edge e joins marker
 // e to marker e + 1 (mod n). Counter-clockwise order gives a positive area.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 namespace erythro::geometry {
@@ -13,6 +14,7 @@ struct Polygon {
 
 // Shoelace area ½ Σ (x_i y_{i+1} − x_{i+1} y_i), positive when counter-clockwise.
 double signed_area(const Polygon& p);
+double signed_area(std::span<const double> x, std::span<const double> y);  // the same on coordinate spans
 double perimeter(const Polygon& p);
 // Area centroid (exact for the polygon).
 void centroid(const Polygon& p, double& cx, double& cy);

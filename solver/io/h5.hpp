@@ -63,6 +63,7 @@ class AppendableSeries {
   AppendableSeries(hid_t parent, const std::string& name);
   void append(double value);
   std::size_t size() const { return size_; }
+  hid_t id() const { return dataset_.id(); }  // the dataset (for its attributes)
 
  private:
   Handle dataset_;

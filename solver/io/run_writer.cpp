@@ -15,9 +15,6 @@ namespace erythro::io {
 namespace {
 constexpr const char* kH5Name = "run.h5";
 constexpr const char* kXdmfName = "run.xdmf";
-const char* const kSeriesNames[] = {"step", "time_s", "total_mass_kg_per_m", "kinetic_energy_J_per_m",
-                                    "max_speed_um_s", "max_mach"};
-constexpr std::size_t kClockSeries = 2;  // step, time_s: also in a still-medium (no fluid) run
 
 std::string frame_group_name(long step) {
   char name[32];
@@ -103,28 +100,6 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
   h5::write_attr(grid.id(), "origin_um", std::vector<double>{0.5 * h_um, 0.5 * h_um});
 
   diagnostics_group_ = h5::create_group(root, "diagnostics");
-  const std::size_t fluid_series = setup.has_fluid ? std::size(kSeriesNames) : kClockSeries;
-  for (std::size_t k = 0; k < fluid_series; ++k)
-    series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), kSeriesNames[k]));
-  const std::size_t cell_count = setup.membrane ? setup.membrane->cells.size() : 0;
-  const std::size_t moving_cells = setup.has_fluid ? cell_count : 0;  // fixed shapes have no shape series
-  for (std::size_t c = 0; c < moving_cells; ++c) {
-    for (const char* what : {"_area_change", "_taylor_deformation"})
-      series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(),
-                                                               "cell_" + std::to_string(c) + what));
-  }
-  if (const auto& T = setup.transport) {
-    transport_series_base_ = series_.size();
-    for (const auto& sp : T->species) {
-      series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), sp.name + "_mean_uM"));
-      series_.push_back(
-          std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), sp.name + "_mass_balance_residual"));
-    }
-    if (T->hemoglobin)
-      for (std::size_t c = 0; c < cell_count; ++c)
-        series_.push_back(
-            std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), "cell_" + std::to_string(c) + "_saturation"));
-  }
   fields_group_ = h5::create_group(root, "fields");
   if (setup.membrane) cells_group_ = h5::create_group(root, "cells");
 
@@ -139,28 +114,15 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
   H5Fflush(root, H5F_SCOPE_GLOBAL);
 }
 
-void RunWriter::on_diagnostics(const sim::DiagnosticsSample& d) {
-  const auto& s = setup_.scales;
-  const double mass_scale = s.density_kg_m3 * s.length_m * s.length_m;  // per metre of depth
-  const double energy_scale = mass_scale * s.velocity_m_s() * s.velocity_m_s();
-  const double values[] = {static_cast<double>(d.step),
-                           static_cast<double>(d.step) * s.time_s,
-                           d.total_mass * mass_scale,
-                           d.kinetic_energy * energy_scale,
-                           d.max_speed * s.velocity_m_s() * 1e6,
-                           d.max_mach};
-  const std::size_t count = setup_.has_fluid ? std::size(values) : kClockSeries;
-  for (std::size_t k = 0; k < count; ++k) series_[k]->append(values[k]);
+void RunWriter::on_series_declared(std::span<const sim::SeriesInfo> series) {
+  for (const sim::SeriesInfo& info : series) {
+    series_.push_back(std::make_unique<h5::AppendableSeries>(diagnostics_group_.id(), info.name));
+    h5::write_attrs(series_.back()->id(), {{"units", info.unit}, {"description", info.description}});
+  }
 }
 
-void RunWriter::on_transport_diagnostics(const sim::TransportDiagnostics& d) {
-  std::size_t k = transport_series_base_;
-  for (std::size_t i = 0; i < d.mean_concentration.size(); ++i) {
-    series_[k++]->append(d.mean_concentration[i]);
-    series_[k++]->append(d.residual[i]);
-  }
-  for (double S : d.saturation)
-    if (k < series_.size()) series_[k++]->append(S);
+void RunWriter::on_sample(long /*step*/, std::span<const double> values) {
+  for (std::size_t k = 0; k < values.size() && k < series_.size(); ++k) series_[k]->append(values[k]);
 }
 
 h5::Handle RunWriter::frame_group(long step) {
@@ -183,14 +145,6 @@ void RunWriter::on_transport_fields(long step, const sim::TransportFields& f) {
   frame.reset();
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
   write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
-}
-
-void RunWriter::on_cell_diagnostics(const sim::CellDiagnostics& d) {
-  const std::size_t base = std::size(kSeriesNames);  // cell series follow the fluid ones, 2 per cell (fluid runs only)
-  for (std::size_t c = 0; base + 2 * c + 1 < series_.size() && c < d.area_change.size(); ++c) {
-    series_[base + 2 * c]->append(d.area_change[c]);
-    series_[base + 2 * c + 1]->append(d.taylor_deformation[c]);
-  }
 }
 
 void RunWriter::on_fields(long step, const fluid::Moments& m) {
@@ -251,6 +205,13 @@ void RunWriter::on_finish(const sim::RunSummary& summary) {
                               {"index_field_exposed_time_s", summary.index_field_exposed_time_s},
                               {"mlups", summary.mlups}});
   meta.reset();
+  // Wall time of every stage of the time loop (s) and how often it ran.
+  h5::Handle timing = h5::create_group(file_.id(), "timing");
+  for (const sim::StageTiming& t : summary.stages) {
+    h5::write_attr(timing.id(), t.name + "_s", t.seconds);
+    h5::write_attr(timing.id(), t.name + "_calls", t.calls);
+  }
+  timing.reset();
   close_and_commit();
 }
 

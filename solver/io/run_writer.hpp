@@ -10,13 +10,17 @@
 //                     threads, status, diagnosis, steps, wall_time_s, mlups, and the
 //                     lattice parameters (spacing_um, time_step_s, tau, ...)
 //   /grid             attrs nx, ny, spacing_um, origin_um (cell-centred nodes)
-//   /diagnostics/*    step, time_s, total_mass_kg_per_m, kinetic_energy_J_per_m,
-//                     max_speed_um_s, max_mach (1-D, one entry per sample); with cells
-//                     also cell_<c>_area_change (A/A0 − 1) and cell_<c>_taylor_deformation
-//                     ((L − B)/(L + B)) for each cell c = 0, 1, ...
+//   /diagnostics/*    one 1-D dataset per diagnostics series (sim::Probe; attrs units,
+//                     description), one entry per sample: step, time_s; with a fluid
+//                     total_mass_kg_per_m, kinetic_energy_J_per_m, max_speed_um_s, max_mach;
+//                     with moving cells, per cell c: cell_<c>_area_change, _taylor_deformation,
+//                     _inclination_deg, _centroid_x_um, _centroid_y_um, _max_edge_strain,
+//                     _marker_phase_deg, _marker0_angle_deg, and cells_max_area_change,
+//                     cells_max_edge_strain (simulation/probes/cell_shape_probe.hpp);
 //                     with [transport]: <species>_mean_uM, <species>_mass_balance_residual,
-//                     and with [hemoglobin] cell_<c>_saturation; a still-medium run (no
-//                     fluid) has only step, time_s and these
+//                     <species>_max_mass_balance_residual, and with [hemoglobin]
+//                     cell_<c>_saturation (simulation/probes/transport_probe.hpp)
+//   /timing           attrs <stage>_s, <stage>_calls: wall time of each time-loop stage
 //   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 2), and one
 //                     concentration [µM] (ny, nx) per species, named as the species; attrs step, time_s
 //   /cells/<step>/    only for scenes with [[cells]], at every field output:
@@ -41,11 +45,10 @@ class RunWriter : public sim::RunObserver {
   ~RunWriter() override;
 
   void on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) override;
-  void on_diagnostics(const sim::DiagnosticsSample& sample) override;
-  void on_cell_diagnostics(const sim::CellDiagnostics& sample) override;
+  void on_series_declared(std::span<const sim::SeriesInfo> series) override;
+  void on_sample(long step, std::span<const double> values) override;
   void on_fields(long step, const fluid::Moments& moments) override;
   void on_cells(long step, const membrane::ImmersedCells& cells) override;
-  void on_transport_diagnostics(const sim::TransportDiagnostics& sample) override;
   void on_transport_fields(long step, const sim::TransportFields& fields) override;
   void on_finish(const sim::RunSummary& summary) override;
 
@@ -63,11 +66,10 @@ class RunWriter : public sim::RunObserver {
   scene::LatticeSetup setup_;
   h5::Handle file_;
   h5::Handle diagnostics_group_, fields_group_, cells_group_;
-  std::vector<std::unique_ptr<h5::AppendableSeries>> series_;  // step, time, mass, ke, speed, mach
+  std::vector<std::unique_ptr<h5::AppendableSeries>> series_;  // one per declared series, in order
   std::vector<XdmfFrame> frames_;
   XdmfGrid xdmf_grid_;
   bool write_density_ = true, write_velocity_ = true;
-  std::size_t transport_series_base_ = 0;  // index of the first transport series in series_
   bool committed_ = false;
 };
 

@@ -44,10 +44,14 @@ void ImmersedCells::compute_forces() {
   }
 }
 
-void ImmersedCells::spread_forces(fluid::FluidLattice& lattice) {
+void ImmersedCells::clear_force_field(fluid::FluidLattice& lattice) {
   lattice.enable_force_field();
   std::fill(lattice.force_x().begin(), lattice.force_x().end(), 0.0);
   std::fill(lattice.force_y().begin(), lattice.force_y().end(), 0.0);
+}
+
+void ImmersedCells::spread_forces(fluid::FluidLattice& lattice) {
+  clear_force_field(lattice);
   add_spread_forces(lattice);
 }
 
@@ -69,6 +73,10 @@ void ImmersedCells::advance_after_forces(fluid::FluidLattice& lattice) {
   spread_forces(lattice);
   lattice.step();
   support_velocity(lattice);  // force field still that of this step
+  advect_markers();
+}
+
+void ImmersedCells::advect_markers() {
   move_markers(grid_ux_, grid_uy_);
   wrap_periodic();
 }

@@ -55,8 +55,11 @@ class ImmersedCells {
   void compute_forces();
   static constexpr int kParallelCells = 4;
   bool threads_forces() const { return cell_count() >= kParallelCells; }
-  // Step 2: zeroes the lattice force field, then spreads the marker forces into it.
+  // Step 2: zeroes the lattice force field, then spreads the marker forces into it
+  // (= clear_force_field + add_spread_forces).
   void spread_forces(fluid::FluidLattice& lattice);
+  // Enables the lattice's force field and sets it to zero (grid work, O(nodes)).
+  static void clear_force_field(fluid::FluidLattice& lattice);
   // Step 2 without the zeroing: ADDS the spread marker forces to the lattice force
   // field (which must be enabled). spread_forces() = zero the field + this.
   void add_spread_forces(fluid::FluidLattice& lattice);
@@ -70,6 +73,9 @@ class ImmersedCells {
   void support_velocity(fluid::FluidLattice& lattice);
   std::span<const double> support_ux() const { return grid_ux_; }
   std::span<const double> support_uy() const { return grid_uy_; }
+  // Step 5 from the support velocity of the last fluid step: move_markers(support_ux/uy),
+  // then wrap_periodic.
+  void advect_markers();
   // Steps 1–5 for one fluid step: compute_forces(), then advance_after_forces().
   void advance(fluid::FluidLattice& lattice);
   // Steps 2–5 with the marker forces as they are (compute_forces() plus whatever a caller

@@ -92,6 +92,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                                                                             kAutoMarkerSpacing)));
     const geometry::Polygon base = make(m);
     CellSetup cell;
+    cell.model = M.model;
+    if (c.shear_modulus_dyn_cm)
+      cell.model.tension.modulus = membrane::tension_to_lattice(*c.shear_modulus_dyn_cm * membrane::kDynPerCm, ms);
     cell.shape = geometry::transformed(base, c.scale, c.angle_deg * std::numbers::pi / 180.0, c.center_um[0] / h_um,
                                        c.center_um[1] / h_um);
     geometry::make_counter_clockwise(cell.shape);
@@ -183,15 +186,23 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
   if (!mechanics) return M;  // fixed shapes in a still medium: no membrane update to keep stable
 
   // Explicit-update stability (membrane/stability.hpp): Π = modulus Δt²/(ρ0 h^k) < limit.
+  // The stiffest membrane limits the step (cells may override the shear modulus).
+  std::size_t stiffest = 0;
+  for (std::size_t i = 1; i < M.cells.size(); ++i)
+    if (M.cells[i].model.tension.modulus > M.cells[stiffest].model.tension.modulus) stiffest = i;
+  const bool cell_override = !M.cells.empty() && s.cells[stiffest].shear_modulus_dyn_cm.has_value();
   membrane::StabilityInput in;
   in.kernel = M.kernel;
-  in.model = M.model;
+  in.model = M.cells.empty() ? M.model : M.cells[stiffest].model;
   in.viscosity = L.viscosity;
   in.density = 1.0;
   in.max_stretch = 1.0;  // cells start at their rest shape
   M.stability = membrane::estimate_stability(in);
   if (!M.stability.acceptable()) {
     const auto& e = M.stability;
+    const std::string shear_key =
+        cell_override ? cell_key(stiffest, "shear_modulus_dyn_cm") : std::string("membrane.shear_modulus_dyn_cm");
+    const double shear_shown = cell_override ? *s.cells[stiffest].shear_modulus_dyn_cm : spec.shear_modulus_dyn_cm;
     struct Term {
       const char* key;
       std::string shown;
@@ -199,8 +210,8 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       double value, limit;
     };
     const Term terms[] = {
-        {"membrane.shear_modulus_dyn_cm", num(spec.shear_modulus_dyn_cm) + " dyn/cm", "Π_T = (dT/dλ) Δt²/(ρ0 h³)",
-         e.tension_number, e.tension_limit},
+        {shear_key.c_str(), num(shear_shown) + " dyn/cm", "Π_T = (dT/dλ) Δt²/(ρ0 h³)", e.tension_number,
+         e.tension_limit},
         {"membrane.bending_modulus_dyn_cm", num(spec.bending_modulus_dyn_cm) + " dyn·cm", "Π_B = E_B Δt²/(ρ0 h⁵)",
          e.bending_number, e.bending_limit},
         {"membrane.area_modulus_Pa", num(spec.area_modulus_Pa) + " Pa", "Π_A = k_A Δt²/(ρ0 h²)", e.area_number,

@@ -69,12 +69,32 @@ struct RunSpec {
 struct MonitorSpec {
   long interval_steps = 100;  // [monitor] interval_steps: health check period K
   double max_mach = 0.3;      // [monitor] max_mach: a run whose |u|/c_s exceeds this stops
+  // Membranes (scenes with moving cells): a cell whose |A/A0 − 1| or whose largest edge
+  // strain |ℓ/ℓ0 − 1| exceeds these stops the run (a torn or leaking membrane).
+  double max_area_change = 0.2;
+  double max_edge_strain = 1.0;
 };
 
 struct OutputSpec {
   long fields_interval_steps = 0;        // 0: only the initial and final states
   long diagnostics_interval_steps = 100;
   std::vector<std::string> fields{"density", "velocity"};  // allowed: density, velocity
+  // Steps between updates of the running extremes of the cells (cells_max_area_change,
+  // cells_max_edge_strain); 0: only at the diagnostics samples.
+  long extremes_interval_steps = 0;
+};
+
+// [[stop_when]]: ends a run (status "stopped") when a diagnostics series (any name written
+// to /diagnostics, e.g. "cell_0_taylor_deformation") meets a condition at a sample.
+// Exactly one of below, above, change_below.
+struct StopWhenSpec {
+  std::string series;
+  std::optional<double> below;         // value < below
+  std::optional<double> above;         // value > above
+  std::optional<double> change_below;  // |value − value window_steps earlier| < change_below
+  long window_steps = 0;               // change_below only (>= 1)
+  long min_steps = 0;                  // not checked before this many steps
+  long after_steps = 0;                // run on this many steps after the condition first holds
 };
 
 // [membrane]: one membrane model shared by every cell (thesis §II.3, docs/model.md §3).
@@ -102,6 +122,9 @@ struct CellSpec {
   double scale = 1.0;                      // multiplies the size
   long markers = 0;                        // marker count (equally spaced in arc length);
                                            // 0: automatic, spacing ≈ 0.7 h (units.cpp)
+  // This cell's shear modulus E_s [dyn/cm]; absent: [membrane] shear_modulus_dyn_cm (e.g. a
+  // doublet of cells of different deformability, thesis ch. III cases II–IV).
+  std::optional<double> shear_modulus_dyn_cm;
 };
 
 // [aggregation]: Morse aggregation between the membranes of different cells (docs/model.md
@@ -183,6 +206,7 @@ struct Scene {
   std::optional<TransportSpec> transport;  // [transport]; absent: no transport
   std::vector<SpeciesSpec> species;        // [[species]] (needs [transport])
   std::optional<HemoglobinSpec> hemoglobin;  // [hemoglobin] (needs cells and an O2 species)
+  std::vector<StopWhenSpec> stop_when;       // [[stop_when]]
 };
 
 }  // namespace erythro::scene

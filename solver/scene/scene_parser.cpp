@@ -24,8 +24,8 @@
 namespace erythro::scene {
 namespace {
 
-// The scene's arrays of tables: [[cells]] and [[species]].
-bool is_array_of_tables(std::string_view name) { return name == "cells" || name == "species"; }
+// The scene's arrays of tables: [[cells]], [[species]] and [[stop_when]].
+bool is_array_of_tables(std::string_view name) { return name == "cells" || name == "species" || name == "stop_when"; }
 
 using namespace detail;  // the schema: Kind, KeySpec, find_key, range_text, ...
 
@@ -68,6 +68,7 @@ std::string kind_of(const toml::node& n) {
 
 class Reader;
 void read_transport(const Reader& r, Scene& s);
+void read_stop_when(const Reader& r, Scene& s);
 
 class Reader {
  public:
@@ -406,11 +407,15 @@ Scene read_scene(const Reader& r, const std::string& origin) {
 
   s.monitor.interval_steps = r.integer("monitor.interval_steps", s.monitor.interval_steps);
   s.monitor.max_mach = r.number("monitor.max_mach", s.monitor.max_mach);
+  s.monitor.max_area_change = r.number("monitor.max_area_change", s.monitor.max_area_change);
+  s.monitor.max_edge_strain = r.number("monitor.max_edge_strain", s.monitor.max_edge_strain);
 
   s.output.fields_interval_steps = r.integer("output.fields_interval_steps", s.output.fields_interval_steps);
   s.output.diagnostics_interval_steps =
       r.integer("output.diagnostics_interval_steps", s.output.diagnostics_interval_steps);
   s.output.fields = r.string_list("output.fields", s.output.fields);
+  s.output.extremes_interval_steps = r.integer("output.extremes_interval_steps", s.output.extremes_interval_steps);
+  read_stop_when(r, s);
 
   s.limits.min_tau_margin = r.number("limits.min_tau_margin", s.limits.min_tau_margin);
   s.limits.max_mach = r.number("limits.max_mach", s.limits.max_mach);
@@ -460,6 +465,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
       c.angle_deg = r.number(p + "angle_deg", c.angle_deg);
       c.scale = r.number(p + "scale", c.scale);
       c.markers = r.integer(p + "markers", c.markers);
+      if (r.has(p + "shear_modulus_dyn_cm")) c.shear_modulus_dyn_cm = r.number(p + "shear_modulus_dyn_cm", 0.0);
       s.cells.push_back(c);
     }
   }
@@ -487,6 +493,38 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   }
   read_transport(r, s);
   return s;
+}
+
+// [[stop_when]] (scene.hpp; docs/scenes.md): exactly one condition per entry.
+void read_stop_when(const Reader& r, Scene& s) {
+  const toml::node* rules = r.find("stop_when");
+  if (!rules) return;
+  const std::size_t count = rules->as_array()->size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string p = "stop_when[" + std::to_string(i) + "].";
+    const toml::node* entry = rules->as_array()->get(i);
+    if (!r.has(p + "series"))
+      throw InputError(r.where(entry) + ": missing key '" + p + "series' (required: the name of a diagnostics series)");
+    StopWhenSpec w;
+    w.series = r.text(p + "series", "");
+    const int conditions = static_cast<int>(r.has(p + "below")) + static_cast<int>(r.has(p + "above")) +
+                           static_cast<int>(r.has(p + "change_below"));
+    if (conditions != 1)
+      throw InputError(r.where(entry) + ": [[stop_when]] entry " + std::to_string(i) +
+                       " needs exactly one of below, above, change_below (has " + std::to_string(conditions) + ")");
+    if (r.has(p + "below")) w.below = r.number(p + "below", 0.0);
+    if (r.has(p + "above")) w.above = r.number(p + "above", 0.0);
+    if (r.has(p + "change_below")) w.change_below = r.number(p + "change_below", 0.0);
+    w.window_steps = r.integer(p + "window_steps", 0);
+    if (w.change_below && w.window_steps < 1)
+      throw InputError(r.where(entry) + ": missing key '" + p +
+                       "window_steps' (required with change_below: the steps between the two values compared)");
+    if (!w.change_below && r.has(p + "window_steps"))
+      r.fail(*r.find(p + "window_steps"), p + "window_steps", "is only allowed with change_below");
+    w.min_steps = r.integer(p + "min_steps", 0);
+    w.after_steps = r.integer(p + "after_steps", 0);
+    s.stop_when.push_back(w);
+  }
 }
 
 // [transport], [[species]], [hemoglobin] (scene.hpp; docs/scenes.md).

@@ -34,6 +34,7 @@ struct UnitScales {
 // One cell placed on the lattice (lattice units: nodes at i + ½, walls at 0 and n).
 struct CellSetup {
   geometry::Polygon shape;        // markers, counter-clockwise; also the stress-free rest shape
+  membrane::MembraneModel model;  // lattice moduli of this cell (MembraneSetup::model unless overridden)
   double equivalent_radius = 0.0; // √(A/π)
   double min_edge = 0.0, max_edge = 0.0;  // marker spacing
 };
@@ -41,7 +42,7 @@ struct CellSetup {
 // The membranes, present only when the scene declares [[cells]].
 struct MembraneSetup {
   ib::KernelType kernel = ib::KernelType::cosine4;
-  membrane::MembraneModel model;  // lattice moduli
+  membrane::MembraneModel model;  // lattice moduli of [membrane] (a cell may override its shear modulus)
   membrane::StabilityEstimate stability;
   std::vector<CellSetup> cells;
   // Interior viscosity (thesis eq 27): with `indicator` = indexless nothing is built and

@@ -16,7 +16,7 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
       nu_exterior_(exterior_viscosity),
       index_interval_(std::max(1L, setup.index_update_interval)) {
   for (const scene::CellSetup& c : setup.cells)
-    cells_.add_cell(c.shape, membrane::RestShape::from_polygon(c.shape), setup.model);
+    cells_.add_cell(c.shape, membrane::RestShape::from_polygon(c.shape), c.model);
   if (setup.aggregation)
     aggregation_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()), *setup.aggregation);
   if (setup.indicator != interior::Method::indexless) {
@@ -43,9 +43,21 @@ void CellPhysics::refresh_viscosity(fluid::FluidLattice& lattice) {
   index_->write_changed_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);
 }
 
+void CellPhysics::refresh_viscosity_timed(fluid::FluidLattice& lattice) {
+  const auto start = std::chrono::steady_clock::now();
+  refresh_viscosity(lattice);
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  index_seconds_ += s;
+  index_exposed_seconds_ += s;
+}
+
+void CellPhysics::add_aggregation_forces() {
+  if (aggregation_) aggregation_stats_ = aggregation_->add_forces(cells_);
+}
+
 void CellPhysics::compute_marker_forces() {
   cells_.compute_forces();
-  if (aggregation_) aggregation_stats_ = aggregation_->add_forces(cells_);
+  add_aggregation_forces();
 }
 
 bool CellPhysics::index_beside_forces() const {
@@ -98,21 +110,25 @@ void CellPhysics::refresh_viscosity_beside_forces(fluid::FluidLattice& lattice) 
   if (forces_error) std::rethrow_exception(forces_error);
 }
 
-void CellPhysics::advance(fluid::FluidLattice& lattice, long step) {
-  const bool refresh = index_ && step > 0 && step % index_interval_ == 0;
-  if (refresh && index_beside_forces()) {
-    refresh_viscosity_beside_forces(lattice);
+void CellPhysics::register_stages(TimeLoop& loop, fluid::FluidLattice& lattice) {
+  if (index_ && index_beside_forces()) {
+    loop.add(Phase::forces, "forces_and_index_field", [this, &lattice](long step) {
+      if (refresh_due(step)) refresh_viscosity_beside_forces(lattice);
+      else compute_marker_forces();
+    });
   } else {
-    if (refresh) {
-      const auto start = std::chrono::steady_clock::now();
-      refresh_viscosity(lattice);
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      index_seconds_ += s;
-      index_exposed_seconds_ += s;
-    }
-    compute_marker_forces();
+    if (index_)
+      loop.add(Phase::forces, "index_field", [this, &lattice](long) { refresh_viscosity_timed(lattice); },
+               index_interval_, index_interval_);
+    loop.add(Phase::forces, "membrane_forces", [this](long) { cells_.compute_forces(); });
+    if (aggregation_) loop.add(Phase::forces, "aggregation_forces", [this](long) { add_aggregation_forces(); });
   }
-  cells_.advance_after_forces(lattice);  // the aggregation forces, if any, added
+  // The lattice's uniform (body) force is added to this field by the fluid step.
+  loop.add(Phase::spread, "force_field_reset", [&lattice](long) { membrane::ImmersedCells::clear_force_field(lattice); });
+  loop.add(Phase::spread, "spreading", [this, &lattice](long) { cells_.add_spread_forces(lattice); });
+  // Right after the fluid step, before its forces change (ImmersedCells::support_velocity).
+  loop.add(Phase::interpolate, "interpolation", [this, &lattice](long) { cells_.support_velocity(lattice); });
+  loop.add(Phase::advect, "marker_advection", [this](long) { cells_.advect_markers(); });
 }
 
 }  // namespace erythro::sim

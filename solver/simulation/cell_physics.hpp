@@ -1,9 +1,11 @@
 #pragma once
-// The cell physics of a scene, one call per fluid step: the immersed-boundary cycle
-// of membrane::ImmersedCells (thesis §II.3, eqs 23–25) with, when the scene asks for
-// them, the interior viscosity of the index field (thesis §II.4, eqs 26–27) refreshed
-// every k steps before the fluid step, and the Morse aggregation forces between cells
-// (docs/model.md §4) added to the membrane forces. Only what the scene declares is built.
+// The cell physics of a scene: the immersed-boundary cycle of membrane::ImmersedCells
+// (thesis §II.3, eqs 23–25; docs/model.md §2) with, when the scene asks for them, the
+// interior viscosity of the index field (thesis §II.4, eqs 26–27; docs/model.md §5)
+// refreshed every k steps before the fluid step, and the Morse aggregation forces
+// between cells (docs/model.md §4) added to the membrane forces. Only what the scene
+// declares is built. The cycle is a set of stages of the time loop around the fluid
+// step (register_stages).
 #include <memory>
 #include <optional>
 #include <vector>
@@ -13,22 +15,32 @@
 #include "interior/index_field.hpp"
 #include "membrane/immersed_cells.hpp"
 #include "scene/units.hpp"
+#include "simulation/time_loop.hpp"
 
 namespace erythro::sim {
 
 class CellPhysics {
  public:
-  // Places the cells of `setup` (stress-free at their initial shape) on `lattice`.
+  // Places the cells of `setup` (stress-free at their initial shape, each with its own
+  // membrane model) on `lattice`; with an interior viscosity, builds the index field and
+  // writes the whole τ field once.
   CellPhysics(const scene::MembraneSetup& setup, double exterior_viscosity, fluid::FluidLattice& lattice);
 
-  // One step: [index field → τ every k steps], membrane forces [+ aggregation],
-  // spreading (the lattice's uniform force adds to the field), fluid step, marker
-  // advection. On two or more threads, when the force stage runs on one thread (fewer
+  // The stages of one step n, around the fluid's own stage (Phase::fluid):
+  //   forces       index_field        I → τ when n > 0 and n is a multiple of k
+  //                membrane_forces    F_m = −∂E/∂X_m (membrane_energy.hpp)
+  //                aggregation_forces + Morse forces between cells (with [aggregation])
+  //   spread       force_field_reset  f = 0 on the grid
+  //                spreading          f += Σ_m F_m δ_h(x − X_m)
+  //   interpolate  interpolation      u of the fluid step at the markers' support nodes
+  //   advect       marker_advection   X_m += U_m, periodic wrap
+  // On two or more OpenMP threads, when the force stage runs on one thread anyway (fewer
   // than ImmersedCells::kParallelCells cells and MorseAggregation::kParallelMarkers
-  // markers), the index field is rebuilt on a second thread beside the force stage
-  // (independent: same results). docs/performance.md, "Index field".
-  // Throws std::domain_error (non-finite marker) or interior::FillLeakError.
-  void advance(fluid::FluidLattice& lattice, long step);
+  // markers), the index field is rebuilt on a second thread beside the forces, in one
+  // stage "forces_and_index_field" (independent: the same bits). docs/performance.md,
+  // "Index field". Stages throw std::domain_error (non-finite marker) or
+  // interior::FillLeakError (a membrane tangled).
+  void register_stages(TimeLoop& loop, fluid::FluidLattice& lattice);
 
   const membrane::ImmersedCells& cells() const { return cells_; }
   // The index field, or nullptr when the interior has the fluid's viscosity.
@@ -41,13 +53,16 @@ class CellPhysics {
   // the time by which that two-thread region outlasted the force stage.
   double index_field_seconds() const { return index_seconds_; }
   double index_field_exposed_seconds() const { return index_exposed_seconds_; }
-  // Whether advance() rebuilds the index field beside the force stage (two or more
-  // OpenMP threads and a force stage that runs on one).
+  // Whether the index field is rebuilt beside the force stage (two or more OpenMP
+  // threads and a force stage that runs on one).
   bool index_beside_forces() const;
 
  private:
+  bool refresh_due(long step) const { return index_ && step > 0 && step % index_interval_ == 0; }
   void refresh_viscosity(fluid::FluidLattice& lattice);
+  void refresh_viscosity_timed(fluid::FluidLattice& lattice);
   void compute_marker_forces();  // membrane forces [+ aggregation]
+  void add_aggregation_forces();
   void refresh_viscosity_beside_forces(fluid::FluidLattice& lattice);
   std::span<const geometry::Polygon> polygons_from_cells();
 

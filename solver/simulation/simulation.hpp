@@ -1,16 +1,25 @@
 #pragma once
-// A simulation assembled from a scene: it owns the modules the scene declares
-// (the fluid unless transport.coupling = "none"; immersed cells, with their interior
-// viscosity when asked, when the scene has [[cells]]; the NO/O2 transport when it has
-// [transport]) and runs the time loop
-// with the health monitor, the steady-state criterion and the output schedule.
+// A simulation assembled from a scene: it owns the modules the scene declares (the fluid
+// unless transport.coupling = "none"; immersed cells, with their interior viscosity and
+// aggregation when asked, when the scene has [[cells]]; the NO/O2 transport when it has
+// [transport]), each of which registers its stages in the time loop (time_loop.hpp), and
+// the probes (probe.hpp) whose series the observers receive. run() adds the observe
+// stage (health monitor, diagnostics, output, steady state, stop rules) and runs the loop.
+//
+// Extension points, for library users and the V&V cases alike: add_stage (e.g. a
+// manufactured source written into a field before the fluid step) and add_probe (a
+// diagnostic of one's own), both before run(). Mutable access to the modules is meant
+// for setting their state before run() (an initial field, a τ field).
 #include <memory>
+#include <vector>
 
 #include "fluid/fluid_lattice.hpp"
 #include "scene/scene.hpp"
 #include "scene/units.hpp"
 #include "simulation/cell_physics.hpp"
+#include "simulation/probe.hpp"
 #include "simulation/run_observer.hpp"
+#include "simulation/time_loop.hpp"
 #include "simulation/transport_physics.hpp"
 
 namespace erythro::sim {
@@ -19,25 +28,37 @@ class Simulation {
  public:
   Simulation(scene::Scene scene, scene::LatticeSetup setup);
 
-  // Runs to the end, to steady state, or until the health monitor stops it.
-  // Never throws for divergence: the summary says so (status diverged).
+  // Runs to the end, to steady state, until a stop rule holds, or until the health
+  // monitor stops it. Never throws for divergence: the summary says so (status diverged).
+  // Call once.
   RunSummary run(RunObserver& observer);
+
+  // A stage of the caller's own (time_loop.hpp), run in `phase` after the modules' stages
+  // of that phase.
+  void add_stage(Phase phase, std::string name, TimeLoop::Function function, long every = 1, long first = 0);
+  // A probe of the caller's own; its series follow the built-in ones.
+  void add_probe(std::unique_ptr<Probe> probe);
 
   const scene::Scene& scene() const { return scene_; }
   const scene::LatticeSetup& setup() const { return setup_; }
   // The fluid, or nullptr in a still-medium transport scene.
   fluid::FluidLattice* fluid() { return fluid_.get(); }
+  const fluid::FluidLattice* fluid() const { return fluid_.get(); }
   // The transport, or nullptr when the scene has no [transport].
+  TransportPhysics* transport() { return transport_.get(); }
   const TransportPhysics* transport() const { return transport_.get(); }
-  // The immersed cells, or nullptr when the scene declares none.
+  // The immersed cells, or nullptr when the scene declares none (or has no fluid).
   const membrane::ImmersedCells* cells() const { return cells_ ? &cells_->cells() : nullptr; }
   // The index field of the interior viscosity, or nullptr when the scene sets none.
   const interior::IndexField* index_field() const { return cells_ ? cells_->index_field() : nullptr; }
   const CellPhysics* cell_physics() const { return cells_.get(); }
+  const TimeLoop& time_loop() const { return loop_; }
 
  private:
   void apply_initial_condition();
   void apply_body_force(long step);
+  void register_fluid_stages();
+  void register_transport_stages();
 
   scene::Scene scene_;
   scene::LatticeSetup setup_;
@@ -45,18 +66,10 @@ class Simulation {
   std::unique_ptr<CellPhysics> cells_;
   std::vector<geometry::Polygon> fixed_cells_;  // cells without a fluid: fixed shapes
   std::unique_ptr<TransportPhysics> transport_;
+  std::vector<std::unique_ptr<Probe>> probes_;
+  TimeLoop loop_;
+  std::vector<geometry::Polygon> moved_;  // scratch: the cells' polygons for the transport
+  bool ran_ = false;
 };
-
-// Lattice diagnostics of given moments.
-DiagnosticsSample diagnose(long step, const fluid::Moments& m);
-
-// Taylor deformation D = (L − B)/(L + B) of a closed polygon: L, B are the semi-axes
-// of the ellipse with the same second area moments (L/B = √(λ_max/λ_min)).
-double taylor_deformation(const geometry::Polygon& p);
-
-// "step 1200: velocity_x = nan at node (12, 3) (x = 6.25 µm, y = 1.75 µm): ..."
-std::string describe_divergence(long step, const HealthReport& report, const scene::LatticeSetup& setup);
-// The same for the transport ("O2 concentration = nan at node ...").
-std::string describe_transport_divergence(long step, const HealthReport& report, const scene::LatticeSetup& setup);
 
 }  // namespace erythro::sim

@@ -31,7 +31,9 @@ TEST(RunWriter, FinishedRunIsComplete) {
     scene::Scene scene;
     w.on_start(scene, small_setup());
     fluid::Moments m{std::vector<double>(12, 1.0), std::vector<double>(12, 0.1), std::vector<double>(12, 0.0)};
-    w.on_diagnostics(sim::DiagnosticsSample{0, 12.0, 0.06, 0.1, 0.17});
+    const std::vector<sim::SeriesInfo> series = {{"step", "", ""}, {"total_mass_kg_per_m", "kg/m", "mass"}};
+    w.on_series_declared(series);
+    w.on_sample(0, std::vector<double>{0.0, 12.0});
     w.on_fields(0, m);
     sim::RunSummary summary;
     summary.steps = 0;
@@ -57,7 +59,9 @@ TEST(RunWriter, AbortedRunKeepsWhatWasWritten) {
     io::RunWriter w(dir.string());
     scene::Scene scene;
     w.on_start(scene, small_setup());
-    w.on_diagnostics(sim::DiagnosticsSample{0, 12.0, 0.06, 0.1, 0.17});
+    const std::vector<sim::SeriesInfo> series = {{"step", "", ""}, {"total_mass_kg_per_m", "kg/m", "mass"}};
+    w.on_series_declared(series);
+    w.on_sample(0, std::vector<double>{0.0, 12.0});
     w.abort("disk full (simulated)");
   }
   auto file = io::h5::open_file_read((dir / "run.h5").string());
@@ -65,4 +69,7 @@ TEST(RunWriter, AbortedRunKeepsWhatWasWritten) {
   EXPECT_EQ(io::h5::read_attr_string(meta.id(), "status"), "aborted: disk full (simulated)");
   auto diag = io::h5::open_group(file.id(), "diagnostics");
   EXPECT_EQ(io::h5::read_dataset(diag.id(), "total_mass_kg_per_m").size(), 1u);
+  auto mass = H5Dopen2(diag.id(), "total_mass_kg_per_m", H5P_DEFAULT);
+  EXPECT_EQ(io::h5::read_attr_string(mass, "units"), "kg/m");
+  H5Dclose(mass);
 }

@@ -13,6 +13,7 @@
 #include "geometry/shapes.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
+#include "simulation/series_recorder.hpp"
 #include "simulation/simulation.hpp"
 
 namespace erythro::sim {
@@ -20,6 +21,12 @@ namespace {
 
 // Ellipse with semi-axes a, b: D = (a − b)/(a + b) exactly for the smooth curve;
 // a 256-gon inscribed in it is within 1e-3.
+double taylor_deformation(const geometry::Polygon& p) {
+  double D = 0.0, theta = 0.0;
+  geometry::taylor_deformation(p, D, theta);
+  return D;
+}
+
 TEST(CellDiagnostics, TaylorDeformationOfAnEllipse) {
   EXPECT_NEAR(taylor_deformation(geometry::ellipse(256, 6.0, 3.0)), 1.0 / 3.0, 1e-3);
   EXPECT_NEAR(taylor_deformation(geometry::transformed(geometry::ellipse(256, 6.0, 3.0), 2.0, 0.7, 5.0, -3.0)),
@@ -27,11 +34,12 @@ TEST(CellDiagnostics, TaylorDeformationOfAnEllipse) {
   EXPECT_NEAR(taylor_deformation(geometry::circle(64, 4.0)), 0.0, 1e-12);
 }
 
-struct Collect : RunObserver {
-  std::vector<CellDiagnostics> samples;
+struct Collect : SeriesRecorder {
   int cell_frames = 0;
-  void on_cell_diagnostics(const CellDiagnostics& d) override { samples.push_back(d); }
-  void on_cells(long, const membrane::ImmersedCells&) override { ++cell_frames; }
+  void on_cells(long step, const membrane::ImmersedCells& cells) override {
+    SeriesRecorder::on_cells(step, cells);
+    ++cell_frames;
+  }
 };
 
 TEST(CellSimulation, FluidOnlySceneHasNoCells) {
@@ -55,12 +63,13 @@ TEST(CellSimulation, CapsuleDeformsInShear) {
   EXPECT_EQ(r.status, RunStatus::completed);
   EXPECT_EQ(r.steps, 2000);
   EXPECT_EQ(c.cell_frames, 3);  // steps 0, 1000, 2000
-  ASSERT_EQ(c.samples.size(), 3u);
-  ASSERT_EQ(c.samples.back().taylor_deformation.size(), 1u);
-  EXPECT_NEAR(c.samples.front().taylor_deformation[0], 0.0, 1e-12);
-  EXPECT_GT(c.samples[1].taylor_deformation[0], 0.0);
-  EXPECT_GT(c.samples[2].taylor_deformation[0], c.samples[1].taylor_deformation[0]);
-  EXPECT_LT(std::abs(c.samples.back().area_change[0]), 1e-3);
+  ASSERT_EQ(c.samples(), 3u);
+  const auto& D = c.series("cell_0_taylor_deformation");
+  EXPECT_NEAR(D[0], 0.0, 1e-12);
+  EXPECT_GT(D[1], 0.0);
+  EXPECT_GT(D[2], D[1]);
+  EXPECT_LT(std::abs(c.series("cell_0_area_change").back()), 1e-3);
+  EXPECT_FALSE(c.has("cell_1_taylor_deformation"));
 }
 
 
@@ -125,7 +134,7 @@ namespace erythro::sim {
 namespace {
 
 #if defined(_OPENMP)
-// Requirement (sim::CellPhysics::advance): on two threads the index field is rebuilt beside
+// Requirement (sim::CellPhysics::register_stages): on two threads the index field is rebuilt beside
 // the force stage, and the run gives the same bits as on one thread, where it is rebuilt
 // before it — the two are independent (positions read, τ and marker forces written).
 // An aggregating pair with a flood-fill interior at 5× viscosity, 60 steps: marker

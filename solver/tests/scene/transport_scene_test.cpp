@@ -9,6 +9,7 @@
 #include "input_error_matchers.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
+#include "simulation/series_recorder.hpp"
 #include "simulation/simulation.hpp"
 #include "transport/hb_kinetics.hpp"
 
@@ -88,10 +89,8 @@ TEST(TransportScene, RefusesWhatCannotRun) {
                   "at least one [[species]]");
 }
 
-struct Record : RunObserver {
-  std::vector<TransportDiagnostics> samples;
+struct Record : SeriesRecorder {
   int field_frames = 0;
-  void on_transport_diagnostics(const TransportDiagnostics& d) override { samples.push_back(d); }
   void on_transport_fields(long, const TransportFields&) override { ++field_frames; }
 };
 
@@ -107,13 +106,16 @@ TEST(TransportScene, ClosedBoxConservesFreePlusBoundOxygen) {
   Record rec;
   const RunSummary r = sim.run(rec);
   EXPECT_EQ(r.status, RunStatus::completed);
-  ASSERT_GE(rec.samples.size(), 3u);
-  for (std::size_t k = 1; k < rec.samples.size(); ++k) {
-    EXPECT_LT(rec.samples[k].saturation[0], rec.samples[k - 1].saturation[0]);
-    EXPECT_LT(std::abs(rec.samples[k].residual[0]), 1e-13);
+  ASSERT_GE(rec.samples(), 3u);
+  const auto& S = rec.series("cell_0_saturation");
+  const auto& residual = rec.series("O2_mass_balance_residual");
+  for (std::size_t k = 1; k < rec.samples(); ++k) {
+    EXPECT_LT(S[k], S[k - 1]);
+    EXPECT_LT(std::abs(residual[k]), 1e-13);
   }
+  EXPECT_LT(rec.series("O2_max_mass_balance_residual").back(), 1e-13);
   // Bound O2 released = C_heme (S0 − S) per interior node; the free O2 gained must match.
-  const double S0 = rec.samples.front().saturation[0], S1 = rec.samples.back().saturation[0];
+  const double S0 = S.front(), S1 = S.back();
   const double gained = total_o2() - free0;
   const double released_per_node = L.transport->hemoglobin->C_heme * (S0 - S1);
   EXPECT_GT(gained, 0.0);
@@ -131,9 +133,10 @@ TEST(TransportScene, HeldMediumDeoxygenatesTheCell) {
   Record rec;
   EXPECT_EQ(sim.run(rec).status, RunStatus::completed);
   const double S_eq = transport::hill_saturation(20.0 / 1.3);
-  EXPECT_LT(rec.samples.back().saturation[0], rec.samples.front().saturation[0]);
-  EXPECT_GT(rec.samples.back().saturation[0], S_eq);
-  for (const auto& d : rec.samples) EXPECT_LT(std::abs(d.residual[0]), 1e-13);
+  const auto& S = rec.series("cell_0_saturation");
+  EXPECT_LT(S.back(), S.front());
+  EXPECT_GT(S.back(), S_eq);
+  for (double r : rec.series("O2_mass_balance_residual")) EXPECT_LT(std::abs(r), 1e-13);
 }
 
 // Sub-cycling: a passive tracer in the example capsule scene advances once every
@@ -166,7 +169,7 @@ TEST(TransportScene, SubcyclingFollowsTheFluid) {
   }
   EXPECT_GT(largest, 0.0);  // the capsule scene is sheared: the check is not 0 = 0
   // A uniform tracer in a divergence-free flow with zero-flux walls stays uniform.
-  for (const auto& d : rec.samples) EXPECT_NEAR(d.mean_concentration[0], 1.0, 1e-12);
+  for (double mean : rec.series("tracer_mean_uM")) EXPECT_NEAR(mean, 1.0, 1e-12);
 }
 
 }  // namespace

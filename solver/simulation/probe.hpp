@@ -1,0 +1,47 @@
+#pragma once
+// A probe is a diagnostic: named scalar time series sampled at every diagnostics step
+// (output.diagnostics_interval_steps, the first and the last step), in physical units.
+// The simulation owns the probes its scene asks for; observers receive the names once
+// (RunObserver::on_series_declared) and one row of values per sample (on_sample): the
+// run writer stores them as /diagnostics/<name> in run.h5, the V&V cases read them
+// from a SeriesRecorder. One function computes each diagnostic, for both.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "fluid/fluid_lattice.hpp"
+#include "scene/units.hpp"
+#include "simulation/time_loop.hpp"
+
+namespace erythro::sim {
+
+class CellPhysics;
+class TransportPhysics;
+
+struct SeriesInfo {
+  std::string name;         // e.g. "cell_0_taylor_deformation"
+  std::string unit;         // e.g. "um", "deg", "" (dimensionless)
+  std::string description;  // one line
+};
+
+// What a probe may read at a sample: the state after `step` steps.
+struct ProbeContext {
+  long step = 0;
+  const scene::LatticeSetup& setup;
+  const fluid::Moments* moments = nullptr;   // the fluid's moments (nullptr without a fluid)
+  const CellPhysics* cells = nullptr;        // moving cells (nullptr without)
+  const TransportPhysics* transport = nullptr;
+};
+
+class Probe {
+ public:
+  virtual ~Probe() = default;
+  // Appends the probe's series, in the order sample() writes them.
+  virtual void declare(std::vector<SeriesInfo>& series) const = 0;
+  // Writes one value per declared series into `values`.
+  virtual void sample(const ProbeContext& context, std::span<double> values) = 0;
+  // Optional per-step work (e.g. an extreme over every step, not only the samples).
+  virtual void register_stages(TimeLoop& /*loop*/) {}
+};
+
+}  // namespace erythro::sim

@@ -1,0 +1,14 @@
+#pragma once
+// Fluid diagnostics at every sample (physical units, per metre of depth):
+// total_mass_kg_per_m (Σρ h²ρ0), kinetic_energy_J_per_m (½Σρ|u|²), max_speed_um_s, max_mach.
+#include "simulation/probe.hpp"
+
+namespace erythro::sim {
+
+class FluidProbe : public Probe {
+ public:
+  void declare(std::vector<SeriesInfo>& series) const override;
+  void sample(const ProbeContext& context, std::span<double> values) override;
+};
+
+}  // namespace erythro::sim

@@ -1,0 +1,36 @@
+#include "simulation/series_recorder.hpp"
+
+#include <stdexcept>
+
+namespace erythro::sim {
+
+void SeriesRecorder::on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) {
+  scene_text_ = scene.source_text;
+  setup_ = setup;
+}
+
+void SeriesRecorder::on_series_declared(std::span<const SeriesInfo> series) {
+  declared_.assign(series.begin(), series.end());
+  values_.assign(series.size(), {});
+  for (std::size_t k = 0; k < series.size(); ++k) column_[series[k].name] = k;
+}
+
+void SeriesRecorder::on_sample(long /*step*/, std::span<const double> values) {
+  for (std::size_t k = 0; k < values.size() && k < values_.size(); ++k) values_[k].push_back(values[k]);
+}
+
+void SeriesRecorder::on_cells(long step, const membrane::ImmersedCells& cells) {
+  if (!keep_cells_) return;
+  CellsSnapshot s;
+  s.step = step;
+  for (int c = 0; c < cells.cell_count(); ++c) s.cells.push_back(cells.polygon(c));
+  snapshots_.push_back(std::move(s));
+}
+
+const std::vector<double>& SeriesRecorder::series(const std::string& name) const {
+  const auto it = column_.find(name);
+  if (it == column_.end()) throw std::out_of_range("SeriesRecorder: no diagnostics series '" + name + "'");
+  return values_[it->second];
+}
+
+}  // namespace erythro::sim

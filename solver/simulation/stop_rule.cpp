@@ -1,0 +1,58 @@
+#include "simulation/stop_rule.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "common/error.hpp"
+
+namespace erythro::sim {
+
+StopRule::StopRule(const scene::StopWhenSpec& spec, std::size_t index, std::span<const SeriesInfo> series,
+                   const std::string& scene_origin)
+    : spec_(spec), rule_index_(index) {
+  const auto it = std::find_if(series.begin(), series.end(), [&](const SeriesInfo& s) { return s.name == spec.series; });
+  if (it == series.end()) {
+    std::string names;
+    for (const SeriesInfo& s : series) names += (names.empty() ? "" : ", ") + s.name;
+    throw InputError(scene_origin + ": key 'stop_when[" + std::to_string(index) + "].series' = \"" + spec.series +
+                     "\" names no diagnostics series of this scene (its series: " + names + ")");
+  }
+  column_ = static_cast<std::size_t>(it - series.begin());
+}
+
+bool StopRule::check(long step, std::span<const double> row) {
+  const double v = row[column_];
+  std::ostringstream why;
+  bool holds = false;
+  if (spec_.change_below) {
+    // The latest earlier sample at least window_steps before this one.
+    const auto at = std::upper_bound(steps_.begin(), steps_.end(), step - spec_.window_steps);
+    if (at != steps_.begin()) {
+      const std::size_t k = static_cast<std::size_t>(at - steps_.begin()) - 1;
+      const double change = std::abs(v - values_[k]);
+      holds = change < *spec_.change_below;
+      why << spec_.series << " changed by " << change << " < " << *spec_.change_below << " over "
+          << step - steps_[k] << " steps";
+    }
+    steps_.push_back(step);
+    values_.push_back(v);
+  } else if (spec_.below) {
+    holds = v < *spec_.below;
+    why << spec_.series << " = " << v << " < " << *spec_.below;
+  } else if (spec_.above) {
+    holds = v > *spec_.above;
+    why << spec_.series << " = " << v << " > " << *spec_.above;
+  }
+  if (step < spec_.min_steps) return false;
+  if (triggered_at_ < 0 && holds) {
+    triggered_at_ = step;
+    std::ostringstream d;
+    d << "stop_when[" << rule_index_ << "]: " << why.str() << " at step " << step;
+    if (spec_.after_steps > 0) d << ", then " << spec_.after_steps << " steps more";
+    diagnosis_ = d.str();
+  }
+  return triggered_at_ >= 0 && step >= triggered_at_ + spec_.after_steps;
+}
+
+}  // namespace erythro::sim

@@ -1,0 +1,34 @@
+#pragma once
+// A [[stop_when]] rule (scene.hpp StopWhenSpec): evaluated at every diagnostics sample
+// on one named series; once its condition holds (and min_steps has passed), the run
+// ends after_steps later with status "stopped" and a diagnosis naming the rule.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scene/scene.hpp"
+#include "simulation/probe.hpp"
+
+namespace erythro::sim {
+
+class StopRule {
+ public:
+  // Throws InputError (naming the scene key) when the series is not among `series`.
+  StopRule(const scene::StopWhenSpec& spec, std::size_t index, std::span<const SeriesInfo> series,
+           const std::string& scene_origin);
+
+  // Shown the row of values of the sample after `step` steps; true when the run ends now.
+  bool check(long step, std::span<const double> row);
+  // "stop_when[0]: cell_0_taylor_deformation changed by 8.2e-05 < 0.0001 over 1000 steps at step 9000"
+  const std::string& diagnosis() const { return diagnosis_; }
+
+ private:
+  scene::StopWhenSpec spec_;
+  std::size_t rule_index_ = 0, column_ = 0;
+  std::vector<long> steps_;      // earlier samples (change_below only)
+  std::vector<double> values_;
+  long triggered_at_ = -1;
+  std::string diagnosis_;
+};
+
+}  // namespace erythro::sim
