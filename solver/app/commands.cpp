@@ -8,7 +8,7 @@
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/baseline_compare.hpp"
-#include "io/run_writer.hpp"
+#include "io/scene_run.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
 #include "simulation/simulation.hpp"
@@ -58,23 +58,13 @@ int run_command(const RunOptions& options) {
         options.out_dir.empty() ? (fs::path("out") / fs::path(options.scene_path).stem()).string() : options.out_dir;
     prepare_output_folder(out_dir, options.force);
 
-    sim::Simulation simulation(std::move(scene), setup);
-    io::RunWriter writer(out_dir);
     ProgressDisplay progress(options.quiet);
-    sim::ObserverList observers;
-    observers.add(writer);
-    observers.add(progress);
-    sim::RunSummary summary;
-    try {
-      summary = simulation.run(observers);
-    } catch (const std::exception& e) {
-      writer.abort(e.what());
-      throw;
-    }
-    std::cout << "results: " << writer.h5_path() << "\n" << "fields:  " << writer.xdmf_path() << "\n";
-    if (summary.status == sim::RunStatus::diverged) {
-      std::cerr << "erythro: " << summary.diagnosis << "\n"
-                << "erythro: everything up to the last healthy output is in " << writer.h5_path() << "\n";
+    const io::SceneRunResult run = io::run_scene(std::move(scene), setup, out_dir, {&progress});
+    std::cout << "results: " << run.h5_path << "\n" << "fields:  " << run.xdmf_path << "\n";
+    if (run.summary.status == sim::RunStatus::stopped) std::cout << "stopped: " << run.summary.diagnosis << "\n";
+    if (run.summary.status == sim::RunStatus::diverged) {
+      std::cerr << "erythro: " << run.summary.diagnosis << "\n"
+                << "erythro: everything up to the last healthy output is in " << run.h5_path << "\n";
       return exit_code::diverged;
     }
     return exit_code::ok;

@@ -69,6 +69,7 @@ Handle open_group(hid_t parent, const std::string& name) {
 }
 
 bool exists(hid_t parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
+bool has_attr(hid_t obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
 
 namespace {
 // Replaces attribute `name` of obj with `value` (of HDF5 type `type`, shape `space`).
@@ -202,15 +203,18 @@ AppendableSeries::AppendableSeries(hid_t parent, const std::string& name) {
                     H5Dclose);
 }
 
-void AppendableSeries::append(double value) {
-  const hsize_t new_size = size_ + 1, offset = size_, one = 1;
+void AppendableSeries::append(double value) { append(std::span<const double>(&value, 1)); }
+
+void AppendableSeries::append(std::span<const double> values) {
+  if (values.empty()) return;
+  const hsize_t count = values.size(), new_size = size_ + count, offset = size_;
   check_status(H5Dset_extent(dataset_.id(), &new_size), "cannot extend series");
   Handle file_space(check(H5Dget_space(dataset_.id()), "dataspace"), H5Sclose);
-  check_status(H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, &offset, nullptr, &one, nullptr), "hyperslab");
-  Handle mem_space(check(H5Screate_simple(1, &one, nullptr), "dataspace"), H5Sclose);
-  check_status(H5Dwrite(dataset_.id(), H5T_NATIVE_DOUBLE, mem_space.id(), file_space.id(), H5P_DEFAULT, &value),
+  check_status(H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, &offset, nullptr, &count, nullptr), "hyperslab");
+  Handle mem_space(check(H5Screate_simple(1, &count, nullptr), "dataspace"), H5Sclose);
+  check_status(H5Dwrite(dataset_.id(), H5T_NATIVE_DOUBLE, mem_space.id(), file_space.id(), H5P_DEFAULT, values.data()),
                "cannot append to series");
-  ++size_;
+  size_ += values.size();
 }
 
 std::vector<std::string> list(hid_t group) {
@@ -221,6 +225,17 @@ std::vector<std::string> list(hid_t group) {
   };
   H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names);
   std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::vector<std::string> attribute_names(hid_t obj) {
+  std::vector<std::string> names;
+  auto collect = [](hid_t, const char* name, const H5A_info_t*, void* out) -> herr_t {
+    static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+    return 0;
+  };
+  check_status(H5Aiterate2(obj, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names),
+               "cannot list the attributes of " + object_name(obj));
   return names;
 }
 

@@ -4,6 +4,7 @@
 #include <hdf5.h>
 
 #include <initializer_list>
+#include <span>
 #include <string>
 #include <utility>
 #include <variant>
@@ -35,7 +36,8 @@ Handle create_file(const std::string& path);  // truncates
 Handle open_file_read(const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 Handle open_group(hid_t parent, const std::string& name);
-bool exists(hid_t parent, const std::string& name);
+bool exists(hid_t parent, const std::string& name);         // a link (group, dataset)
+bool has_attr(hid_t obj, const std::string& name);
 
 void write_attr(hid_t obj, const std::string& name, double value);
 void write_attr(hid_t obj, const std::string& name, long value);
@@ -62,6 +64,7 @@ class AppendableSeries {
  public:
   AppendableSeries(hid_t parent, const std::string& name);
   void append(double value);
+  void append(std::span<const double> values);  // one extension and one write for a block
   std::size_t size() const { return size_; }
   hid_t id() const { return dataset_.id(); }  // the dataset (for its attributes)
 
@@ -72,6 +75,8 @@ class AppendableSeries {
 
 // Names of the objects directly inside a group, sorted.
 std::vector<std::string> list(hid_t group);
+// Names of the attributes of an object, in creation order.
+std::vector<std::string> attribute_names(hid_t obj);
 
 // Turns off HDF5's automatic error printing (errors become exceptions instead).
 void silence_errors();

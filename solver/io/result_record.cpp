@@ -1,5 +1,6 @@
 #include "io/result_record.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -122,6 +123,13 @@ void write_runs(hid_t root, const std::vector<std::map<std::string, Value>>& run
 
 }  // namespace
 
+void ResultRecord::add_run(std::map<std::string, Value> row, const std::string& scene_text) {
+  auto it = std::find(scenes_.begin(), scenes_.end(), scene_text);
+  if (it == scenes_.end()) it = scenes_.insert(scenes_.end(), scene_text);
+  row["scene_index"] = static_cast<double>(it - scenes_.begin());
+  runs_.push_back(std::move(row));
+}
+
 void ResultRecord::write(const std::string& path) const {
   const std::string tmp = temporary_path_for(path);
   {
@@ -178,6 +186,9 @@ void ResultRecord::write(const std::string& path) const {
       h5::write_dataset(g.id(), "error", s.error);
       h5::write_dataset(g.id(), "label", s.label);
     }
+
+    h5::Handle scenes = h5::create_group(root, "scenes");
+    if (!scenes_.empty()) h5::write_dataset(scenes.id(), "texts", scenes_);
 
     h5::Handle series = h5::create_group(root, "series");
     for (const auto& s : series_) {

@@ -15,6 +15,9 @@
 //                     observed_order, order_tolerance, asymptotic (0|1), asymptotic_rule
 //   /speed_error/<s>  datasets wall_time_s, error, label
 //   /series/<s>       datasets x, y (and y_reference if given); attrs xlabel, ylabel, title
+//   /scenes/texts     string dataset: the scene text (TOML after overrides) of every
+//                     distinct scene the case ran; a run row's `scene_index` column
+//                     names its entry (runs added with add_run(row, scene_text))
 #include <map>
 #include <string>
 #include <variant>
@@ -79,6 +82,11 @@ class ResultRecord {
 
   // Adds a row to the /runs table; every row should have the same columns.
   void add_run(const std::map<std::string, Value>& row) { runs_.push_back(row); }
+  // The same for a run of a scene: its text is kept once in /scenes and the row gets a
+  // `scene_index` column pointing at it.
+  void add_run(std::map<std::string, Value> row, const std::string& scene_text);
+  // Texts of the scenes the case ran, in order of first use.
+  const std::vector<std::string>& scenes() const { return scenes_; }
   // Adds a metric and returns whether it passed.
   bool add_metric(const Metric& metric);
   void add_convergence(const ConvergenceSeries& series) { convergence_.push_back(series); }
@@ -107,6 +115,7 @@ class ResultRecord {
   std::vector<ConvergenceSeries> convergence_;
   std::vector<SpeedErrorSeries> speed_error_;
   std::vector<Series> series_;
+  std::vector<std::string> scenes_;
   double wall_time_s_ = 0.0;
 };
 

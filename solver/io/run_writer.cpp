@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
@@ -122,7 +123,25 @@ void RunWriter::on_series_declared(std::span<const sim::SeriesInfo> series) {
 }
 
 void RunWriter::on_sample(long /*step*/, std::span<const double> values) {
-  for (std::size_t k = 0; k < values.size() && k < series_.size(); ++k) series_[k]->append(values[k]);
+  // Buffered: written in blocks (every kFlushSamples samples or kFlushSeconds of wall
+  // time, and at every field output and at the end), so a run with many samples does not
+  // pay one HDF5 extension per value, and a killed run loses at most one block.
+  if (pending_.size() < series_.size()) pending_.resize(series_.size());
+  for (std::size_t k = 0; k < values.size() && k < series_.size(); ++k) pending_[k].push_back(values[k]);
+  ++pending_samples_;
+  const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count();
+  if (pending_samples_ >= kFlushSamples || since >= kFlushSeconds) flush_samples();
+}
+
+void RunWriter::flush_samples() {
+  last_flush_ = std::chrono::steady_clock::now();
+  if (pending_samples_ == 0) return;
+  for (std::size_t k = 0; k < pending_.size(); ++k) {
+    series_[k]->append(pending_[k]);
+    pending_[k].clear();
+  }
+  pending_samples_ = 0;
+  H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
 }
 
 h5::Handle RunWriter::frame_group(long step) {
@@ -136,6 +155,7 @@ h5::Handle RunWriter::frame_group(long step) {
 }
 
 void RunWriter::on_transport_fields(long step, const sim::TransportFields& f) {
+  flush_samples();
   h5::Handle frame = frame_group(step);
   const Grid& g = setup_.grid;
   const std::vector<hsize_t> shape{static_cast<hsize_t>(g.ny), static_cast<hsize_t>(g.nx)};
@@ -148,6 +168,7 @@ void RunWriter::on_transport_fields(long step, const sim::TransportFields& f) {
 }
 
 void RunWriter::on_fields(long step, const fluid::Moments& m) {
+  flush_samples();
   const auto& s = setup_.scales;
   const Grid& g = setup_.grid;
   h5::Handle frame = frame_group(step);
@@ -196,6 +217,7 @@ void RunWriter::on_cells(long step, const membrane::ImmersedCells& cells) {
 }
 
 void RunWriter::on_finish(const sim::RunSummary& summary) {
+  flush_samples();
   h5::Handle meta = h5::open_group(file_.id(), "metadata");
   h5::write_attrs(meta.id(), {{"status", sim::to_string(summary.status)},
                               {"diagnosis", summary.diagnosis},
@@ -218,6 +240,7 @@ void RunWriter::on_finish(const sim::RunSummary& summary) {
 void RunWriter::abort(const std::string& reason) {
   if (committed_) return;
   if (file_.valid()) {
+    flush_samples();
     if (h5::exists(file_.id(), "metadata")) {
       h5::Handle meta = h5::open_group(file_.id(), "metadata");
       h5::write_attr(meta.id(), "status", "aborted: " + reason);

@@ -14,7 +14,7 @@
 //                     description), one entry per sample: step, time_s; with a fluid
 //                     total_mass_kg_per_m, kinetic_energy_J_per_m, max_speed_um_s, max_mach;
 //                     with moving cells, per cell c: cell_<c>_area_change, _taylor_deformation,
-//                     _inclination_deg, _centroid_x_um, _centroid_y_um, _max_edge_strain,
+//                     _orientation_deg, _inclination_deg, _centroid_x_um, _centroid_y_um, _max_edge_strain,
 //                     _marker_phase_deg, _marker0_angle_deg, and cells_max_area_change,
 //                     cells_max_edge_strain (simulation/probes/cell_shape_probe.hpp);
 //                     with [transport]: <species>_mean_uM, <species>_mass_balance_residual,
@@ -28,6 +28,7 @@
 //                     lower-left corner, unwrapped across periodic sides; cell c owns rows
 //                     offsets[c] … offsets[c+1] − 1 of
 //                     offsets (cells + 1) [marker index]; attrs step, time_s, cells
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -60,6 +61,7 @@ class RunWriter : public sim::RunObserver {
 
  private:
   void close_and_commit();
+  void flush_samples();  // writes the buffered samples and flushes the file
   h5::Handle frame_group(long step);  // /fields/<step>, created (and listed for XDMF) once
 
   std::string out_dir_;
@@ -67,6 +69,11 @@ class RunWriter : public sim::RunObserver {
   h5::Handle file_;
   h5::Handle diagnostics_group_, fields_group_, cells_group_;
   std::vector<std::unique_ptr<h5::AppendableSeries>> series_;  // one per declared series, in order
+  static constexpr std::size_t kFlushSamples = 256;
+  static constexpr double kFlushSeconds = 2.0;
+  std::vector<std::vector<double>> pending_;  // per series, samples not yet written
+  std::size_t pending_samples_ = 0;
+  std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   std::vector<XdmfFrame> frames_;
   XdmfGrid xdmf_grid_;
   bool write_density_ = true, write_velocity_ = true;

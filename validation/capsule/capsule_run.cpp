@@ -1,21 +1,95 @@
 #include "capsule_run.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 
-#include "fluid/fluid_lattice.hpp"
-#include "geometry/shapes.hpp"
-#include "membrane/immersed_cells.hpp"
+#include "common/scene_case.hpp"
 
 namespace erythro::vv {
 
-namespace {
-using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-}  // namespace
+CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, const std::string& label) {
+  // The physical set-up of one level: a = 4 µm in plasma (capsule.toml), h = a/(a/h),
+  // γ̇ from the particle Reynolds number γ̇a²/ν, E_s from G = μγ̇a/E_s.
+  constexpr double a_um = 4.0;
+  const scene::Scene base = case_scene("validation/capsule/capsule.toml");
+  const double mu = base.fluid.viscosity_cP * 1e-3, nu = mu / base.fluid.density_kg_m3;
+  const double h_um = a_um / c.radius;
+  const int nx = static_cast<int>(std::lround(c.length * c.radius));
+  const int ny = static_cast<int>(std::lround(c.height * c.radius));
+  const double shear_rate = c.reynolds * nu / (a_um * a_um * 1e-12);  // 1/s
+  const double U = 0.5 * shear_rate * ny * h_um;                       // µm/s
+  const double Es_dyn_cm = mu * shear_rate * a_um * 1e-6 / c.capillary * 1e3;
+  const long markers = std::lround(c.markers_per_radius * c.radius);
+  std::vector<std::string> set_up = {
+      set("domain.spacing_um", h_um),
+      set("domain.size_um", nx * h_um, ny * h_um),
+      set("boundaries.bottom.velocity_um_s", -U, 0.0),
+      set("boundaries.top.velocity_um_s", U, 0.0),
+      set("membrane.shear_modulus_dyn_cm", Es_dyn_cm),
+      set("membrane.kernel", "\"" + std::string(ib::to_string(c.kernel)) + "\""),
+      set("cells[0].radius_um", a_um),
+      // Centre mid-channel, 0.123 h off the lattice symmetry in x.
+      set("cells[0].center_um", (0.5 * nx + 0.123) * h_um, 0.5 * ny * h_um),
+      set("cells[0].markers", markers)};
+  // Lattice shear rate, then the run length, sampling (0.1 strain units) and the stop rule
+  // (|ΔD| over one strain unit, once the strain is min_strain) in steps.
+  const double gamma = scene::derive_lattice(case_scene("validation/capsule/capsule.toml", set_up)).scales.time_s *
+                       shear_rate;
+  const long sample_every = std::max(1L, std::lround(0.1 / gamma));
+  set_up.push_back(set("run.steps", std::lround(c.max_strain / gamma)));
+  set_up.push_back(set("output.diagnostics_interval_steps", sample_every));
+  set_up.push_back(set("stop_when[0].change_below", c.steady_drift));
+  set_up.push_back(set("stop_when[0].window_steps", 10 * sample_every));
+  set_up.push_back(set("stop_when[0].min_steps", static_cast<long>(std::ceil(c.min_strain / gamma))));
+  const CaseRun run = run_case_scene(case_scene("validation/capsule/capsule.toml", set_up), case_name, label);
+
+  CapsuleResult r;
+  r.scene_text = run.file.scene_text();
+  r.shear_rate = gamma;
+  r.markers = static_cast<int>(markers);
+  r.steps = run.summary.steps;
+  r.wall_time_s = run.wall_time_s;
+  r.t_forces = run.file.stage_seconds("membrane_forces");
+  r.t_zero = run.file.stage_seconds("force_field_reset");
+  r.t_spread = run.file.stage_seconds("spreading");
+  r.t_fluid = run.file.stage_seconds("fluid_step");
+  r.t_moments = run.file.stage_seconds("interpolation");
+  r.t_move = run.file.stage_seconds("marker_advection");
+  const auto& step = run.file.series("step");
+  const auto& D = run.file.series("cell_0_taylor_deformation");
+  const auto& theta = run.file.series("cell_0_orientation_deg");
+  const auto& phase = run.file.series("cell_0_marker_phase_deg");
+  for (std::size_t k = 1; k < step.size(); ++k) {  // every sample after the start
+    r.strain_history.push_back(step[k] * gamma);
+    r.D_history.push_back(D[k]);
+    r.theta_history.push_back(theta[k]);
+  }
+  const std::size_t k = r.D_history.size();
+  if (!run.ok() || k < 12) {
+    r.diverged = true;
+    r.diagnosis = run.ok() ? "fewer than 12 samples" : run.summary.diagnosis;
+    return r;
+  }
+  r.strain = r.strain_history.back();
+  r.drift = std::abs(r.D_history[k - 1] - r.D_history[k - 11]);  // 10 samples = 1 strain unit
+  // Steady values: means over the last strain unit (10 samples) smooth the marker jitter.
+  for (std::size_t i = k - 10; i < k; ++i) {
+    r.D += r.D_history[i] / 10.0;
+    r.theta_deg += r.theta_history[i] / 10.0;
+  }
+  // Tank-treading period T: in steady tank-treading a marker at angle φ moves at ω(φ) and
+  // the markers (equally spaced in the Lagrangian label) have density ∝ 1/ω(φ), so the
+  // mean of ω over all markers is 2π / ∮dφ/ω = 2π/T exactly. The mean marker phase over
+  // the last strain unit gives that mean rate (degrees per strain unit).
+  const std::size_t last = phase.size() - 1, first = last - 10;
+  const double rate = (phase[last] - phase[first]) / ((step[last] - step[first]) * gamma);
+  r.tt_period = 360.0 / std::abs(rate);  // in units of 1/γ̇
+  r.area_change = run.file.series("cell_0_area_change").back();
+  const double cy_um = run.file.series("cell_0_centroid_y_um").back();
+  r.centre_drift = std::abs(cy_um - 0.5 * ny * h_um) / a_um;
+  return r;
+}
 
 fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau) {
   const double U = 0.5 * gamma * ny;
@@ -29,116 +103,6 @@ fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau)
     for (int i = 0; i < nx; ++i) ux[static_cast<std::size_t>(j) * nx + i] = gamma * (j + 0.5 - 0.5 * ny);
   lat.initialize(rho, ux, uy);
   return lat;
-}
-
-CapsuleResult run_capsule(const CapsuleConfig& c) {
-  using namespace membrane;
-  using namespace geometry;
-  const auto t_start = Clock::now();
-  const int nx = static_cast<int>(std::lround(c.length * c.radius));
-  const int ny = static_cast<int>(std::lround(c.height * c.radius));
-  const double nu = (c.tau - 0.5) / 3.0;
-  const double gamma = c.reynolds * nu / (c.radius * c.radius);  // Re = γ̇a²/ν
-  fluid::FluidLattice lat = make_shear_lattice(nx, ny, gamma, c.tau);
-
-  CapsuleResult r;
-  r.shear_rate = gamma;
-  r.modulus = nu * gamma * c.radius / c.capillary;  // G = μγ̇a/E_s, μ = ρ0ν = ν
-  const int n = static_cast<int>(std::lround(c.markers_per_radius * c.radius));
-  r.markers = n;
-  ImmersedCells cells(c.kernel, lat);
-  // Centre mid-channel, slightly off the lattice symmetry in x; marker 0 off the axes.
-  const double xc0 = 0.5 * nx + 0.123, yc0 = 0.5 * ny;
-  const Polygon shape = transformed(circle(n, c.radius), 1.0, 0.01, xc0, yc0);
-  RestShape rest = RestShape::from_polygon(shape);  // stress-free: no prestress
-  const MembraneModel model{{TensionLawType::neo_hookean, r.modulus}, 0.0, 0.0};
-  cells.add_cell(shape, rest, model);
-  const double A0 = signed_area(shape);
-  // The IB cycle of ImmersedCells::advance, called piece by piece so each part can be
-  // timed; zeroing the force field (grid work) and spreading (marker work) are timed
-  // apart, as spread_forces() = zero + add_spread_forces().
-  lat.enable_force_field();
-
-  const double steps_per_strain = 1.0 / gamma;
-  const long sample_every = std::max(1L, std::lround(0.1 * steps_per_strain));
-  const long max_steps = std::lround(c.max_strain * steps_per_strain);
-  // Unwrapped angle of every marker about the centroid (tank-treading), per sample.
-  std::vector<double> phase(static_cast<std::size_t>(n), 0.0), last_angle(static_cast<std::size_t>(n), 0.0);
-  std::vector<std::vector<double>> phase_history;
-  for (long s = 1; s <= max_steps; ++s) {
-    auto t0 = Clock::now();
-    cells.compute_forces();
-    r.t_forces += since(t0);
-    t0 = Clock::now();
-    std::fill(lat.force_x().begin(), lat.force_x().end(), 0.0);
-    std::fill(lat.force_y().begin(), lat.force_y().end(), 0.0);
-    r.t_zero += since(t0);
-    t0 = Clock::now();
-    cells.add_spread_forces(lat);
-    r.t_spread += since(t0);
-    t0 = Clock::now();
-    lat.step();
-    r.t_fluid += since(t0);
-    t0 = Clock::now();
-    cells.support_velocity(lat);
-    r.t_moments += since(t0);
-    t0 = Clock::now();
-    try {
-      cells.move_markers(cells.support_ux(), cells.support_uy());
-    } catch (const std::domain_error&) {
-      r.diverged = true;
-      break;
-    }
-    cells.wrap_periodic();
-    r.t_move += since(t0);
-    r.steps = s;
-    if (s % sample_every != 0) continue;
-    const Polygon p = cells.polygon(0);
-    double D, th;
-    taylor_deformation(p, D, th);
-    double cx, cy;
-    centroid(p, cx, cy);
-    for (std::size_t m = 0; m < p.size(); ++m) {
-      const double ang = std::atan2(p.y[m] - cy, p.x[m] - cx);
-      double d = phase_history.empty() ? 0.0 : ang - last_angle[m];
-      d -= 2.0 * std::numbers::pi * std::round(d / (2.0 * std::numbers::pi));
-      phase[m] += d;
-      last_angle[m] = ang;
-    }
-    if (!std::isfinite(D) || std::abs(signed_area(p) / A0 - 1.0) > 0.2) { r.diverged = true; break; }
-    const double strain = static_cast<double>(s) * gamma;
-    r.strain_history.push_back(strain);
-    r.D_history.push_back(D);
-    r.theta_history.push_back(th);
-    phase_history.push_back(phase);
-    const std::size_t k = r.D_history.size();
-    if (k > 10) {
-      r.drift = std::abs(D - r.D_history[k - 11]);  // 10 samples = 1 strain unit
-      if (strain >= c.min_strain && r.drift < c.steady_drift) break;
-    }
-  }
-  r.wall_time_s = since(t_start);
-  if (r.diverged || r.D_history.size() < 12) { r.diverged = true; return r; }
-  const std::size_t k = r.D_history.size();
-  r.strain = r.strain_history.back();
-  // Steady values: means over the last strain unit (10 samples) smooth the marker jitter.
-  r.D = 0;
-  r.theta_deg = 0;
-  for (std::size_t i = k - 10; i < k; ++i) { r.D += r.D_history[i] / 10.0; r.theta_deg += r.theta_history[i] / 10.0; }
-  // Tank-treading period T: in steady tank-treading a marker at angle φ moves at
-  // ω(φ) and the markers (equally spaced in the Lagrangian label) have density
-  // ∝ 1/ω(φ), so the mean of ω over all markers is 2π / ∮dφ/ω = 2π/T exactly.
-  // Mean over markers and over the last strain unit:
-  double rate = 0;
-  for (std::size_t m = 0; m < phase.size(); ++m) rate += phase_history[k - 1][m] - phase_history[k - 11][m];
-  rate /= static_cast<double>(phase.size()) * (r.strain_history[k - 1] - r.strain_history[k - 11]);
-  r.tt_period = 2.0 * std::numbers::pi / std::abs(rate);  // in units of 1/γ̇
-  const Polygon p = cells.polygon(0);
-  r.area_change = signed_area(p) / A0 - 1.0;
-  double cx, cy;
-  centroid(p, cx, cy);
-  r.centre_drift = std::abs(cy - yc0) / c.radius;
-  return r;
 }
 
 }  // namespace erythro::vv

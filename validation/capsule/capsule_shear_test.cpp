@@ -61,8 +61,11 @@ struct Bookkeeping {
   std::vector<double> run_markers = {}, run_marker_us = {};  // marker work per step (µs) against marker count
 
   vv::CapsuleResult run(const vv::CapsuleConfig& c, const std::string& role) {
-    const auto r = vv::run_capsule(c);
-    EXPECT_FALSE(r.diverged) << role << " a/h=" << c.radius;
+    const std::string label = role + "_" + std::string(ib::to_string(c.kernel)) + fmt("_G%g", c.capillary) +
+                              fmt("_a%g", c.radius) + fmt("_Re%g", c.reynolds) + fmt("_H%g", c.height) +
+                              fmt("_L%g", c.length);
+    const auto r = vv::run_capsule(c, record.case_name(), label);
+    EXPECT_FALSE(r.diverged) << role << " a/h=" << c.radius << ": " << r.diagnosis;
     if (r.strain >= c.max_strain - 0.05) ++capped;
     max_area = std::max(max_area, std::abs(r.area_change));
     t_forces += r.t_forces;
@@ -97,7 +100,8 @@ struct Bookkeeping {
                     {"t_zero_force_field_s", r.t_zero},
                     {"t_spread_s", r.t_spread},
                     {"t_moments_s", r.t_moments},
-                    {"t_interpolate_move_s", r.t_move}});
+                    {"t_interpolate_move_s", r.t_move}},
+                   r.scene_text);
     std::printf("%-10s %-8s G=%.3f a/h=%4.1f Re=%.3f H=%2.0f Lx=%2.0f  D=%.5f th=%6.3f T=%.2f strain=%.1f drift=%.1e %.1fs\n",
                 role.c_str(), std::string(ib::to_string(c.kernel)).c_str(), c.capillary, c.radius, c.reynolds, c.height,
                 c.length, r.D, r.theta_deg, r.tt_period, r.strain, r.drift, r.wall_time_s);

@@ -39,7 +39,8 @@ void CellShapeProbe::declare(std::vector<SeriesInfo>& series) const {
     const std::string p = "cell_" + std::to_string(c) + "_";
     series.push_back({p + "area_change", "", "A/A0 - 1 of the membrane polygon"});
     series.push_back({p + "taylor_deformation", "", "(L - B)/(L + B) of the ellipse with the same area moments"});
-    series.push_back({p + "inclination_deg", "deg", "long axis of that ellipse from +x, continued"});
+    series.push_back({p + "orientation_deg", "deg", "long axis of that ellipse from +x, in (-90, 90]"});
+    series.push_back({p + "inclination_deg", "deg", "the same, continued across +-90 deg from its first value"});
     series.push_back({p + "centroid_x_um", "um", "area centroid x (unwrapped)"});
     series.push_back({p + "centroid_y_um", "um", "area centroid y (unwrapped)"});
     series.push_back({p + "max_edge_strain", "", "max over edges of |l/l0 - 1|"});
@@ -93,6 +94,7 @@ void CellShapeProbe::sample(const ProbeContext& context, std::span<double> value
     for (double ph : s.phase) mean_phase += ph / static_cast<double>(p.size());
     values[k++] = dA;
     values[k++] = D;
+    values[k++] = theta;
     values[k++] = s.theta;
     values[k++] = cx * um;
     values[k++] = cy * um;

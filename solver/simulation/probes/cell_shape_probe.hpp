@@ -4,8 +4,10 @@
 //   cell_c_area_change        A/A0 − 1 (A0: the rest shape's area)
 //   cell_c_taylor_deformation D = (L − B)/(L + B) of the ellipse with the same second
 //                             area moments (geometry::taylor_deformation)
-//   cell_c_inclination_deg    that ellipse's long axis from +x, continued across ±90°
-//                             (the axis is defined modulo 180°)
+//   cell_c_orientation_deg    that ellipse's long axis from +x, in (−90°, 90°]
+//   cell_c_inclination_deg    the same, continued across ±90° from its first value (the
+//                             axis is defined modulo 180°: for tumbling; its first value is
+//                             arbitrary for a circle)
 //   cell_c_centroid_x_um, cell_c_centroid_y_um
 //                             area centroid (unwrapped across periodic sides as the markers)
 //   cell_c_max_edge_strain    max over edges of |ℓ/ℓ0 − 1| (ℓ0: rest edge length)
