@@ -31,10 +31,11 @@ if [[ ${#tests[@]} -gt 0 ]]; then
   ctest --test-dir "$build" -L "$label" -R "$regex" --output-on-failure -j "$(nproc)" \
     --output-junit "$out/ctest-$label.junit.xml" || status=1
 fi
-if [[ $k == 1 && $label == full ]] && ctest --test-dir "$build" -N -L benchmark | grep -q "Total Tests: [1-9]"; then
+mapfile -t benchmarks < <(ctest --test-dir "$build" -N -L benchmark | sed -n 's/^ *Test *#[0-9]*: //p')
+if [[ $k == 1 && $label == full && ${#benchmarks[@]} -gt 0 ]]; then
   ctest --test-dir "$build" -L benchmark --output-on-failure \
     --output-junit "$out/ctest-benchmark.junit.xml" || status=1
-  mapfile -t -O "${#tests[@]}" tests < <(ctest --test-dir "$build" -N -L benchmark | sed -n 's/^ *Test *#[0-9]*: //p')
+  tests+=("${benchmarks[@]}")
 fi
 for t in "${tests[@]}"; do
   for f in "$results/$t.h5" "$results/regression/${t#regression.}.txt"; do

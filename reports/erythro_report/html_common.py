@@ -42,7 +42,8 @@ h1 .badge { font-size: 1.1rem; padding: .1rem .6rem; }
 .reason { font-style: italic; }
 .src { color: #8a6d00; }
 td.key { font-size: .82rem; }
-.bar { display: inline-block; height: .7rem; background: #7a9cc6; border-radius: 2px; vertical-align: middle; }
+.bar { display: inline-block; height: .7rem; background: #7a9cc6; border-radius: 2px;
+       vertical-align: middle; }
 td.barcell { width: 38%; }
 dl.meta { display: grid; grid-template-columns: max-content auto; gap: .1rem 1rem; font-size: .85rem; }
 dl.meta dt { font-weight: 600; color: #444; }

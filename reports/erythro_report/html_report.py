@@ -82,7 +82,8 @@ def _regression_check(check):
                     f"<td>{esc(d.verdict_text)}</td><td class='num'>{esc(fmt.number(d.max_abs, 3))}</td>"
                     f"<td class='num'>{esc(fmt.number(d.max_rel, 3))}</td>"
                     f"<td class='num'>{esc(fmt.number(d.atol, 3))}</td>"
-                    f"<td class='num'>{esc(fmt.number(d.rtol, 3))}</td><td class='desc'>{esc(note)}</td></tr>")
+                    f"<td class='num'>{esc(fmt.number(d.rtol, 3))}</td>"
+                    f"<td class='desc'>{esc(note)}</td></tr>")
     table = ("<table class='full'><tr><th>Dataset</th><th>Verdict</th><th>Result</th>"
              "<th class='num'>max |diff|</th><th class='num'>max rel</th><th class='num'>atol</th>"
              f"<th class='num'>rtol</th><th>Note</th></tr>{''.join(rows)}</table>") if rows else ""

@@ -48,7 +48,8 @@ def _families(report):
         rows.append(f"<tr><td>regression checks</td><td class='num'>{len(report.regression)}</td>"
                     f"<td class='num {'fail' if moved else 'pass'}'>{passed}</td>"
                     f"<td class='num {'fail' if moved else ''}'>{moved}</td></tr>")
-    return ("<h2>Verdicts by family</h2><table class='full compact'><tr><th>Family</th><th class='num'>cases</th>"
+    return ("<h2>Verdicts by family</h2><table class='full compact'><tr><th>Family</th>"
+            "<th class='num'>cases</th>"
             f"<th class='num'>passed</th><th class='num'>failed</th></tr>{''.join(rows)}</table>")
 
 
@@ -57,12 +58,15 @@ def _suite_time(report):
     lines = []
     if math.isfinite(t.wall_s):
         runs = fmt.plural(t.n_runs, "ctest run")
-        shards = f" on {len(t.folders)} machines (the slowest shown)" if len(t.folders) > 1 else ""
+        shards = f" in {len(t.folders)} folders side by side, the slowest" if len(t.folders) > 1 else ""
         lines.append(f"<span class='big'>{esc(duration_text(t.wall_s))}</span> wall time "
                      f"({esc(runs)}{esc(shards)})")
-    if t.measured:
-        lines.append(f"sum of test times {esc(duration_text(t.sum_s))} over "
-                     f"{esc(fmt.plural(len(t.tests), 'test'))}")
+        if t.measured:
+            lines.append(f"sum of test times {esc(duration_text(t.sum_s))} over "
+                         f"{esc(fmt.plural(len(t.tests), 'test'))}")
+    elif t.measured:
+        lines.append(f"<span class='big'>{esc(duration_text(t.sum_s))}</span> sum of the case "
+                     "times (no ctest JUnit file, so no wall time)")
     lines.append(f"<span class='desc'>{esc(fmt.time_sources_text(report))}</span>")
     return "<h2>Suite time</h2><p class='tight'>" + "<br>".join(lines) + "</p>"
 

@@ -64,7 +64,8 @@ def _time(report):
     if t.folders:
         lines.append(f"Wall time {duration_text(t.wall_s)} ({fmt.plural(t.n_runs, 'ctest run')}"
                      + (f", {len(t.folders)} folders run side by side" if len(t.folders) > 1 else "")
-                     + f"); sum of test times {duration_text(t.sum_s)} over {fmt.plural(len(t.tests), 'test')}.")
+                     + f"); sum of test times {duration_text(t.sum_s)} over "
+                       f"{fmt.plural(len(t.tests), 'test')}.")
     elif t.measured:
         lines.append(f"Sum of case times {duration_text(t.sum_s)} (no ctest JUnit file found).")
     lines += [fmt.time_sources_text(report), ""]
