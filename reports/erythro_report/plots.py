@@ -18,6 +18,7 @@ DPI = 110
 PANEL_COLUMNS = 3
 PANELS_PER_PAGE = 9        # overview figures: up to a 3 × 3 grid each
 FORMAL_LINE_SHIFT = 0.5    # formal-order line drawn at half the finest error
+MANY_LINES = 8             # more lines than this: a wider figure, the legend on the right
 
 
 def _new_figure(width=6.4, height=4.6):
@@ -52,42 +53,51 @@ def _fit_line(h, e, slope):
 # -- convergence -----------------------------------------------------------------
 
 def convergence_figure(record, path):
-    """All /convergence series of a case: error vs h, fit and formal-order lines."""
-    fig = _new_figure()
-    ax = fig.add_subplot()
-    several = len(record.convergence) > 1
-    drawn = 0
-    for i, series in enumerate(record.convergence):
-        drawn += _draw_convergence(ax, series, f"C{i}", f"{series.name}: " if several else "")
-    if not drawn:
+    """All /convergence series of a case: error vs h, fit and formal-order lines.
+
+    One legend entry per series ("name: slope p", marker and fit line) and one for the
+    dashed formal-order lines; with many series the legend goes to the right."""
+    series = [s for s in record.convergence if len(_log_points(s.h, s.error)[0])]
+    if not series:
         return False
-    norms = sorted({s.norm for s in record.convergence if s.norm})
+    many = len(series) > MANY_LINES
+    fig = _new_figure(9.5 if many else 6.4, 5.2 if many else 4.6)
+    ax = fig.add_subplot()
+    for i, s in enumerate(series):
+        _draw_convergence(ax, s, _color(i), _marker(i), s.name if len(series) > 1 else "")
+    formal = sorted({s.formal_order for s in series if math.isfinite(s.formal_order)})
+    if formal:
+        orders = ", ".join(number(p, 3) for p in formal)
+        ax.plot([], [], "--", color="0.4", lw=1.0, label=f"formal order {orders} (dashed)")
+    norms = sorted({s.norm for s in series if s.norm})
     ax.set_xlabel("h (grid spacing)")
-    ax.set_ylabel(f"error ({'; '.join(norms)})" if norms else "error")
+    ax.set_ylabel(f"error ({norms[0]})" if len(norms) == 1 else
+                  "error (norms: see the table)" if norms else "error")
     ax.set_title(f"{record.case}: convergence")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    if many:
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                  ncol=1 + len(series) // 26)
+    else:
+        ax.legend(fontsize=8)
     return _save(fig, path)
 
 
-def _draw_convergence(ax, series, color, prefix):
+def _draw_convergence(ax, series, color, marker, name):
     h, e = _log_points(series.h, series.error)
-    if len(h) == 0:
-        return 0
-    ax.loglog(h, e, "o", color=color, label=f"{prefix}error" if prefix else series.name or "error")
     fit = _fit_line(h, e, series.observed_order) if len(h) >= 2 else None
+    slope = f"slope {number(fit[2], 3)}" if fit else "no fit"
+    label = f"{name}: {slope}" if name else f"error, least-squares {slope}"
+    ax.loglog(h, e, marker, color=color, ms=5, label=label, ls="none")
     if fit:
-        hh, ee, slope = fit
-        ax.loglog(hh, ee, "-", color=color, lw=1.2,
-                  label=f"{prefix}least-squares fit, slope {number(slope, 3)}")
+        ax.loglog(fit[0], fit[1], "-", color=color, lw=1.2)
     if math.isfinite(series.formal_order) and len(h) >= 2:
         # Through the finest point, shifted down so that it does not hide the fit.
         finest = int(np.argmin(h))
         hh = np.array([h.min(), h.max()])
         anchor = FORMAL_LINE_SHIFT * e[finest]
         ax.loglog(hh, anchor * (hh / h[finest]) ** series.formal_order, "--", color=color,
-                  lw=1.0, alpha=0.7, label=f"{prefix}formal order {number(series.formal_order, 3)}")
-    return 1
+                  lw=1.0, alpha=0.7)
 
 
 # -- speed against error ------------------------------------------------------------
