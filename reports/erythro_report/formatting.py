@@ -88,7 +88,7 @@ def limit_text(metric):
         return "must be yes"
     tol = metric.tolerance
     if metric.comparison == "absolute":
-        return f"{with_unit(metric.expected, metric.unit)} ± {number(tol, 3)}"
+        return f"{number(metric.expected)} ± {with_unit(tol, metric.unit, 3)}"
     if metric.comparison == "relative":
         return f"{with_unit(metric.expected, metric.unit)} ± {number(tol * 100.0, 3)} %"
     return expected_text(metric)

@@ -52,7 +52,8 @@ def _metrics(r):
 def _meta(r):
     rows = [("Record", r.path), ("Git revision", r.git_revision), ("Compiler", r.compiler),
             ("Compile flags", r.compile_flags), ("Created (UTC)", r.created_utc),
-            ("Wall time (record)", f"{fmt.number(r.wall_time_s, 4)} s"),
+            ("Wall time (record)", f"{fmt.number(r.wall_time_s, 4)} s"
+             if r.wall_time_s > 0 else "not recorded"),
             ("Time shown", f"{duration_text(r.time_s)} ({r.time_source or 'none'})"),
             ("Schema version", r.schema_version)]
     items = "".join(f"<dt>{esc(k)}</dt><dd>{esc(v) if v else '—'}</dd>" for k, v in rows)

@@ -21,7 +21,7 @@ def _table(headers, rows):
     return [_row(headers), _row(["---"] * len(headers))] + [_row(r) for r in rows] + [""]
 
 
-CASE_HEADERS = ["Case", "Verdict", "Metrics passed", "Key figure", "Time"]
+CASE_HEADERS = ["Family", "Case", "Verdict", "Metrics passed", "Key figure", "Time"]
 METRIC_HEADERS = ["Metric", "Value", "Expected", "Tolerance", "Verdict", "Why this tolerance"]
 
 
@@ -31,7 +31,7 @@ def render(report):
              fmt.summary_line(report), "",
              fmt.scope_line(report), ""]
     lines += _problems(report)
-    missing = [[case, "MISSING", "", "no result record", ""] for case in report.missing]
+    missing = [["", case, "MISSING", "", "no result record", ""] for case in report.missing]
     lines += ["## Cases", ""] + _table(CASE_HEADERS, missing + [_case_row(r) for r in report.records])
     lines += _time(report) + _regression(report) + _cheapest(report)
     lines += ["## Metrics of each case", ""]
@@ -54,7 +54,7 @@ def _time_cell(record):
 
 def _case_row(r):
     passed = sum(1 for m in r.metrics if m.verdict == "pass")
-    return [r.case, fmt.verdict_text(r.verdict), f"{passed} / {len(r.metrics)}",
+    return [r.family, r.case, fmt.verdict_text(r.verdict), f"{passed} / {len(r.metrics)}",
             fmt.key_figure_text(fmt.key_metric(r)), _time_cell(r)]
 
 

@@ -134,7 +134,7 @@ class PassingReport(SharedReportTestCase):
     def test_summary_md_has_one_row_per_case_then_the_metrics(self):
         md = self.ws.read_out("summary.md")
         self.assertIn("**PASS**", md)
-        self.assertIn("| poiseuille_2d | PASS | 3 / 3 | order_bgk_tau0.8 = 1.98 (2 ± 0.1) | 1.5 s |", md)
+        self.assertIn("| verification.fluid | poiseuille_2d | PASS | 3 / 3 | order_bgk_tau0.8 = 1.98 (2 ± 0.1) | 1.5 s |", md)
         self.assertLess(md.index("## Cases"), md.index("## Metrics of each case"))
         self.assertEqual(md.count("poiseuille_2d meets its requirement"), 1)
         self.assertIn("| order_bgk_tau0.8: observed order, BGK | 1.98 | 2 | ± 0.1 (absolute) | PASS |", md)
@@ -174,7 +174,7 @@ class FailingReport(SharedReportTestCase):
         self.assertIn("**FAIL**", md)
         self.assertIn("| order_wall: observed order with bounce-back walls | 1.2 | 2 | "
                       "± 0.1 (absolute) | FAIL | Richardson \\| pipes must survive Markdown |", md)
-        self.assertIn("| couette_2d | FAIL | 1 / 2 | order_wall = 1.2 (2 ± 0.1) |", md)
+        self.assertIn("| verification.boundary | couette_2d | FAIL | 1 / 2 | order_wall = 1.2 (2 ± 0.1) |", md)
         self.assertIn("| max_velocity: peak velocity | 0.1 lu/ts | 0.1 lu/ts | "
                       "± 1e-06 lu/ts (absolute) | PASS |", md)
 
@@ -193,7 +193,7 @@ class ExpectedCases(GenerateTestCase):
         self.assert_report_written(proc)
         self.assertIn("<tr><td>womersley_2d</td><td class=\"invalid verdict\">MISSING</td>",
                       self.ws.read_out("index.html"))
-        self.assertIn("| womersley_2d | MISSING |  | no result record |  |", self.ws.read_out("summary.md"))
+        self.assertIn("|  | womersley_2d | MISSING |  | no result record |  |", self.ws.read_out("summary.md"))
 
     def test_labels_limit_the_required_cases(self):
         self.ws.write_expected([("poiseuille_2d", "verification,full,ci"),
@@ -257,7 +257,7 @@ class BadRecords(GenerateTestCase):
         proc = self.ws.run_generate(self.ws.results)
         self.assertEqual(proc.returncode, 0, proc.stderr)
         md = self.ws.read_out("summary.md")
-        self.assertIn("| poiseuille_fixed | PASS | 3 / 3 | order_bgk_tau0.8 = 1.98 (2 ± 0.1) |", md)
+        self.assertIn("| verification.fluid | poiseuille_fixed | PASS | 3 / 3 | order_bgk_tau0.8 = 1.98 (2 ± 0.1) |", md)
         self.assertIn("Requirement: poiseuille_fixed meets its requirement", md)
         self.assertNotIn("b'", md)
 
