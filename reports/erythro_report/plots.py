@@ -254,8 +254,9 @@ def field_figure(fld, path):
     x = fld.x if fld.x is not None else np.arange(nx, dtype=float)
     y = fld.y if fld.y is not None else np.arange(ny, dtype=float)
     aspect = (np.ptp(y) + 1e-300) / (np.ptp(x) + 1e-300) if nx > 1 and ny > 1 else 1.0
-    width = 6.4
-    fig = _new_figure(width, min(max(width * aspect + 0.9, 2.4), 7.5))
+    # About 4.4 in of the 6.4 in width is the picture (the rest: labels, colour bar), so this
+    # height keeps the colour bar as tall as the picture.
+    fig = _new_figure(6.4, min(max(4.4 * aspect + 1.0, 2.4), 7.5))
     ax = fig.add_subplot()
     mesh = ax.pcolormesh(_edges(x), _edges(y), data, shading="flat", cmap="viridis")
     for outline in fld.membranes:
