@@ -20,6 +20,9 @@ table.compact td, table.compact th { padding: .05rem .45rem; }
 .banner { padding: .45rem .9rem; border-radius: 6px; font-weight: 600; margin: .5rem 0; }
 .banner.pass { background: #dcf5dc; color: #145214; border: 1px solid #9ad29a; }
 .banner.fail { background: #fbdcdb; color: #8a1c1c; border: 1px solid #e59a97; }
+h2#failed, h2#problems { margin-top: .6rem; }
+.failed { background: #fbdcdb; border: 1px solid #e59a97; border-radius: 6px; padding: .3rem 1.2rem;
+          margin-bottom: .8rem; }
 .problems { background: #fff4e5; border: 1px solid #f0b45a; border-radius: 6px; padding: .3rem 1.2rem;
             margin-bottom: .8rem; }
 .boxes { display: grid; grid-template-columns: 1fr 1.25fr; gap: 1rem; align-items: start; }

@@ -15,6 +15,7 @@ def render(report, figures):
     parts = [
         _head(),
         summary.header(report),
+        summary.failures(report, ids),
         summary.problems(report),
         summary.boxes(report, ids),
         _links(report, figures),

@@ -17,6 +17,25 @@ def header(report):
             f"</span></div>\n<p class='scope'>{esc(fmt.scope_line(report))}</p></header>")
 
 
+def failures(report, ids):
+    """What failed, linked to its section, before anything else."""
+    items = []
+    for r in report.failed_records:
+        names = ", ".join(m.name for m in r.metrics if m.verdict == "fail") or "no failed metric recorded"
+        items.append(f"<li><a href='#{ids[r.path]}'><strong>{esc(r.case)}</strong></a>: "
+                     f"failed metrics {esc(names)}</li>")
+    for c in report.failed_regressions:
+        items.append(f"<li><a href='#regression-{esc(c.name)}'><strong>regression {esc(c.name)}"
+                     f"</strong></a>: {esc(summary_text(c))}</li>")
+    if not items:
+        return ""
+    shown, folded = items[:PROBLEMS_SHOWN], items[PROBLEMS_SHOWN:]
+    more = (f"<details><summary>{len(folded)} more</summary><ul>{''.join(folded)}</ul></details>"
+            if folded else "")
+    return (f"<h2 id='failed'>Failed ({len(items)})</h2>\n"
+            f"<div class='failed'><ul>{''.join(shown)}</ul>{more}</div>")
+
+
 def problems(report):
     if not report.problems:
         return ""

@@ -30,7 +30,7 @@ def render(report):
              f"**{fmt.status_text(report)}**: {fmt.banner_text(report)}", "",
              fmt.summary_line(report), "",
              fmt.scope_line(report), ""]
-    lines += _problems(report)
+    lines += _failures(report) + _problems(report)
     missing = [["", case, "MISSING", "", "no result record", ""] for case in report.missing]
     lines += ["## Cases", ""] + _table(CASE_HEADERS, missing + [_case_row(r) for r in report.records])
     lines += _time(report) + _regression(report) + _cheapest(report)
@@ -38,6 +38,15 @@ def render(report):
     for record in report.records:
         lines += _case_metrics(record)
     return "\n".join(lines).rstrip() + "\n"
+
+
+def _failures(report):
+    items = [f"- **{cell(r.case)}**: failed metrics "
+             + cell(", ".join(m.name for m in r.metrics if m.verdict == "fail") or "none recorded")
+             for r in report.failed_records]
+    items += [f"- **regression {cell(c.name)}**: {cell(summary_text(c))}"
+              for c in report.failed_regressions]
+    return ["## Failed", ""] + items + [""] if items else []
 
 
 def _problems(report):

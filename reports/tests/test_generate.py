@@ -168,10 +168,14 @@ class FailingReport(SharedReportTestCase):
         # verification.boundary sorts before verification.fluid
         self.assertLess(html.index("#case-couette_2d"), html.index("#case-poiseuille_2d"))
         self.assertIn("2 cases, 5 metrics, 1 failed case (1 failed metric)", html)
+        failed = "<li><a href='#case-couette_2d'><strong>couette_2d</strong></a>: failed metrics order_wall</li>"
+        self.assertIn(failed, html)
+        self.assertLess(html.index(failed), html.index("<h2 id='cases'>"))
 
     def test_summary_md_escapes_pipes_and_marks_failure(self):
         md = self.ws.read_out("summary.md")
         self.assertIn("**FAIL**", md)
+        self.assertLess(md.index("- **couette_2d**: failed metrics order_wall"), md.index("## Cases"))
         self.assertIn("| order_wall: observed order with bounce-back walls | 1.2 | 2 | "
                       "± 0.1 (absolute) | FAIL | Richardson \\| pipes must survive Markdown |", md)
         self.assertIn("| verification.boundary | couette_2d | FAIL | 1 / 2 | order_wall = 1.2 (2 ± 0.1) |", md)
