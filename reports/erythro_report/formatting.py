@@ -31,17 +31,16 @@ def with_unit(x, unit, digits=6):
 
 
 def is_flag(metric):
-    """A yes/no check written as a number: value 0 or 1 that must equal 1, tolerance 0.
+    """A yes/no check written as a number: value 0 or 1 that must be 1, tolerance 0, no unit.
 
-    Written by the C++ cases as `absolute` (expected 1, tolerance 0), or as `at_least 1`
-    with a description starting "1 if …". Counts (e.g. "at least 1 run") have a unit or
-    another description, and keep their number.
+    The C++ cases write these as `absolute` (expected 1, tolerance 0) or `at_least 1`
+    (descriptions "1 if …"). A count that must be at least 1 reads the same way ("yes":
+    there is one); counts with a unit, and limits of 0 (`at_most 0`: "violations"), keep
+    their number.
     """
     if metric.unit or metric.tolerance != 0 or metric.expected != 1 or metric.value not in (0.0, 1.0):
         return False
-    if metric.comparison == "absolute":
-        return True
-    return metric.comparison == "at_least" and metric.description.startswith("1 if")
+    return metric.comparison in ("absolute", "at_least")
 
 
 def value_text(metric):

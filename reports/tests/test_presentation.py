@@ -60,9 +60,9 @@ class Flags(unittest.TestCase):
         self.assertTrue(fmt.is_flag(metric(1.0, 1.0, 0.0, "at_least", "1 if the motion is classified")))
 
     def test_counts_and_zero_limits_keep_their_numbers(self):
-        for m in (metric(1.0, 1.0, 0.0, "at_least", "runs that diverged"),
-                  metric(0.0, 0.0, 0.0, "at_most"), metric(1.0, 1.0, 0.0, unit="cells"),
-                  metric(1.0, 1.0, 0.1)):
+        for m in (metric(1.0, 1.0, 0.0, "at_least", "runs that diverged", unit="runs"),
+                  metric(2.0, 1.0, 0.0, "at_least"), metric(0.0, 0.0, 0.0, "at_most"),
+                  metric(1.0, 1.0, 0.0, unit="cells"), metric(1.0, 1.0, 0.1)):
             self.assertFalse(fmt.is_flag(m), m)
 
     def test_key_metric_prefers_failed_then_two_sided_nearest_limit(self):
