@@ -125,6 +125,10 @@ struct CellSpec {
   // This cell's shear modulus E_s [dyn/cm]; absent: [membrane] shear_modulus_dyn_cm (e.g. a
   // doublet of cells of different deformability, thesis ch. III cases II–IV).
   std::optional<double> shear_modulus_dyn_cm;
+  // The cell starts stretched by this factor over its stress-free rest shape, which is the
+  // shape before placement scaled by scale / prestretch (a pre-stressed membrane, e.g. an
+  // inflated circle); 1: the rest shape is the shape as placed.
+  double prestretch = 1.0;
 };
 
 // [aggregation]: Morse aggregation between the membranes of different cells (docs/model.md
@@ -183,6 +187,10 @@ struct LimitsSpec {
   double min_tau_margin = 0.005;   // reject τ < 0.5 + margin
   double max_mach = 0.1;           // reject a set-up whose expected |u|/c_s exceeds this
   int min_nodes_across_channel = 4;  // reject a wall-bounded direction with fewer nodes
+  // A membrane beyond the explicit-update stability estimate (membrane/stability.hpp):
+  // "reject" the set-up, or "warn" (MembraneSetup::stability.warning) and run it anyway,
+  // e.g. to measure where it diverges.
+  std::string membrane_stability = "reject";
 };
 
 struct Scene {

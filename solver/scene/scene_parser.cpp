@@ -421,6 +421,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.limits.max_mach = r.number("limits.max_mach", s.limits.max_mach);
   s.limits.min_nodes_across_channel =
       static_cast<int>(r.integer("limits.min_nodes_across_channel", s.limits.min_nodes_across_channel));
+  s.limits.membrane_stability = r.text("limits.membrane_stability", s.limits.membrane_stability);
 
   if (r.has("membrane")) {
     MembraneSpec m;
@@ -466,6 +467,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
       c.scale = r.number(p + "scale", c.scale);
       c.markers = r.integer(p + "markers", c.markers);
       if (r.has(p + "shear_modulus_dyn_cm")) c.shear_modulus_dyn_cm = r.number(p + "shear_modulus_dyn_cm", 0.0);
+      c.prestretch = r.number(p + "prestretch", c.prestretch);
       s.cells.push_back(c);
     }
   }

@@ -34,6 +34,9 @@ struct UnitScales {
 // One cell placed on the lattice (lattice units: nodes at i + ½, walls at 0 and n).
 struct CellSetup {
   geometry::Polygon shape;        // markers, counter-clockwise; also the stress-free rest shape
+                                  // unless `rest` is given
+  geometry::Polygon rest;         // the stress-free rest shape of a pre-stressed cell (cells.prestretch:
+                                  // unplaced, scaled by scale / prestretch); empty: `shape`
   membrane::MembraneModel model;  // lattice moduli of this cell (MembraneSetup::model unless overridden)
   double equivalent_radius = 0.0; // √(A/π)
   double min_edge = 0.0, max_edge = 0.0;  // marker spacing

@@ -11,6 +11,7 @@
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
+#include "simulation/probes/marker_speed_probe.hpp"
 #include "simulation/probes/transport_probe.hpp"
 
 namespace erythro::sim {
@@ -33,12 +34,14 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
     fluid_ = std::make_unique<fluid::FluidLattice>(setup_.grid, setup_.collision, setup_.boundaries);
     apply_initial_condition();
     apply_body_force(0);
-    if (setup_.membrane)  // cells start at their stress-free rest shape
+    if (setup_.membrane)  // cells start at their stress-free rest shape (or pre-stressed, cells.prestretch)
       cells_ = std::make_unique<CellPhysics>(*setup_.membrane, setup_.viscosity, *fluid_);
     register_fluid_stages();
     probes_.push_back(std::make_unique<FluidProbe>());
     if (cells_)
       probes_.push_back(std::make_unique<CellShapeProbe>(*cells_, scene_.output.extremes_interval_steps));
+    if (cells_)
+      probes_.push_back(std::make_unique<MarkerSpeedProbe>(*cells_, scene_.output.extremes_interval_steps));
   } else if (setup_.membrane) {
     for (const scene::CellSetup& c : setup_.membrane->cells) fixed_cells_.push_back(c.shape);
   }

@@ -13,6 +13,7 @@
 #include "geometry/shapes.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
+#include "simulation/fields_recorder.hpp"
 #include "simulation/series_recorder.hpp"
 #include "simulation/simulation.hpp"
 
@@ -72,6 +73,41 @@ TEST(CellSimulation, CapsuleDeformsInShear) {
   EXPECT_FALSE(c.has("cell_1_taylor_deformation"));
 }
 
+// A cell at its rest shape in still fluid: its forces vanish, nothing moves
+// (cells_max_marker_speed_um_s tracked after every step is 0). The same circle pre-stressed
+// by cells.prestretch = 1.05 starts with the area change 1.05² − 1 over its rest shape,
+// pulls inward (its markers move), and the FieldsRecorder keeps the initial and final
+// fields in lattice units: the pressure inside exceeds the pressure far outside (Laplace).
+TEST(CellSimulation, RestShapeStaysAndPrestretchPullsInward) {
+  const std::vector<std::string> still = {"boundaries.bottom.velocity_um_s=[0.0, 0.0]",
+                                          "boundaries.top.velocity_um_s=[0.0, 0.0]", "initial.type=\"rest\"",
+                                          "run.steps=400", "output.extremes_interval_steps=1"};
+  const std::string file = std::string(ERYTHRO_SCENES_DIR) + "/capsule_shear.toml";
+  {
+    const scene::Scene s = scene::load_scene(file, still);
+    Simulation sim(s, scene::derive_lattice(s));
+    SeriesRecorder c;
+    EXPECT_EQ(sim.run(c).status, RunStatus::completed);
+    EXPECT_EQ(c.series("cells_max_marker_speed_um_s").back(), 0.0);
+  }
+  std::vector<std::string> inflated = still;
+  inflated.push_back("cells[0].prestretch=1.05");
+  const scene::Scene s = scene::load_scene(file, inflated);
+  Simulation sim(s, scene::derive_lattice(s));
+  SeriesRecorder c;
+  FieldsRecorder f;
+  ObserverList both;
+  both.add(c);
+  both.add(f);
+  EXPECT_EQ(sim.run(both).status, RunStatus::completed);
+  EXPECT_NEAR(c.series("cell_0_area_change").front(), 1.05 * 1.05 - 1.0, 1e-12);
+  EXPECT_GT(c.series("cells_max_marker_speed_um_s").back(), 0.0);
+  ASSERT_EQ(f.snapshots().size(), 2u);  // steps 0 and 400
+  EXPECT_EQ(f.last().step, 400);
+  const Grid& g = sim.setup().grid;
+  const auto& rho = f.last().moments.rho;
+  EXPECT_GT(rho[g.index(g.nx / 2, g.ny / 2)], rho[g.index(0, 0)]);
+}
 
 // Interior viscosity 5× the plasma's by flood fill: the index field exists, the lattice's
 // τ field holds τ_ex far outside and τ_in at the centre (eq 27), and the run completes.

@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/shapes.hpp"
 #include "input_error_matchers.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
@@ -106,6 +107,31 @@ TEST(SceneCells, ShapesArePlacedRotatedAndScaled) {
   const auto [lo, hi] = std::minmax_element(b.x.begin(), b.x.end());
   EXPECT_NEAR(*hi - *lo, 12.0, 0.05);
   EXPECT_GT(geometry::signed_area(b), 0.0);  // counter-clockwise
+}
+
+// cells.prestretch λ: the rest shape is the unplaced shape scaled by 1/λ (a pre-stressed
+// membrane); without it the rest shape is the placed shape itself (CellSetup::rest empty).
+TEST(SceneCells, PrestretchGivesASmallerRestShape) {
+  const LatticeSetup L = derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\n"
+                                               "angle_deg = 30\nmarkers = 32\nprestretch = 1.05"));
+  const CellSetup& c = L.membrane->cells[0];
+  ASSERT_EQ(c.rest.size(), c.shape.size());
+  // Rest circle of radius 4 h / 1.05, centred at the origin, marker 0 on +x.
+  const geometry::Polygon rest = geometry::circle(32, 2.0 / 0.5 / 1.05);
+  EXPECT_EQ(c.rest.x, rest.x);
+  EXPECT_EQ(c.rest.y, rest.y);
+  EXPECT_NEAR(geometry::perimeter(c.shape) / geometry::perimeter(c.rest), 1.05, 1e-12);
+  EXPECT_TRUE(derive(channel + circle_at_centre).membrane->cells[0].rest.x.empty());
+  // The stability estimate takes the largest stiffness dT/dλ up to the largest prestretch
+  // (Skalak's grows with λ; the neo-Hookean's is largest at λ = 1).
+  const std::string skalak = "[membrane]\nlaw = \"skalak\"\n";
+  const LatticeSetup stiff = derive(channel + skalak + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\n"
+                                                            "markers = 32\nprestretch = 1.5"));
+  EXPECT_GT(stiff.membrane->stability.tension_number,
+            derive(channel + skalak + circle_at_centre).membrane->stability.tension_number);
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2\ncenter_um = [10, 5]\n"
+                                                      "markers = 32\nprestretch = 0.9")); }),
+                  "key 'cells[0].prestretch' = 0.9 is out of range: must be in [1, 2]");
 }
 
 // Without `markers`: perimeter / 0.7 h. Circle of radius 4 h: ⌈2π·4 / 0.7⌉ = ⌈35.9⌉ = 36;
@@ -236,6 +262,20 @@ TEST(SceneCells, RejectsAMembraneBeyondTheStabilityLimit) {
   EXPECT_CONTAINS(area, "key 'membrane.area_modulus_Pa'");
   // The same membrane with nothing to carry it is not checked (no cells: nothing allocated).
   EXPECT_NO_THROW(derive(channel + "[membrane]\nshear_modulus_dyn_cm = 1e3\n"));
+}
+
+// limits.membrane_stability = "warn": the set-up runs, the reason is a warning `check` shows.
+TEST(SceneCells, StabilityWarnRunsBeyondTheLimit) {
+  const std::string text = channel + "[limits]\nmembrane_stability = \"warn\"\n[membrane]\nshear_modulus_dyn_cm = 1e3\n" +
+                           circle_at_centre;
+  const LatticeSetup L = derive(text);
+  EXPECT_FALSE(L.membrane->stability.acceptable());
+  EXPECT_CONTAINS(L.membrane->stability.warning, "key 'membrane.shear_modulus_dyn_cm' = 1000 dyn/cm");
+  EXPECT_CONTAINS(L.membrane->stability.warning, "limits.membrane_stability = \"warn\"");
+  const Scene s = parse_scene(text, "c.toml");
+  EXPECT_CONTAINS(format_lattice_report(s, L), "warning: key 'membrane.shear_modulus_dyn_cm'");
+  EXPECT_CONTAINS(error_of([] { derive(channel + "[limits]\nmembrane_stability = \"ignore\"\n"); }),
+                  "key 'limits.membrane_stability' = \"ignore\" is out of range: must be one of \"reject\", \"warn\"");
 }
 
 }  // namespace
