@@ -183,6 +183,12 @@ struct LimitsSpec {
   double min_tau_margin = 0.005;   // reject τ < 0.5 + margin
   double max_mach = 0.1;           // reject a set-up whose expected |u|/c_s exceeds this
   int min_nodes_across_channel = 4;  // reject a wall-bounded direction with fewer nodes
+  // Cells (lattice spacings h): the largest marker spacing (fluid leaks between markers
+  // farther apart) and the smallest distance between markers of two cells or a marker and
+  // a wall. Relaxed, e.g., by the doublet cases: the thesis's 100 markers at h = 0.15 µm,
+  // an aggregated pair at its flat-contact gap on a coarse lattice.
+  double max_marker_spacing = 1.0;
+  double min_cell_gap = 1.0;
 };
 
 struct Scene {
