@@ -11,7 +11,7 @@
 #include "aggregation/morse_aggregation.hpp"
 #include "aggregation/morse_units.hpp"
 #include "capsule_run.hpp"  // make_shear_lattice: the undisturbed shear flow
-#include "doublet_geometry.hpp"
+#include "geometry/pair_geometry.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "geometry/domain.hpp"
 #include "geometry/shapes.hpp"
