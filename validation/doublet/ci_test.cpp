@@ -38,9 +38,9 @@ TEST(DoubletShear, CiSubset) {
   weak.de_star = kWeak;
   weak.strain = 6.0;
   weak.stop_theta_deg = -5.0;
-  const vv::DoubletShearResult rs = vv::run_doublet_shear(strong);
+  const vv::DoubletShearResult rs = vv::run_doublet_shear(strong, rec.case_name(), "strong");
   vv::print_run("strong", rs);
-  const vv::DoubletShearResult rw = vv::run_doublet_shear(weak);
+  const vv::DoubletShearResult rw = vv::run_doublet_shear(weak, rec.case_name(), "weak");
   vv::print_run("weak", rw);
   vv::add_mapping(rec, strong, rs);
   rec.set_parameter("capillary_number", rs.capillary0);

@@ -37,9 +37,9 @@ TEST(DoubletShear, Deformability50) {
   std::vector<double> progress;
   for (const auto& cs : vv::deformability_cases()) {
     vv::DoubletShearConfig c = vv::deformability_config(cs);
-    runs.push_back(vv::run_doublet_shear(c));
-    const vv::DoubletShearResult& r = runs.back();
     const std::string label = std::string("case ") + cs.name;
+    runs.push_back(vv::run_doublet_shear(c, rec.case_name(), label));
+    const vv::DoubletShearResult& r = runs.back();
     vv::print_run(label, r);
     if (runs.size() == 1) {
       vv::add_mapping(rec, c, r);

@@ -27,8 +27,8 @@ TEST(DoubletShear, RigidLimit) {
   std::vector<double> gaps;
   for (const auto& lv : levels) {
     const vv::DoubletShearConfig c = vv::rigid_config(lv);
-    const vv::DoubletShearResult r = vv::run_doublet_shear(c);
     const std::string label = vv::fmt("Ca=%.4g", lv.capillary) + vv::fmt(" ratio=%.3g", lv.viscosity_ratio);
+    const vv::DoubletShearResult r = vv::run_doublet_shear(c, rec.case_name(), label);
     vv::print_run(label, r);
     if (gaps.empty()) vv::add_mapping(rec, c, r);
     vv::add_row(rec, label, c, r);

@@ -44,8 +44,8 @@ TEST(DoubletShear, SurfaceEnergy100) {
   for (double de : levels) {
     vv::DoubletShearConfig c = vv::study_config();
     c.de_star = de;
-    runs.push_back(vv::run_doublet_shear(c));
     const std::string label = vv::fmt("De*=%.2g", de);
+    runs.push_back(vv::run_doublet_shear(c, rec.case_name(), label));
     vv::print_run(label, runs.back());
     if (runs.size() == 1) vv::add_mapping(rec, c, runs.back());
     vv::add_row(rec, label, c, runs.back());
@@ -112,8 +112,8 @@ TEST(DoubletShear, SurfaceEnergy100) {
     vv::DoubletShearConfig c = vv::study_config();
     c.de_star = wide_levels[i];
     c.initial_gap_m = vv::wide_start_gap_m();
-    const vv::DoubletShearResult r = vv::run_doublet_shear(c);
     const std::string label = vv::fmt("De*=%.2g gap 1um", wide_levels[i]);
+    const vv::DoubletShearResult r = vv::run_doublet_shear(c, rec.case_name(), label);
     vv::print_run(label, r);
     vv::add_row(rec, label, c, r);
     vv::add_health_metrics(rec, vv::fmt("De*=%.2g_gap1um", wide_levels[i]), r);
@@ -141,13 +141,13 @@ TEST(DoubletShear, SurfaceEnergy100) {
   vv::DoubletShearConfig fine = vv::study_config();
   fine.h_m = 0.15e-6;
   fine.de_star = 0.0;
-  const vv::DoubletShearResult rf = vv::run_doublet_shear(fine);
+  const vv::DoubletShearResult rf = vv::run_doublet_shear(fine, rec.case_name(), "De*=0 h=0.15");
   vv::print_run("De*=0 h=0.15", rf);
   vv::add_row(rec, "De*=0 h=0.15", fine, rf);
   vv::add_health_metrics(rec, "De*=0_h0.15", rf);
   vv::DoubletShearConfig fine5 = fine;
   fine5.de_star = 0.5;
-  const vv::DoubletShearResult rf5 = vv::run_doublet_shear(fine5);
+  const vv::DoubletShearResult rf5 = vv::run_doublet_shear(fine5, rec.case_name(), "De*=0.5 h=0.15");
   vv::print_run("De*=0.5 h=0.15", rf5);
   vv::add_row(rec, "De*=0.5 h=0.15", fine5, rf5);
   vv::add_histories(rec, "De*=0.5 h=0.15", rf5);
