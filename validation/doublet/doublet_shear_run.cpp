@@ -4,8 +4,10 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <numeric>
 
 #include "aggregation/morse_units.hpp"
+#include "common/concurrent_runs.hpp"
 #include "common/scene_case.hpp"
 #include "doublet_scene.hpp"
 #include "membrane/stability.hpp"
@@ -182,6 +184,19 @@ DoubletShearResult run_doublet_shear(const DoubletShearConfig& c, const std::str
   fill_mapping(c, run.setup, d.gamma, r);
   fill_histories(c, run.file, d.gamma, r);
   return r;
+}
+
+std::vector<DoubletShearResult> run_doublet_shears(const std::vector<DoubletRun>& runs, const std::string& case_name) {
+  std::vector<DoubletShearResult> results(runs.size());
+  std::vector<std::size_t> order(runs.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto cost = [&](std::size_t i) { return runs[i].config.strain / std::pow(runs[i].config.h_m * 1e6, 4); };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost(a) > cost(b); });
+  std::vector<std::function<void()>> jobs;
+  for (std::size_t i : order)
+    jobs.push_back([&, i] { results[i] = run_doublet_shear(runs[i].config, case_name, runs[i].label); });
+  run_concurrently(jobs);
+  return results;
 }
 
 }  // namespace erythro::vv

@@ -100,4 +100,13 @@ struct DoubletShearResult {
 DoubletShearResult run_doublet_shear(const DoubletShearConfig& c, const std::string& case_name,
                                      const std::string& label);
 
+// The runs of one case, at the same time on the cores the case was given (OMP_NUM_THREADS;
+// vv::run_concurrently: one OpenMP thread per run, the same bits as one after the other),
+// the most expensive first (nodes × steps ∝ strain/h⁴); results in the order given.
+struct DoubletRun {
+  DoubletShearConfig config;
+  std::string label;
+};
+std::vector<DoubletShearResult> run_doublet_shears(const std::vector<DoubletRun>& runs, const std::string& case_name);
+
 }  // namespace erythro::vv
