@@ -118,11 +118,12 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                     " (× scale " + num(c.scale) + "), an equivalent radius √(A/π) of " + num(cell.equivalent_radius) +
                     " h, below " + num(kMinCellRadius) + " h: enlarge the cell or make domain.spacing_um <= " +
                     num(h_um * cell.equivalent_radius / kMinCellRadius) + " µm");
-    if (cell.max_edge > kMaxMarkerSpacing)
+    const double max_spacing = s.limits.max_marker_spacing;
+    if (cell.max_edge > max_spacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too few: markers are up to " +
-                    num(cell.max_edge) + " h apart, more than " + num(kMaxMarkerSpacing) +
-                    " h (fluid leaks between markers): use markers >= " +
-                    std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / kMaxMarkerSpacing))));
+                    num(cell.max_edge) + " h apart, more than " + num(max_spacing) +
+                    " h (limits.max_marker_spacing; fluid leaks between markers): use markers >= " +
+                    std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / max_spacing))));
     if (cell.min_edge < kMinMarkerSpacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too many: markers are as close as " +
                     num(cell.min_edge) + " h, less than " + num(kMinMarkerSpacing) +
@@ -138,11 +139,11 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       const auto& coords = a == 0 ? cell.shape.x : cell.shape.y;
       const auto [lo, hi] = std::minmax_element(coords.begin(), coords.end());
       const double gap = std::min(*lo, n[a] - *hi);
-      if (gap < kMinCellGap)
+      if (gap < s.limits.min_cell_gap)
         reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm places cell " +
                       std::to_string(i) + " " + num(gap) + " h from the " +
-                      (a == 0 ? "left/right" : "bottom/top") + " wall, closer than " + num(kMinCellGap) +
-                      " h (overlaps the wall): move it inward or shrink it");
+                      (a == 0 ? "left/right" : "bottom/top") + " wall, closer than " + num(s.limits.min_cell_gap) +
+                      " h (limits.min_cell_gap; overlaps the wall): move it inward or shrink it");
     }
     for (std::size_t j = 0; j < M.cells.size(); ++j) {
       const geometry::Polygon& o = M.cells[j].shape;
@@ -152,12 +153,13 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
           closest = std::min(closest, std::hypot(axis_gap(cell.shape.x[p] - o.x[q], n[0], periodic[0]),
                                                  axis_gap(cell.shape.y[p] - o.y[q], n[1], periodic[1])));
       const bool nested = inside(o, cell.shape.x[0], cell.shape.y[0]) || inside(cell.shape, o.x[0], o.y[0]);
-      if (nested || closest < kMinCellGap)
+      if (nested || closest < s.limits.min_cell_gap)
         reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm makes cell " +
                       std::to_string(i) + " overlap cell " + std::to_string(j) + " (" + cell_key(j, "center_um") +
                       " = " + vec(s.cells[j].center_um) + " µm): " +
                       (nested ? std::string("one lies inside the other")
-                              : "their markers are " + num(closest) + " h apart, closer than " + num(kMinCellGap) + " h") +
+                              : "their markers are " + num(closest) + " h apart, closer than " +
+                                    num(s.limits.min_cell_gap) + " h (limits.min_cell_gap)") +
                       "; move them apart");
     }
     M.cells.push_back(std::move(cell));

@@ -191,6 +191,12 @@ struct LimitsSpec {
   // "reject" the set-up, or "warn" (MembraneSetup::stability.warning) and run it anyway,
   // e.g. to measure where it diverges.
   std::string membrane_stability = "reject";
+  // Cells (lattice spacings h): the largest marker spacing (fluid leaks between markers
+  // farther apart) and the smallest distance between markers of two cells or a marker and
+  // a wall. Relaxed, e.g., by the doublet cases: the thesis's 100 markers at h = 0.15 µm,
+  // an aggregated pair at its flat-contact gap on a coarse lattice.
+  double max_marker_spacing = 1.0;
+  double min_cell_gap = 1.0;
 };
 
 struct Scene {

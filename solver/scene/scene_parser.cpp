@@ -422,6 +422,8 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.limits.min_nodes_across_channel =
       static_cast<int>(r.integer("limits.min_nodes_across_channel", s.limits.min_nodes_across_channel));
   s.limits.membrane_stability = r.text("limits.membrane_stability", s.limits.membrane_stability);
+  s.limits.max_marker_spacing = r.number("limits.max_marker_spacing", s.limits.max_marker_spacing);
+  s.limits.min_cell_gap = r.number("limits.min_cell_gap", s.limits.min_cell_gap);
 
   if (r.has("membrane")) {
     MembraneSpec m;

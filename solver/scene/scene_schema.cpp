@@ -62,6 +62,8 @@ const std::vector<KeySpec>& known_keys() {
         {"limits.max_mach", Kind::number, "", positive, {}},
         {"limits.min_nodes_across_channel", Kind::integer, "nodes", Bound{1.0, false, 1e6, false}, {}},
         {"limits.membrane_stability", Kind::string, "", any, {"reject", "warn"}},
+        {"limits.max_marker_spacing", Kind::number, "h", positive, {}},
+        {"limits.min_cell_gap", Kind::number, "h", non_negative, {}},
         {"membrane.law", Kind::string, "", any, {"neo_hookean", "skalak", "hookean"}},
         {"membrane.shear_modulus_dyn_cm", Kind::number, "dyn/cm", non_negative, {}},
         {"membrane.bending_modulus_dyn_cm", Kind::number, "dyn·cm", non_negative, {}},
@@ -81,7 +83,7 @@ const std::vector<KeySpec>& known_keys() {
         {"cells.markers", Kind::integer, "markers", Bound{8.0, false, 1e6, false}, {}},
         {"cells.shear_modulus_dyn_cm", Kind::number, "dyn/cm", non_negative, {}},
         {"cells.prestretch", Kind::number, "", Bound{1.0, false, 2.0, false}, {}},
-        {"aggregation.de_star", Kind::number, "", positive, {}},
+        {"aggregation.de_star", Kind::number, "", non_negative, {}},  // 0: no adhesion, pair probe kept
         {"aggregation.surface_energy_J_m2", Kind::number, "J/m²", positive, {}},
         {"aggregation.pair_density_Pa", Kind::number, "Pa", positive, {}},
         {"aggregation.zero_force_distance_um", Kind::number, "µm", positive, {}},

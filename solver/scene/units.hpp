@@ -61,9 +61,9 @@ struct MembraneSetup {
 
 // Fixed set-up rules for cells (docs/scenes.md "Checks done by units.cpp"), in h.
 inline constexpr double kMinCellRadius = 3.0;   // equivalent radius >= 3 h
-inline constexpr double kMaxMarkerSpacing = 1.0; // every edge <= h (no leaks between markers)
+inline constexpr double kMaxMarkerSpacing = LimitsSpec{}.max_marker_spacing; // default: every edge <= h (no leaks)
 inline constexpr double kMinMarkerSpacing = 0.3; // every edge >= 0.3 h (over-resolved markers stiffen)
-inline constexpr double kMinCellGap = 1.0;       // markers of two cells, or a marker and a wall, >= h apart
+inline constexpr double kMinCellGap = LimitsSpec{}.min_cell_gap;  // default: markers of two cells, or a marker and a wall, >= h apart
 inline constexpr double kAutoMarkerSpacing = 0.7; // cells.markers absent: perimeter / 0.7 h markers (>= 16)
 
 // One transported species in transport lattice units (h, Δt_T; concentrations in µM).

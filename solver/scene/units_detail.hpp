@@ -32,8 +32,8 @@ inline bool wall_bounded(const Scene& s, int axis) {
 
 // [membrane] and [[cells]] → lattice moduli, placed marker polygons and the stability
 // estimate. Rules (docs/scenes.md): equivalent radius >= kMinCellRadius h, marker
-// spacing in [kMinMarkerSpacing, kMaxMarkerSpacing] h, markers >= kMinCellGap h from
-// another cell's markers and from a wall, stability numbers below their limits.
+// spacing in [kMinMarkerSpacing, limits.max_marker_spacing] h, markers >= limits.min_cell_gap h
+// from another cell's markers and from a wall, stability numbers below their limits.
 // `mechanics` = false (no flow, cells are fixed shapes): placement and geometry checks only.
 MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechanics = true);
 

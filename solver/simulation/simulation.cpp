@@ -12,6 +12,7 @@
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
 #include "simulation/probes/marker_speed_probe.hpp"
+#include "simulation/probes/pair_probe.hpp"
 #include "simulation/probes/transport_probe.hpp"
 
 namespace erythro::sim {
@@ -42,6 +43,8 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
       probes_.push_back(std::make_unique<CellShapeProbe>(*cells_, scene_.output.extremes_interval_steps));
     if (cells_)
       probes_.push_back(std::make_unique<MarkerSpeedProbe>(*cells_, scene_.output.extremes_interval_steps));
+    if (cells_ && cells_->aggregation() && cells_->cells().cell_count() == 2)  // a doublet
+      probes_.push_back(std::make_unique<PairProbe>(*cells_));
   } else if (setup_.membrane) {
     for (const scene::CellSetup& c : setup_.membrane->cells) fixed_cells_.push_back(c.shape);
   }

@@ -219,6 +219,11 @@ TEST(SceneCells, RejectsOverlappingCells) {
   // 2 h of clearance is accepted.
   EXPECT_NO_THROW(derive(channel + circle_at_centre +
                          cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [15.5, 5]\nmarkers = 32")));
+  // Rims 0.3 µm = 0.6 h apart: rejected by default, accepted with limits.min_cell_gap = 0.5
+  // (an aggregated pair at its contact gap on a coarse lattice).
+  const std::string close = cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [14.3, 5]\nmarkers = 32");
+  EXPECT_CONTAINS(error_of([&] { derive(channel + circle_at_centre + close); }), "(limits.min_cell_gap)");
+  EXPECT_NO_THROW(derive(channel + "[limits]\nmin_cell_gap = 0.5\n" + circle_at_centre + close));
 }
 
 TEST(SceneCells, RejectsCellsOnAWallOrOutside) {
@@ -238,6 +243,8 @@ TEST(SceneCells, RejectsCoarseCellsAndBadMarkerSpacing) {
   const std::string few = error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 16")); });
   EXPECT_CONTAINS(few, "key 'cells[0].markers' = 16 is too few");
   EXPECT_CONTAINS(few, "use markers >= 25");
+  EXPECT_NO_THROW(derive(channel + "[limits]\nmax_marker_spacing = 1.6\n" +
+                         cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 16")));
   // 128 markers: spacing 0.196 h < 0.3 h.
   EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 128")); }),
                   "key 'cells[0].markers' = 128 is too many");
@@ -362,6 +369,15 @@ TEST(SceneAggregation, ConvertsTheSurfaceEnergy) {
   EXPECT_NEAR(G.membrane->aggregation->De, a.De, 1e-12 * a.De);
   const LatticeSetup P = derive(pair_channel + "[aggregation]\npair_density_Pa = 2.0\n" + two_cells);
   EXPECT_GT(P.membrane->aggregation->De, 0.0);
+}
+
+// De* = 0: no adhesion (D_e = 0), but the Morse range stays (the pair probe's contact and
+// dissociation of a non-adhering control pair).
+TEST(SceneAggregation, ZeroSurfaceEnergyKeepsTheRange) {
+  const LatticeSetup L = derive(pair_channel + "[aggregation]\nde_star = 0.0\n" + two_cells);
+  ASSERT_TRUE(L.membrane && L.membrane->aggregation);
+  EXPECT_EQ(L.membrane->aggregation->De, 0.0);
+  EXPECT_NEAR(L.membrane->aggregation->cutoff, 1.96 + 5.0 / 0.96, 1e-9);
 }
 
 TEST(SceneAggregation, RejectsBadInput) {
