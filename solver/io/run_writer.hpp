@@ -12,7 +12,8 @@
 //   /grid             attrs nx, ny, spacing_um, origin_um (cell-centred nodes)
 //   /diagnostics/*    one 1-D dataset per diagnostics series (sim::Probe; attrs units,
 //                     description), one entry per sample: step, time_s; with a fluid
-//                     total_mass_kg_per_m, kinetic_energy_J_per_m, max_speed_um_s, max_mach;
+//                     total_mass_kg_per_m, kinetic_energy_J_per_m, max_speed_um_s, max_mach,
+//                     momentum_x_N_s_per_m, momentum_y_N_s_per_m;
 //                     with moving cells, per cell c: cell_<c>_area_change, _taylor_deformation,
 //                     _orientation_deg, _inclination_deg, _centroid_x_um, _centroid_y_um, _max_edge_strain,
 //                     _marker_phase_deg, _marker0_angle_deg, and cells_max_area_change,

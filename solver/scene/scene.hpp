@@ -24,11 +24,20 @@ struct TimeSpec {
   std::optional<double> tau;     // [time] tau
 };
 
+// [[fluid.layers]]: a rectangle of another viscosity (e.g. a cytoplasm layer beside
+// plasma). Nodes whose centre lies in [x0, x1) × [y0, y1) get it; later entries win.
+struct ViscosityLayerSpec {
+  std::array<double, 2> y_um{0.0, 0.0};  // [y0, y1], required
+  std::optional<std::array<double, 2>> x_um;  // [x0, x1]; absent: the whole width
+  double viscosity_cP = 0.0;             // required
+};
+
 struct FluidSpec {
   double density_kg_m3 = 1025.0;  // [fluid] density_kg_m3 (plasma, docs/parameters.md)
   double viscosity_cP = 1.2;      // [fluid] viscosity_cP (plasma, thesis §II.4)
   std::string collision = "bgk";  // [fluid] collision = "bgk" | "trt"
   double trt_magic = 3.0 / 16.0;  // [fluid] trt_magic (Λ)
+  std::vector<ViscosityLayerSpec> layers;  // [[fluid.layers]]
 };
 
 struct SideSpec {
@@ -49,9 +58,14 @@ struct BodyForceSpec {
 struct InitialSpec {
   // "rest" | "uniform" | "shear" (linear profile between the bottom and top walls'
   // velocities) | "taylor_green" (u = −U cos(kx x) sin(ky y), v = U (kx/ky) sin(kx x) cos(ky y),
-  // wavelengths = domain size; see simulation.cpp)
+  // wavelengths = domain size; see simulation.cpp) | "double_shear_layer" (Minion & Brown's
+  // thick layer, fluid/initial_state.hpp)
   std::string type = "rest";
-  std::array<double, 2> velocity_um_s{0.0, 0.0};  // uniform: the velocity; taylor_green: [U, 0]
+  std::array<double, 2> velocity_um_s{0.0, 0.0};  // uniform: the velocity; taylor_green, double_shear_layer: [U, 0]
+  // Start from the populations after a collision at t = 0: equilibrium plus the
+  // Chapman–Enskog non-equilibrium part of the flow's velocity gradient (and the Guo
+  // half force of [body_force]), fluid/initial_state.hpp; false: equilibrium only.
+  bool non_equilibrium = false;
 };
 
 struct SteadyStateSpec {

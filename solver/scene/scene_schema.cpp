@@ -36,8 +36,13 @@ const std::vector<KeySpec>& known_keys() {
         {"body_force.density_N_m3", Kind::vec2, "N/m³", any, {}},
         {"body_force.frequency_Hz", Kind::number, "Hz", non_negative, {}},
         {"body_force.phase_rad", Kind::number, "rad", any, {}},
-        {"initial.type", Kind::string, "", any, {"rest", "uniform", "shear", "taylor_green"}},
+        {"initial.type", Kind::string, "", any, {"rest", "uniform", "shear", "taylor_green", "double_shear_layer"}},
         {"initial.velocity_um_s", Kind::vec2, "µm/s", any, {}},
+        {"initial.non_equilibrium", Kind::boolean, "", any, {}},
+        // [[fluid.layers]] entries: the schema path drops the index.
+        {"fluid.layers.y_um", Kind::vec2, "µm", any, {}},
+        {"fluid.layers.x_um", Kind::vec2, "µm", any, {}},
+        {"fluid.layers.viscosity_cP", Kind::number, "cP", positive, {}},
         {"run.steps", Kind::integer, "steps", at_least_one, {}},
         {"run.duration_s", Kind::number, "s", positive, {}},
         {"run.steady_state.tolerance", Kind::number, "", positive, {}},
@@ -169,6 +174,7 @@ std::string range_text(const KeySpec& k) {
     return s;
   }
   if (k.kind == Kind::string) return "must be a string";
+  if (k.kind == Kind::boolean) return "must be true or false";
   const Bound& b = k.bound;
   const bool has_lo = std::isfinite(b.lo), has_hi = std::isfinite(b.hi);
   if (has_lo && has_hi) {
@@ -193,6 +199,7 @@ std::string type_text(Kind kind) {
     case Kind::integer: return "an integer";
     case Kind::vec2: return "an array of 2 numbers";
     case Kind::string_list: return "an array of strings";
+    case Kind::boolean: return "true or false";
   }
   return "?";
 }

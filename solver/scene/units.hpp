@@ -8,6 +8,7 @@
 #include "aggregation/morse.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
+#include "fluid/viscosity_layers.hpp"
 #include "geometry/polygon.hpp"
 #include "ib/kernel.hpp"
 #include "interior/index_field.hpp"
@@ -100,6 +101,7 @@ struct LatticeSetup {
   double force_frequency = 0.0;                // per step (lattice)
   double force_phase = 0.0;
   std::array<double, 2> initial_velocity{0.0, 0.0};  // lattice
+  std::vector<fluid::ViscosityLayer> viscosity_layers;  // [[fluid.layers]], lattice rectangles and τ
   long total_steps = 0;
   double viscosity = 0.0;           // lattice kinematic viscosity ν = (τ − ½)/3
   double expected_max_speed = 0.0;  // lattice, estimated from walls, force, initial state

@@ -41,4 +41,8 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
 // grid, scales (the fluid's, or the transport's own without fluid) and boundaries set.
 TransportSetup derive_transport(const Scene& s, const LatticeSetup& L);
 
+// [[fluid.layers]] → lattice rectangles and relaxation times (layer_setup.cpp). L has its
+// grid and collision set.
+std::vector<fluid::ViscosityLayer> derive_layers(const Scene& s, const LatticeSetup& L);
+
 }  // namespace erythro::scene::detail
