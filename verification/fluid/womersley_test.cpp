@@ -16,10 +16,9 @@
 // of the start-up transient (slowest mode e^{−νπ²t/H²}: factor e^{−10π³/(4α²)} ≈ 8e-3),
 // then the 6th period is measured.
 // Runs: verification/fluid/channel.toml with nx = 1 and an oscillating [body_force]
-// (density_N_m3 = [F0, 0], frequency_Hz = 1/(TΔt)), fields every T/8 (profiles at the
-// phases, kept in lattice units by a FieldRecorder), the exact start set on the fluid
-// before the run, and a stage of the case reading the centre line after every step of
-// the measured period (amplitude and phase fit).
+// (density_N_m3 = [F0, 0], frequency_Hz = 1/(TΔt)), the exact start set on the fluid
+// before the run, and a stage of the case reading the state after every step of the
+// measured period (profiles at the phases, centre line for the amplitude and phase fit).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -36,7 +35,7 @@
 #include "common/scene_case.hpp"
 #include "fluid/initial_state.hpp"
 #include "fluid_scenes.hpp"
-#include "simulation/field_recorder.hpp"
+#include "simulation/simulation.hpp"
 
 using namespace erythro;
 
@@ -126,8 +125,7 @@ WomersleyRun run_womersley(const Config& c, int N) {
   const long measure_from = kWarmupPeriods * T;
   run.steps = measure_from + T;
 
-  std::vector<std::string> o = {vv::set_grid(1, N), vv::set_collision(c.model), vv::set("run.steps", run.steps),
-                                vv::set("output.fields_interval_steps", T / kPhases)};
+  std::vector<std::string> o = {vv::set_grid(1, N), vv::set_collision(c.model), vv::set("run.steps", run.steps)};
   o.push_back(vv::set_tau(channel, o, c.tau));
   // F(t) = F0 cos(2π f t) with 2π f equal to ω = 2π/T bit for bit (the frequency first:
   // it bounds the expected speed of the force, F0/ω, checked against limits.max_mach).
@@ -143,54 +141,57 @@ WomersleyRun run_womersley(const Config& c, int N) {
     start.ux[g.index(0, j)] = womersley_exact(y, 0.0, H, F0, omega, nu);
     start.dux_dy[g.index(0, j)] = womersley_gradient(y, 0.0, H, F0, omega, nu);
   }
-  std::vector<double> times, centre, centre_exact;
+  std::vector<double> times, centre, centre_exact, profile_5T;
+  auto profile_error = [&](const fluid::Moments& m, long s) {
+    std::vector<double> num, exact;
+    for (int j = 0; j < N; ++j) {
+      num.push_back(m.ux[g.index(0, j)]);
+      exact.push_back(womersley_exact(j + 0.5, double(s), H, F0, omega, nu));
+    }
+    return vv::relative_l2(num, exact);
+  };
   vv::CaseRunOptions options;
   options.configure = [&](sim::Simulation& simulation) {
     // The exact profile at t = 0 after a collision with F(0) = F0: f_eq + f_neq + F0/2.
     const std::vector<double> fx0(g.size(), F0), fy0(g.size(), 0.0);
     fluid::initialize_post_collision(*simulation.fluid(), start, fx0, fy0);
-    // The centre line y = H/2, between nodes N/2 − 1 and N/2 (both averaged, and the
-    // exact likewise), after every step of the measured period.
+    // The measured period, read after every step from t = 5T (the state's moments, lattice
+    // units): the profile at 5T, then the centre line y = H/2 (between nodes N/2 − 1 and
+    // N/2: both averaged, and the exact likewise), the largest Mach number, the profile
+    // error at the phases mT/8 and the periodicity at 6T.
     const fluid::FluidLattice& lattice = *simulation.fluid();
     simulation.add_stage(
-        sim::Phase::observe, "womersley_centre_line",
+        sim::Phase::observe, "womersley_measured_period",
         [&, N](long n) {
+          const long s = n + 1;
           const fluid::Moments m = lattice.moments();
-          const double t = double(n + 1);
+          if (s == measure_from) {
+            for (int j = 0; j < N; ++j) profile_5T.push_back(m.ux[g.index(0, j)]);
+            return;
+          }
+          const double t = double(s);
           times.push_back(t);
           centre.push_back(0.5 * (m.ux[g.index(0, N / 2 - 1)] + m.ux[g.index(0, N / 2)]));
           centre_exact.push_back(0.5 * (womersley_exact(N / 2 - 0.5, t, H, F0, omega, nu) +
                                         womersley_exact(N / 2 + 0.5, t, H, F0, omega, nu)));
           for (double u : m.ux) run.max_mach = std::max(run.max_mach, std::abs(u) * std::sqrt(3.0));
+          const long into = s - measure_from;
+          if (into % (T / kPhases) == 0) run.phase_error[(into / (T / kPhases)) % kPhases] = profile_error(m, s);
+          if (s == run.steps) {
+            double d2 = 0, u2 = 0;
+            for (int j = 0; j < N; ++j) {
+              const double u = m.ux[g.index(0, j)];
+              d2 += (u - profile_5T[j]) * (u - profile_5T[j]);
+              u2 += u * u;
+            }
+            run.periodicity = std::sqrt(d2 / u2);
+          }
         },
-        1, measure_from);
+        1, measure_from - 1);
   };
-  sim::FieldRecorder fields(measure_from);  // every T/8 from 5T on
-  options.observers.push_back(&fields);
   const std::string label = c.label + " N=" + std::to_string(N);
   const vv::CaseRun r = vv::run_case_scene(channel.scene(o), "verification.womersley", label, options);
   if (!r.ok()) throw std::runtime_error(label + ": " + r.summary.diagnosis);
-
-  auto profile = [&](long s) {
-    const fluid::Moments& m = fields.at(s);
-    std::vector<double> u;
-    for (int j = 0; j < N; ++j) u.push_back(m.ux[g.index(0, j)]);
-    return u;
-  };
-  // Phases m = 1…8 of the measured period (m = 8 is t = 6T, phase 0).
-  for (int m = 1; m <= kPhases; ++m) {
-    const long s = measure_from + m * (T / kPhases);
-    std::vector<double> exact;
-    for (int j = 0; j < N; ++j) exact.push_back(womersley_exact(j + 0.5, double(s), H, F0, omega, nu));
-    run.phase_error[m % kPhases] = vv::relative_l2(profile(s), exact);
-  }
-  const std::vector<double> u5 = profile(measure_from), u6 = profile(run.steps);
-  double d2 = 0, u2 = 0;
-  for (int j = 0; j < N; ++j) {
-    d2 += (u6[j] - u5[j]) * (u6[j] - u5[j]);
-    u2 += u6[j] * u6[j];
-  }
-  run.periodicity = std::sqrt(d2 / u2);
   run.scene_text = r.file.scene_text();
   run.wall_time_s = r.summary.wall_time_s;
   const auto [A, phi] = fit_sinusoid(times, centre, omega);
