@@ -386,6 +386,13 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
   };
   pair_row("left / right", L.boundaries.left, L.boundaries.right, "left", "right");
   pair_row("bottom / top", L.boundaries.bottom, L.boundaries.top, "bottom", "top");
+  for (std::size_t i = 0; i < L.viscosity_layers.size(); ++i) {
+    const fluid::ViscosityLayer& l = L.viscosity_layers[i];
+    const double h_um = u.length_m * um;
+    rows.push_back({"layer " + std::to_string(i), "τ = " + num(l.tau) + ", " + std::to_string(fluid::covered_nodes(L.grid, l)) + " nodes",
+                    num(s.fluid.layers[i].viscosity_cP) + " cP, x " + vec({l.x_lo * h_um, l.x_hi * h_um}) + ", y " +
+                        vec({l.y_lo * h_um, l.y_hi * h_um}) + " µm"});
+  }
 
   if (const auto& M = L.membrane) {
     const membrane::StabilityEstimate& e = M->stability;
