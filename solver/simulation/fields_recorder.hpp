@@ -23,6 +23,8 @@ class FieldsRecorder : public RunObserver {
   // The last field output (the final state of a run that did not diverge); throws
   // std::logic_error when there is none.
   const Snapshot& last() const;
+  // The field output after `step` steps; throws std::logic_error naming the step if there is none.
+  const fluid::Moments& at(long step) const;
 
  private:
   std::vector<Snapshot> snapshots_;

@@ -4,7 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "simulation/field_recorder.hpp"
+#include "simulation/fields_recorder.hpp"
 
 namespace erythro::vv {
 
@@ -15,12 +15,12 @@ long steps_to_steady_state(int N, double nu, double residual) {
 
 ChannelResult run_channel(const SceneFile& file, const std::vector<std::string>& overrides,
                           const std::string& case_name, const std::string& label, CaseRunOptions options) {
-  sim::FieldRecorder fields(1);  // the final state (the initial one is not needed)
+  sim::FieldsRecorder fields;  // the initial and the final state
   options.observers.push_back(&fields);
   const CaseRun run = run_case_scene(file.scene(overrides), case_name, label, options);
   if (!run.ok()) throw std::runtime_error(case_name + " " + label + ": " + run.summary.diagnosis);
   const Grid g = run.setup.grid;
-  const fluid::Moments& m = fields.last().fields;
+  const fluid::Moments& m = fields.last().moments;
   ChannelResult result;
   for (int y = 0; y < g.ny; ++y) result.ux.push_back(m.ux[g.index(g.nx / 2, y)]);
   result.steps = run.summary.steps;

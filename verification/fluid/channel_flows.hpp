@@ -24,7 +24,7 @@ struct ChannelResult {
 
 // Runs the channel scene with `overrides` (which set run.steps) through the product path
 // and returns the final profile of the middle column, bit for bit as computed (a
-// FieldRecorder besides the run writer; `options` may add stages and observers).
+// sim::FieldsRecorder besides the run writer; `options` may add stages and observers).
 ChannelResult run_channel(const SceneFile& file, const std::vector<std::string>& overrides,
                           const std::string& case_name, const std::string& label, CaseRunOptions options = {});
 

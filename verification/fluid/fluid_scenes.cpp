@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "common/lattice_inputs.hpp"
 #include "common/scene_case.hpp"
 
 namespace erythro::vv {
@@ -30,13 +31,11 @@ std::string set_exact(const SceneFile& file, const std::vector<std::string>& ove
       x[c] = 0.0;
       continue;
     }
-    x[c] = exact_preimage(
-        [&](double v) {
-          std::array<double, 2> trial = x;
-          trial[c] = v;
-          return lattice_of(file.setup(with(overrides, set(key, trial[0], trial[1]))))[c];
-        },
-        target[c], x[c]);
+    x[c] = exact_input(x[c], target[c], [&](double v) {
+      std::array<double, 2> trial = x;
+      trial[c] = v;
+      return lattice_of(file.setup(with(overrides, set(key, trial[0], trial[1]))))[c];
+    });
     const double got = lattice_of(file.setup(with(overrides, set(key, x[0], x[1]))))[c];
     if (got != target[c])  // the run differs from the case's set-up by this round-off
       std::fprintf(stderr, "note: %s[%d]: lattice value %.17g, not %.17g exactly (rel %.1e)\n", key.c_str(), c, got,
@@ -47,8 +46,8 @@ std::string set_exact(const SceneFile& file, const std::vector<std::string>& ove
 
 std::string set_exact(const SceneFile& file, const std::vector<std::string>& overrides, const std::string& key,
                       double target, double rough, const LatticeScalar& lattice_of) {
-  const double x = exact_preimage(
-      [&](double v) { return lattice_of(file.setup(with(overrides, set(key, v)))); }, target, rough);
+  const double x =
+      exact_input(rough, target, [&](double v) { return lattice_of(file.setup(with(overrides, set(key, v)))); });
   const double got = lattice_of(file.setup(with(overrides, set(key, x))));
   if (got != target)
     std::fprintf(stderr, "note: %s: lattice value %.17g, not %.17g exactly (rel %.1e)\n", key.c_str(), got, target,

@@ -2,8 +2,10 @@
 // Overrides of the fluid family's scenes (channel.toml, periodic_box.toml, ...) stated in
 // lattice units, as the cases' set-ups are: h = 1 µm in every scene, so a node count is
 // a size in µm; τ, velocities, forces and frequencies are set to the physical values whose
-// conversion gives the lattice value bit for bit (common/scene_file.hpp). The scenes' h,
-// Δt and ρ make every conversion factor a power of two, so those values always exist.
+// conversion gives the lattice value bit for bit (vv::exact_input, common/lattice_inputs.hpp).
+// The scenes' h, Δt and ρ make every conversion factor a power of two, so those values exist
+// for velocities and forces; a note on stderr says when one does not (the run then differs
+// from the case's set-up by that round-off).
 #include <array>
 #include <functional>
 #include <string>
@@ -26,10 +28,10 @@ using LatticeVector = std::function<std::array<double, 2>(const scene::LatticeSe
 using LatticeScalar = std::function<double(const scene::LatticeSetup&)>;
 
 // "key=[x, y]" whose lattice value `lattice_of` is `target`, component by component;
-// physical ≈ lattice × per_lattice(setup) gives the first guess.
+// physical ≈ lattice × per_lattice(setup) is the first guess (searched ±64 ulps).
 std::string set_exact(const SceneFile& file, const std::vector<std::string>& overrides, const std::string& key,
                       std::array<double, 2> target, const LatticeScalar& per_lattice, const LatticeVector& lattice_of);
-// "key=x" for a number.
+// "key=x" for a number, from a first guess `rough` within a few ulps.
 std::string set_exact(const SceneFile& file, const std::vector<std::string>& overrides, const std::string& key,
                       double target, double rough, const LatticeScalar& lattice_of);
 

@@ -17,7 +17,7 @@
 // steps; (c) periodic_box.toml at N × 4 with the carrier flow as initial.type =
 // "uniform", the shear wave added to the start before the run (with its non-equilibrium
 // part, fluid/initial_state.hpp), fields at t_d/10 and t_d. Fields are read in lattice
-// units (a FieldRecorder), bit for bit as computed.
+// units (a sim::FieldsRecorder), bit for bit as computed.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -35,7 +35,7 @@
 #include "common/scene_case.hpp"
 #include "fluid/initial_state.hpp"
 #include "fluid_scenes.hpp"
-#include "simulation/field_recorder.hpp"
+#include "simulation/fields_recorder.hpp"
 
 using namespace erythro;
 
@@ -60,12 +60,12 @@ std::vector<std::string> base(const vv::SceneFile& file, fluid::CollisionModel m
   return o;
 }
 
-// Runs the scene and returns the recorder of its fields (from step 1 on).
-std::pair<vv::CaseRun, std::unique_ptr<sim::FieldRecorder>> run(const vv::SceneFile& file,
+// Runs the scene and returns the recorder of its fields.
+std::pair<vv::CaseRun, std::unique_ptr<sim::FieldsRecorder>> run(const vv::SceneFile& file,
                                                                  const std::vector<std::string>& o,
                                                                  const std::string& label,
                                                                  std::function<void(sim::Simulation&)> configure = {}) {
-  auto fields = std::make_unique<sim::FieldRecorder>(1);
+  auto fields = std::make_unique<sim::FieldsRecorder>();
   vv::CaseRunOptions options;
   options.configure = std::move(configure);
   options.observers.push_back(fields.get());
@@ -88,7 +88,7 @@ UniformResult run_uniform(fluid::CollisionModel model, double ux0, double uy0, l
   o.push_back(vv::set_initial_velocity(file, o, {ux0, uy0}));
   const auto [r, fields] = run(file, o, std::string(fluid::to_string(model)) + "_uniform_" + std::to_string(steps));
   ux0 = r.setup.initial_velocity[0], uy0 = r.setup.initial_velocity[1];  // the same bits (fluid_scenes.hpp)
-  const fluid::Moments& m = fields->last().fields;
+  const fluid::Moments& m = fields->last().moments;
   UniformResult u;
   const auto [xlo, xhi] = std::minmax_element(m.ux.begin(), m.ux.end());
   const auto [ylo, yhi] = std::minmax_element(m.uy.begin(), m.uy.end());
@@ -114,12 +114,13 @@ struct MirrorResult {
 // u_x odd, u_y even), measured on the fields output every 100 steps.
 enum class MirrorAxis { y, x };
 
-MirrorResult measure_mirror(const sim::FieldRecorder& fields, const Grid& g, MirrorAxis axis, io::Series* trace) {
+MirrorResult measure_mirror(const sim::FieldsRecorder& fields, const Grid& g, MirrorAxis axis, io::Series* trace) {
   const int N = g.nx;
   const double sx = axis == MirrorAxis::x ? -1.0 : 1.0;  // sign of u_x under the mirror
   MirrorResult r;
-  for (const sim::FieldRecorder::Frame& frame : fields.frames()) {
-    const fluid::Moments& m = frame.fields;
+  for (const sim::FieldsRecorder::Snapshot& frame : fields.snapshots()) {
+    if (frame.step == 0) continue;  // the start; sampled from step 100 on
+    const fluid::Moments& m = frame.moments;
     double umax = 0, asym = 0, drho = 0;
     long exact = 0;
     for (int j = 0; j < N; ++j) {

@@ -20,7 +20,7 @@
 // chunk, at most 40 chunks); the force field and the exact start are set on the fluid
 // before the run; the case's probe (manufactured_probe.hpp) writes the velocity error and
 // the transient ratio at every chunk and the scene's [[stop_when]] ends the run on it;
-// the pressure error is taken from the final fields (lattice units, a FieldRecorder).
+// the pressure error is taken from the final fields (lattice units, a FieldsRecorder).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -38,7 +38,7 @@
 #include "lattice/d2q9.hpp"
 #include "manufactured_probe.hpp"
 #include "mms/mms_forcing.hpp"
-#include "simulation/field_recorder.hpp"
+#include "simulation/fields_recorder.hpp"
 
 using namespace erythro;
 
@@ -94,7 +94,7 @@ MmsRun run_manufactured(fluid::CollisionModel model, int N, const std::string& c
     fluid::initialize_post_collision(lattice, exact, fx, fy);
     simulation.add_probe(std::make_unique<vv::ManufacturedSteadyProbe>(exact.ux, exact.uy));
   };
-  sim::FieldRecorder fields(1);
+  sim::FieldsRecorder fields;
   options.observers.push_back(&fields);
   const std::string label = std::string(fluid::to_string(model)) + "_N" + std::to_string(N);
   const vv::CaseRun r = vv::run_case_scene(file.scene(o), case_name, label, options);
@@ -105,7 +105,7 @@ MmsRun run_manufactured(fluid::CollisionModel model, int N, const std::string& c
   run.transient_ratio = r.file.series("mms_transient_over_error").back();
   run.wall_time_s = r.summary.wall_time_s;
   run.scene_text = r.file.scene_text();
-  const fluid::Moments& m = fields.last().fields;
+  const fluid::Moments& m = fields.last().moments;
   std::vector<double> p_num(g.size());
   for (std::size_t n = 0; n < g.size(); ++n) {
     p_num[n] = d2q9::cs2 * (m.rho[n] - 1.0);

@@ -1,6 +1,6 @@
 // The fluid's scene features used by the fluid verification cases: initial.non_equilibrium,
 // initial.type = "double_shear_layer", [[fluid.layers]], the oscillating body force's time
-// convention, the fluid probe's momentum and the FieldRecorder.
+// convention, the fluid probe's momentum and FieldsRecorder::at.
 // Scene: water in a 10 µm box, h = 1 µm, τ = 0.8 (Δt = 1e-7 s, u_lat = u[µm/s]·1e-7).
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 #include "lattice/d2q9.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene_fixtures.hpp"
-#include "simulation/field_recorder.hpp"
+#include "simulation/fields_recorder.hpp"
 #include "simulation/series_recorder.hpp"
 #include "simulation/simulation.hpp"
 
@@ -34,11 +34,11 @@ Scene parse(const std::string& text, const std::vector<std::string>& overrides =
 
 struct Outcome {
   sim::RunSummary summary;
-  sim::FieldRecorder fields;
+  sim::FieldsRecorder fields;
   sim::SeriesRecorder series;
 };
 
-// Runs the scene with a FieldRecorder and a SeriesRecorder.
+// Runs the scene with a FieldsRecorder and a SeriesRecorder.
 void run(const Scene& scene, Outcome& out) {
   sim::Simulation simulation(scene, derive_lattice(scene));
   sim::ObserverList list;
@@ -192,21 +192,12 @@ TEST(FluidProbe, MomentumSeriesIsTheSumOfRhoU) {
   EXPECT_NEAR(r.series.series("total_mass_kg_per_m")[0], 100 * 1000.0 * 1e-12, 1e-22);
 }
 
-TEST(FieldRecorder, KeepsTheOutputsFromItsFirstStep) {
-  sim::FieldRecorder later(10);
+TEST(FieldsRecorder, AtFindsTheOutputOfAStep) {
   Outcome r;
-  const Scene scene = parse(periodic, {"output.fields_interval_steps=5"});
-  sim::Simulation simulation(scene, derive_lattice(scene));
-  sim::ObserverList list;
-  list.add(later);
-  list.add(r.fields);
-  simulation.run(list);
-  ASSERT_EQ(r.fields.frames().size(), 5u);  // 0, 5, 10, 15, 20
-  ASSERT_EQ(later.frames().size(), 3u);
-  EXPECT_EQ(later.last().step, 20);
-  EXPECT_TRUE(later.has(15));
-  EXPECT_FALSE(later.has(5));
-  EXPECT_THROW(later.at(5), std::out_of_range);
+  run(parse(periodic, {"output.fields_interval_steps=5"}), r);
+  ASSERT_EQ(r.fields.snapshots().size(), 5u);  // 0, 5, 10, 15, 20
+  EXPECT_EQ(&r.fields.at(15), &r.fields.snapshots()[3].moments);
+  EXPECT_THROW(r.fields.at(7), std::logic_error);
 }
 
 }  // namespace
