@@ -19,6 +19,7 @@
 
 #include "interior/geometry.hpp"
 #include "interior/marks.hpp"
+#include "lattice/d2q9.hpp"
 
 namespace erythro::interior {
 
@@ -137,7 +138,7 @@ void IndexField::write_relaxation_times(std::span<double> tau, double nu_in, dou
     throw std::invalid_argument("IndexField::write_relaxation_times: tau has " + std::to_string(tau.size()) +
                                 " entries, the grid " + std::to_string(index_.size()));
   // Eq 27 with ν = μ/ρ0, ρ0 = 1: ν(x) = ν_in + (ν_ex − ν_in) I(x), τ = ½ + 3ν (c_s² = ⅓).
-  for (std::size_t k = 0; k < tau.size(); ++k) tau[k] = 0.5 + 3.0 * (nu_in + (nu_ex - nu_in) * index_[k]);
+  for (std::size_t k = 0; k < tau.size(); ++k) tau[k] = d2q9::tau_of_viscosity(nu_in + (nu_ex - nu_in) * index_[k]);
 }
 
 void IndexField::write_changed_relaxation_times(std::span<double> tau, double nu_in, double nu_ex) const {
@@ -147,7 +148,7 @@ void IndexField::write_changed_relaxation_times(std::span<double> tau, double nu
   // Every node whose I differs from 1 now, or did after the previous update, is in one of
   // the two lists; every other node has I = 1 in both, so its τ is already ½ + 3ν_ex.
   for (const auto* nodes : {&previous_dirty_, &dirty_})
-    for (std::size_t k : *nodes) tau[k] = 0.5 + 3.0 * (nu_in + (nu_ex - nu_in) * index_[k]);
+    for (std::size_t k : *nodes) tau[k] = d2q9::tau_of_viscosity(nu_in + (nu_ex - nu_in) * index_[k]);
 }
 
 }  // namespace erythro::interior

@@ -7,6 +7,11 @@ namespace erythro::d2q9 {
 inline constexpr int Q = 9;
 inline constexpr double cs2 = 1.0 / 3.0;  // speed of sound squared
 inline constexpr double inv_cs2 = 3.0;
+
+// Kinematic viscosity of relaxation time τ, ν = c_s²(τ − ½) (lattice units, docs/model.md
+// §1), and back. The one place this relation is written; (τ − ½)/3 and ½ + 3ν exactly.
+constexpr double viscosity_of_tau(double tau) { return (tau - 0.5) / 3.0; }
+constexpr double tau_of_viscosity(double nu) { return 0.5 + 3.0 * nu; }
 inline constexpr double inv_cs4 = 9.0;
 
 // c0=(0,0), c1=(1,0), c2=(0,1), c3=(-1,0), c4=(0,-1), c5=(1,1), c6=(-1,1), c7=(-1,-1), c8=(1,-1)

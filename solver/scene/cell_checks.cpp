@@ -8,6 +8,7 @@
 
 #include "aggregation/morse_units.hpp"
 #include "geometry/shapes.hpp"
+#include "lattice/d2q9.hpp"
 #include "membrane/membrane_units.hpp"
 #include "scene/units_detail.hpp"
 
@@ -62,7 +63,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     }
     M.index_update_interval = spec.index_update_interval;
   }
-  M.interior_tau = 0.5 + 3.0 * M.interior_viscosity;
+  M.interior_tau = d2q9::tau_of_viscosity(M.interior_viscosity);
   if (mechanics && M.interior_tau < 0.5 + s.limits.min_tau_margin)
     reject(s, "membrane.interior_viscosity_cP = " + num(spec.interior_viscosity_cP.value_or(0.0)) +
                   " cP gives an interior relaxation time tau = " + num(M.interior_tau) + ", below the limit " +

@@ -220,7 +220,7 @@ LatticeSetup derive_lattice(const Scene& s) {
     dt = (tau - 0.5) * h * h / (3.0 * nu);
   } else {
     dt = *s.time.step_s;
-    tau = 0.5 + 3.0 * nu * dt / (h * h);
+    tau = d2q9::tau_of_viscosity(nu * dt / (h * h));
   }
   const double tau_min = 0.5 + s.limits.min_tau_margin;
   if (!(tau >= tau_min && tau > 0.5)) {

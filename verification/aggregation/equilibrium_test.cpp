@@ -48,6 +48,7 @@
 #include "aggregation/morse_units.hpp"
 #include "common/case_support.hpp"
 #include "doublet_run.hpp"
+#include "lattice/d2q9.hpp"
 #include "membrane/stability.hpp"
 #include "prediction.hpp"
 
@@ -121,7 +122,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
 
   membrane::StabilityInput in;
   in.model = s.model;
-  in.viscosity = (s.tau - 0.5) / 3.0;
+  in.viscosity = d2q9::viscosity_of_tau(s.tau);
   const membrane::StabilityEstimate est = membrane::estimate_stability(in);
   ASSERT_TRUE(est.acceptable()) << est.problem;
   record.set_parameter("stability_factor", est.max_dt_factor);

@@ -5,6 +5,7 @@
 
 #include "common/lattice_inputs.hpp"
 #include "common/scene_case.hpp"
+#include "lattice/d2q9.hpp"
 
 namespace erythro::vv {
 
@@ -17,7 +18,7 @@ std::string set_collision(fluid::CollisionModel model) {
 std::string set_tau(const SceneFile& file, const std::vector<std::string>& overrides, double tau) {
   const scene::LatticeSetup s = file.setup(overrides);
   const double h = s.scales.length_m, dt = s.scales.time_s;
-  const double mu_cP = (tau - 0.5) / 3.0 * h * h / dt * s.scales.density_kg_m3 * 1e3;
+  const double mu_cP = d2q9::viscosity_of_tau(tau) * h * h / dt * s.scales.density_kg_m3 * 1e3;
   return set_exact(file, overrides, "fluid.viscosity_cP", tau, mu_cP,
                    [](const scene::LatticeSetup& l) { return l.collision.tau; });
 }

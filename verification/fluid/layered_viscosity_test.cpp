@@ -67,6 +67,7 @@
 #include "common/case_support.hpp"
 #include "common/concurrent_runs.hpp"
 #include "common/convergence.hpp"
+#include "lattice/d2q9.hpp"
 #include "vv4_layers.hpp"
 
 using namespace erythro;
@@ -155,7 +156,7 @@ TEST(LayeredViscosity, InterfaceOrdersMatchDerivation) {
   record.set_parameter("viscosity_lower_cP", 6.0);
   record.set_parameter("viscosity_upper_cP", 1.2);
   record.set_parameter("tau_upper", kTauPlasma);
-  record.set_parameter("tau_lower", 0.5 + 3.0 * kNuCytoplasm);
+  record.set_parameter("tau_lower", d2q9::tau_of_viscosity(kNuCytoplasm));
   record.set_parameter("trt_magic", kMagic);
   record.set_parameter("resolutions", std::string("N = 8,16,32,64 (midpoint); 9,17,33,65 (interface on a row)"));
   record.set_parameter("scaling", std::string("diffusive: tau fixed, max velocity 0.32/N (lattice)"));
@@ -223,7 +224,7 @@ TEST(LayeredViscosity, InterfaceOrdersMatchDerivation) {
                         {"placement", vv::to_string(c.where)}, {"N", double(N)},
                         {"tau_interface_row", c.where == InterfacePlacement::midpoint
                                                   ? std::numeric_limits<double>::quiet_NaN()
-                                                  : 0.5 + 3.0 * p.row_viscosity(J)},
+                                                  : d2q9::tau_of_viscosity(p.row_viscosity(J))},
                         {"steps", double(r.steps)}, {"error_l2", r.error_l2}, {"error_near_linf", r.error_near_linf},
                         {"error_far_l2", r.error_far_l2}, {"link_residual", r.link_residual},
                         {"wall_time_s", r.wall_time_s}},

@@ -25,6 +25,7 @@
 #include "common/concurrent_runs.hpp"
 #include "common/convergence.hpp"
 #include "fluid_scenes.hpp"
+#include "lattice/d2q9.hpp"
 
 using namespace erythro;
 
@@ -46,7 +47,7 @@ std::string tau_label(double tau) {
 
 ChannelRun run_poiseuille(fluid::CollisionModel model, double tau, int N) {
   static const vv::SceneFile channel("verification/fluid/channel.toml");
-  const double nu = (tau - 0.5) / 3.0;
+  const double nu = d2q9::viscosity_of_tau(tau);
   const double u_centre = 0.02 * 16.0 / N;
   const double force = 8.0 * nu * u_centre / (double(N) * N);
   // Converge to 1e-15 of steady state so the remaining error is the scheme's own.

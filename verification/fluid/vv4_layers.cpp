@@ -7,6 +7,7 @@
 #include "channel_flows.hpp"
 #include "common/case_support.hpp"
 #include "fluid_scenes.hpp"
+#include "lattice/d2q9.hpp"
 #include "simulation/simulation.hpp"
 
 namespace erythro::vv {
@@ -72,16 +73,16 @@ TwoLayerRun run_two_layer(const TwoLayerProblem& p, fluid::CollisionModel model,
   // of channel_flows.hpp with ν = ν_min is an upper bound.
   std::vector<std::string> o = {set_grid(1, p.N), set_collision(model),
                                 set("run.steps", steps_to_steady_state(p.N, nu_min, residual))};
-  const double tau_upper = 0.5 + 3.0 * p.nu_upper;  // the fluid (ν = (τ − ½)/3)
+  const double tau_upper = d2q9::tau_of_viscosity(p.nu_upper);  // the fluid (ν = (τ − ½)/3)
   o.push_back(set_tau(file, o, tau_upper));
   // layers[0]: ν1 below the interface; layers[1]: ν2 above a midpoint interface, or the
   // interface row J = (N − 1)/2 with its own viscosity (vv4_layers.hpp).
   const bool row = p.placement != InterfacePlacement::midpoint;
   const int J = p.N / 2;
   const double lo = row ? J : 0.5 * p.N, hi = row ? J + 1.0 : double(p.N);
-  const double tau_row = 0.5 + 3.0 * (row ? p.row_viscosity(J) : p.nu_upper);
+  const double tau_row = d2q9::tau_of_viscosity(row ? p.row_viscosity(J) : p.nu_upper);
   const double mu = file.scene(o).fluid.viscosity_cP;
-  for (const auto& [i, y0, y1, tau] : {std::tuple{0, 0.0, lo, 0.5 + 3.0 * p.nu_lower}, std::tuple{1, lo, hi, tau_row}}) {
+  for (const auto& [i, y0, y1, tau] : {std::tuple{0, 0.0, lo, d2q9::tau_of_viscosity(p.nu_lower)}, std::tuple{1, lo, hi, tau_row}}) {
     const std::string key = "fluid.layers[" + std::to_string(i) + "].";
     o.push_back(set(key + "y_um", y0, y1));
     o.push_back(set_exact(file, o, key + "viscosity_cP", tau, mu * (tau - 0.5) / (tau_upper - 0.5),
@@ -139,7 +140,7 @@ TwoLayerRun run_two_layer(const TwoLayerProblem& p, fluid::CollisionModel model,
     const double tau = tau_field[n], om = 1.0 / tau;
     sigma.push_back(-(1.0 - 0.5 * om) / (1.0 - om) * pxy);
     sigma_max = std::max(sigma_max, std::abs(sigma.back()));
-    nu.push_back((tau - 0.5) / 3.0);
+    nu.push_back(d2q9::viscosity_of_tau(tau));
     tau_minus.push_back(model == fluid::CollisionModel::bgk   ? tau
                         : model == fluid::CollisionModel::trt ? fluid::trt_tau_minus(tau, trt_magic)
                                                               : 1.0);

@@ -35,6 +35,7 @@
 #include "common/scene_case.hpp"
 #include "fluid/initial_state.hpp"
 #include "fluid_scenes.hpp"
+#include "lattice/d2q9.hpp"
 #include "simulation/simulation.hpp"
 
 using namespace erythro;
@@ -113,7 +114,7 @@ std::pair<double, double> fit_sinusoid(const std::vector<double>& t, const std::
 
 WomersleyRun run_womersley(const Config& c, int N) {
   static const vv::SceneFile channel("verification/fluid/channel.toml");
-  const double nu = (c.tau - 0.5) / 3.0;
+  const double nu = d2q9::viscosity_of_tau(c.tau);
   const Oscillation osc = oscillation_for(nu);
   const long T = osc.period16 * (N / 16) * (N / 16);
   const double omega = 2.0 * std::numbers::pi / double(T);
@@ -225,7 +226,7 @@ TEST(Womersley, SecondOrderAtEveryPhase) {
                             {fluid::CollisionModel::bgk, 0.8, "BGK tau=0.8"},
                             {fluid::CollisionModel::bgk, 1.2, "BGK tau=1.2"}};
   for (const Config& c : configs) {
-    const double alpha = oscillation_for((c.tau - 0.5) / 3.0).alpha;
+    const double alpha = oscillation_for(d2q9::viscosity_of_tau(c.tau)).alpha;
     record.set_parameter("womersley_number " + c.label, alpha);
     io::ConvergenceSeries phase_series[kPhases];
     for (int m = 0; m < kPhases; ++m) {

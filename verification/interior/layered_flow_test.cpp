@@ -48,6 +48,7 @@
 #include "common/convergence.hpp"
 #include "fluid_scenes.hpp"
 #include "interior/index_field.hpp"
+#include "lattice/d2q9.hpp"
 #include "simulation/simulation.hpp"
 #include "vv4_layers.hpp"
 
@@ -105,7 +106,7 @@ LayerRun run(vv::LayerFlow flow, fluid::CollisionModel model, Blend blend, int N
   std::vector<std::string> o = {vv::set_grid(1, N), vv::set_collision(model),
                                 vv::set("run.steps", vv::steps_to_steady_state(N, kNuEx, kResidual)),
                                 vv::set("limits.max_mach", 0.5)};  // the speed estimate assumes plasma everywhere
-  o.push_back(vv::set_tau(channel, o, 0.5 + 3.0 * kNuEx));
+  o.push_back(vv::set_tau(channel, o, d2q9::tau_of_viscosity(kNuEx)));
   if (flow == vv::LayerFlow::couette) {
     o.push_back(vv::set("boundaries.top.type", "\"moving_wall\""));
     o.push_back(vv::set_top_wall_velocity(channel, o, p.drive));
@@ -178,8 +179,8 @@ TEST(InteriorLayeredFlow, IndexFieldViscosityMatchesDerivedAccuracy) {
       "the resistance error is dR = sum_band (1/nu_j - 1/nu_sharp) = const: relative error dR/R ~ w/H "
       "(derivation in layered_flow_test.cpp).");
   record.set_parameter("viscosity_ratio", 5.0);
-  record.set_parameter("tau_plasma", 0.5 + 3 * kNuEx);
-  record.set_parameter("tau_cytoplasm", 0.5 + 3 * kNuIn);
+  record.set_parameter("tau_plasma", d2q9::tau_of_viscosity(kNuEx));
+  record.set_parameter("tau_cytoplasm", d2q9::tau_of_viscosity(kNuIn));
   record.set_parameter("band_half_width_h", 2.0);
   record.set_parameter("resolutions", std::string("N = 8, 16, 32, 64; interface y = N/2 (midway between rows)"));
   record.set_parameter("steady_state_residual", kResidual);

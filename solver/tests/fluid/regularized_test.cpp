@@ -10,6 +10,7 @@
 
 #include "fluid/collide_node.hpp"
 #include "fluid/fluid_lattice.hpp"
+#include "lattice/d2q9.hpp"
 
 using namespace erythro;
 using namespace erythro::fluid;
@@ -129,7 +130,7 @@ TEST(Regularized, PoiseuilleConvergesAtSecondOrder) {
       BoundaryConfig walls;
       walls.bottom.type = walls.top.type = SideType::wall;
       FluidLattice lat(Grid{4, N}, {kReg, tau, 3.0 / 16}, walls);
-      const double nu = (tau - 0.5) / 3.0, u_centre = 0.02 * 16.0 / N;
+      const double nu = d2q9::viscosity_of_tau(tau), u_centre = 0.02 * 16.0 / N;
       const double F = 8.0 * nu * u_centre / (double(N) * N);
       lat.set_uniform_force(F, 0.0);
       const long steps = static_cast<long>(std::ceil(std::log(1e15) * N * N / (nu * 9.8696)));
@@ -156,7 +157,7 @@ TEST(Regularized, PoiseuilleExactAtTauSevenEighths) {
   // Λ = (τ − ½)(1 − ½) = 3/16 at τ = 7/8, where bounce-back walls are exactly halfway
   // (Ginzburg & d'Humières 2003): the parabola is reproduced to round-off.
   const int N = 16;
-  const double tau = 0.875, nu = (tau - 0.5) / 3.0, F = 1e-5;
+  const double tau = 0.875, nu = d2q9::viscosity_of_tau(tau), F = 1e-5;
   BoundaryConfig walls;
   walls.bottom.type = walls.top.type = SideType::wall;
   FluidLattice lat(Grid{4, N}, {kReg, tau, 3.0 / 16}, walls);
