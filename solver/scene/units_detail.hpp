@@ -40,5 +40,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
 // [transport], [[species]], [hemoglobin] → TransportSetup (transport_setup.cpp). L has its
 // grid, scales (the fluid's, or the transport's own without fluid) and boundaries set.
 TransportSetup derive_transport(const Scene& s, const LatticeSetup& L);
+// The options of [transport] and [hemoglobin] beyond species and coupling (collision, cell
+// representation, interface rule, uniform velocity, [[layers]], the monitor's concentration
+// range), checked and converted into T (transport_options.cpp; T.units already set).
+void derive_transport_options(const Scene& s, const LatticeSetup& L, TransportSetup& T);
 
 }  // namespace erythro::scene::detail
