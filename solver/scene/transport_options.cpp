@@ -2,7 +2,9 @@
 // collision, the cells' representation and membrane rule, a uniform velocity of a still
 // medium, the [[layers]] bands and the monitor's concentration range, checked and converted
 // into the TransportSetup (the lattice-unit conversion itself: T.units, transport_setup.cpp).
+#include <array>
 #include <cmath>
+#include <vector>
 #include <string>
 
 #include "scene/units_detail.hpp"
@@ -92,6 +94,23 @@ void derive_transport_options(const Scene& s, const LatticeSetup& L, TransportSe
     T.layers.push_back(out);
   }
   T.concentration_range = s.monitor.concentration_range_uM;
+}
+
+void append_transport_option_rows(const TransportSetup& T, std::vector<std::array<std::string, 3>>& rows) {
+  const bool trt = T.collision.kind == transport::Collision::trt;
+  rows.push_back({"transport options", trt ? "trt, Λ = " + num(T.collision.magic) : std::string("bgk"),
+                  "cells " + T.cell_representation + (T.cell_representation == "area_fraction" ? ", " + T.interface : "") +
+                      (T.readout == "source_corrected" ? ", readout Ĉ" : "")});
+  if (T.hemoglobin)
+    rows.push_back({"hemoglobin coupling", T.hb_coupling, "mean P: " + T.mean_pressure + ", heme weights " + T.heme_weights});
+  if (T.velocity) rows.push_back({"transport velocity", vec(*T.velocity), "lattice units (still medium)"});
+  for (std::size_t k = 0; k < T.layers.size(); ++k) {
+    const LayerSetup& l = T.layers[k];
+    rows.push_back({"layer " + std::to_string(k) + " (" + T.species[static_cast<std::size_t>(l.species)].name + ")",
+                    "y " + vec({l.y_lo, l.y_hi}) + " h",
+                    "D " + num(l.diffusivity_um2_s) + " µm²/s, k " + num(l.decay_per_s) + " 1/s, q " +
+                        num(l.source_uM_per_s) + " µM/s"});
+  }
 }
 
 }  // namespace erythro::scene::detail

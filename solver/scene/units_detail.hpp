@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "scene/scene.hpp"
@@ -44,5 +45,7 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L);
 // representation, interface rule, uniform velocity, [[layers]], the monitor's concentration
 // range), checked and converted into T (transport_options.cpp; T.units already set).
 void derive_transport_options(const Scene& s, const LatticeSetup& L, TransportSetup& T);
+// Rows of `erythro check` for those options (collision, cells, coupling, velocity, layers).
+void append_transport_option_rows(const TransportSetup& T, std::vector<std::array<std::string, 3>>& rows);
 
 }  // namespace erythro::scene::detail

@@ -57,48 +57,51 @@ int Runner::runs() const {
   return runs_;
 }
 
+std::shared_ptr<std::promise<Result>> Runner::claim(std::pair<double, double> key, std::shared_future<Result>& result) {
+  std::lock_guard lock(m_);
+  auto it = memo_.find(key);
+  if (it != memo_.end()) {
+    result = it->second;
+    return nullptr;
+  }
+  auto promise = std::make_shared<std::promise<Result>>();
+  result = promise->get_future().share();
+  memo_.emplace(key, result);
+  ++runs_;
+  return promise;
+}
+
+void Runner::compute(std::pair<double, double> key, std::promise<Result>& promise, int priority) {
+  Setup s = base_;
+  s.hb.M = key.first;
+  s.D_out = key.second * base_.D_out;
+  Slots& slots = Slots::instance();
+  slots.acquire(priority >= 0 ? priority : priority_);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);  // one run per worker (the small grids do not thread anyway)
+  try {
+    const std::string label = fmt("h%.2f_", s.h_um) + std::to_string(run_counter++);
+    promise.set_value(run(s, case_name_, label));
+  } catch (...) {
+    promise.set_exception(std::current_exception());
+  }
+  omp_set_num_threads(threads);
+  slots.release();
+}
+
 const Result& Runner::at(double M, double beta, int priority) {
   const auto key = std::make_pair(M, beta);
-  std::promise<Result> promise;
   std::shared_future<Result> result;
-  bool mine = false;
-  {
-    std::lock_guard lock(m_);
-    auto it = memo_.find(key);
-    if (it == memo_.end()) {
-      it = memo_.emplace(key, promise.get_future().share()).first;
-      ++runs_;
-      mine = true;
-    }
-    result = it->second;
-  }
-  if (mine) {
-    Setup s = base_;
-    s.hb.M = M;
-    s.D_out = beta * base_.D_out;
-    Slots& slots = Slots::instance();
-    slots.acquire(priority >= 0 ? priority : priority_);
-    const int threads = omp_get_max_threads();
-    omp_set_num_threads(1);  // one run per worker (the small grids do not thread anyway)
-    try {
-      const std::string label = fmt("h%.2f_", s.h_um) + std::to_string(run_counter++);
-      promise.set_value(run(s, case_name_, label));
-    } catch (...) {
-      promise.set_exception(std::current_exception());
-    }
-    omp_set_num_threads(threads);
-    slots.release();
-  }
+  if (auto promise = claim(key, result)) compute(key, *promise, priority);
   return result.get();  // the memo keeps the shared state (and so the reference) alive
 }
 
 void Runner::prefetch(const std::vector<std::pair<double, double>>& points, int priority) {
   for (const auto& p : points) {
-    {
-      std::lock_guard lock(m_);
-      if (memo_.count(p)) continue;
-    }
-    auto f = std::async(std::launch::async, [this, p, priority] { at(p.first, p.second, priority); });
+    std::shared_future<Result> result;
+    auto promise = claim(p, result);  // claimed here, so runs() counts it from now on
+    if (!promise) continue;
+    auto f = std::async(std::launch::async, [this, p, promise, priority] { compute(p, *promise, priority); });
     std::lock_guard lock(m_);
     background_.push_back(std::move(f));
   }
@@ -163,10 +166,27 @@ Fit fit_log(Runner& run, const vv::Curve& ref, const std::string& name, const Po
   return f;
 }
 
+std::pair<double, double> warm_pair(double x0, double fd_step) {
+  // as fit_log_warm → context → refine_1d compute them: δ = (fd_step / range) range on the
+  // bracket x0 ± kWarmHalfBracket
+  const double lo = x0 - kWarmHalfBracket, hi = x0 + kWarmHalfBracket;
+  const double delta = fd_step / (hi - lo) * (hi - lo);
+  return {std::max(x0 - delta, lo), std::min(x0 + delta, hi)};
+}
+
 Fit fit_log_warm(Runner& run, const vv::Curve& ref, const std::string& name, const PointOf& point, double x0,
-                 double lo, double hi, double tol, vv::MisfitNorm norm, double fd_step, int priority) {
+                 double tol, vv::MisfitNorm norm, double fd_step, int priority,
+                 const std::function<void(double)>& on_iterate) {
   vv::Stopwatch clock;
-  const FitContext c = context(run, point, lo, hi, tol, norm, fd_step, priority);
+  const double lo = x0 - kWarmHalfBracket, hi = x0 + kWarmHalfBracket;
+  FitContext c = context(run, point, lo, hi, tol, norm, fd_step, priority);
+  if (on_iterate) {
+    const auto pair = c.opt.prefetch;
+    c.opt.prefetch = [pair, on_iterate](const std::vector<std::vector<double>>& xs) {
+      if (xs.size() == 1) on_iterate(xs[0][0]);  // an iterate (refine_1d prefetches it alone)
+      pair(xs);
+    };
+  }
   Fit f;
   f.r = vv::refine_1d(c.model, ref, {name, lo, hi, x0}, x0, c.opt);
   f.value = std::exp(f.r.params[0]);
@@ -180,12 +200,12 @@ Fit fit_log_warm(Runner& run, const vv::Curve& ref, const std::string& name, con
 std::vector<std::unique_ptr<Runner>> stage1_runners(const vv::Curve& planar, const std::string& case_name) {
   std::vector<std::unique_ptr<Runner>> runners;
   for (std::size_t i = 0; i < kLevels.size(); ++i)
-    runners.push_back(std::make_unique<Runner>(case_setup(kLevels[i], planar.t.back()), case_name,
-                                               static_cast<int>(i) + 2));
+    runners.push_back(std::make_unique<Runner>(case_setup(kLevels[i], planar.t.back()), case_name, level_priority(i)));
   return runners;
 }
 
-std::vector<StageOneLevel> stage1_fits(std::vector<std::unique_ptr<Runner>>& runners, const vv::Curve& planar) {
+std::vector<StageOneLevel> stage1_fits(std::vector<std::unique_ptr<Runner>>& runners, const vv::Curve& planar,
+                                       const std::function<void(double)>& finest_iterate) {
   const PointOf point = [](double x) { return std::make_pair(std::exp(x), 1.0); };
   std::vector<StageOneLevel> levels(kLevels.size());
   auto level = [&](std::size_t i, const std::function<Fit(Runner&)>& fit) {
@@ -212,9 +232,17 @@ std::vector<StageOneLevel> stage1_fits(std::vector<std::unique_ptr<Runner>>& run
   });
   for (std::size_t i = 2; i < kLevels.size(); ++i) {
     const double x0 = levels[i - 1].planar.r.params[0];
+    // on an iterate (almost always the fit): the next level's pair starts, below this level's runs
+    std::function<void(double)> on_iterate = [&, i](double x) {
+      if (i + 1 < kLevels.size()) {
+        const auto [a, b] = warm_pair(x, kFdLnM);
+        runners[i + 1]->prefetch({point(a), point(b)}, level_priority(i) - 5);
+      } else if (finest_iterate) {
+        finest_iterate(std::exp(x));
+      }
+    };
     level(i, [&](Runner& r) {
-      return fit_log_warm(r, planar, "lnM", point, x0, x0 - kWarmHalfBracket, x0 + kWarmHalfBracket, 1e-3,
-                          vv::MisfitNorm::rms, kFdLnM);
+      return fit_log_warm(r, planar, "lnM", point, x0, 1e-3, vv::MisfitNorm::rms, kFdLnM, -1, on_iterate);
     });
   }
   coarsest.get();

@@ -119,6 +119,9 @@ class Runner {
   const Setup& base() const { return base_; }
 
  private:
+  // The memo entry of key: a new promise to fulfil if no run of it exists yet (then counted).
+  std::shared_ptr<std::promise<Result>> claim(std::pair<double, double> key, std::shared_future<Result>& result);
+  void compute(std::pair<double, double> key, std::promise<Result>& promise, int priority);
   Setup base_;
   std::string case_name_;
   int priority_;
@@ -145,12 +148,21 @@ using PointOf = std::function<std::pair<double, double>(double)>;
 Fit fit_log(Runner& run, const vv::Curve& ref, const std::string& name, const PointOf& point, double lo, double hi,
             double tol, vv::MisfitNorm norm, double fd_step, int priority = -1);
 
-// Continuation from x0 (the previous level's fit) on the warm bracket [lo, hi]: Gauss–Newton on
-// the linearised misfit with J by central differences ± fd_step at x0 (vv::refine_1d), to |Δx| ≤
-// tol. Replaces Brent on the warm levels (the same bracket, a tighter result: the fixed-M level
-// shifts are nearly linear in x; 3 runs, 2 of them concurrent, against 8 + 3 sequential).
+// Continuation from x0 (the previous level's fit) on the warm bracket x0 ± kWarmHalfBracket:
+// Gauss–Newton on the linearised misfit with J by central differences ± fd_step at x0
+// (vv::refine_1d), to |Δx| ≤ tol. Replaces Brent on the warm levels (the same bracket and
+// tolerance; the fixed-M level shifts are nearly linear in x: 3 runs, 2 of them concurrent,
+// against 8 + 3 sequential). on_iterate (optional) is called with each iterate x just before it
+// runs (almost always the fit: the next level can start on it).
 Fit fit_log_warm(Runner& run, const vv::Curve& ref, const std::string& name, const PointOf& point, double x0,
-                 double lo, double hi, double tol, vv::MisfitNorm norm, double fd_step, int priority = -1);
+                 double tol, vv::MisfitNorm norm, double fd_step, int priority = -1,
+                 const std::function<void(double)>& on_iterate = {});
+// The difference pair fit_log_warm runs first when it starts from x0 (bitwise the same x's).
+std::pair<double, double> warm_pair(double x0, double fd_step);
+// Priorities of the runs (Slots): a level's own runs 10 (i + 2) for level i, the runs a finer
+// level may need next (started on its predecessor's iterate) 5 below the current level's, the
+// side fits (3D free fits, M = 1) 10, the joint fit 0.
+inline int level_priority(std::size_t i) { return 10 * (static_cast<int>(i) + 2); }
 
 // Stage 1 of both full studies: M against the planar section at every level (Brent on the free
 // bracket at 0.4 (tolerance 0.01) and 0.3 µm (1e-3); continuation from the previous level at 0.2 and
@@ -165,10 +177,13 @@ struct StageOneLevel {
 // run; 0.15 µm (80 nodes per side) is the finest level a full-tier case affords.
 inline const std::vector<double> kLevels{0.4, 0.3, 0.2, 0.15};
 // Runners of the levels (planar reference's t_end), created by the caller so that it can add runs
-// of its own to them; their priority is the level's index + 2 (finer: later on the critical path).
+// of its own to them; their priority is level_priority (finer: later on the critical path).
 std::vector<std::unique_ptr<Runner>> stage1_runners(const vv::Curve& planar, const std::string& case_name);
-// The fits, level by level (each warm level waits for the previous one's fit).
-std::vector<StageOneLevel> stage1_fits(std::vector<std::unique_ptr<Runner>>& runners, const vv::Curve& planar);
+// The fits, level by level (each warm level waits for the previous one's fit); finest_iterate
+// (optional) is called with each iterate's M of the finest level just before it runs (the planar
+// case starts its fixed-M run on the second-finest level there).
+std::vector<StageOneLevel> stage1_fits(std::vector<std::unique_ptr<Runner>>& runners, const vv::Curve& planar,
+                                       const std::function<void(double)>& finest_iterate = {});
 // The stage-1 fits to a file (<results>/deoxygenation_stage1.tsv) and back: every number the 3D
 // case uses, written to round-trip. read_stage1 returns an empty vector when there is no file.
 std::string stage1_path();

@@ -280,7 +280,7 @@ TEST(Deoxygenation3d, FullStudy) {
   std::vector<std::unique_ptr<deoxy::Runner>> runs;
   for (std::size_t i = 0; i < stage.size(); ++i)
     runs.push_back(std::make_unique<deoxy::Runner>(deoxy::case_setup(stage[i].h, cell.t.back()),
-                                                   "validation.deoxygenation_3d", static_cast<int>(i) + 2));
+                                                   "validation.deoxygenation_3d", deoxy::level_priority(i)));
   std::vector<Level> levels;
   levels.push_back(closure_level(stage[0], *runs[0], cell, [&](const deoxy::PointOf& point) {
     return deoxy::fit_log(*runs[0], cell, "lnBeta", point, kLnBetaLower, kLnBetaUpper, 2e-3, vv::MisfitNorm::max_abs,
@@ -290,9 +290,16 @@ TEST(Deoxygenation3d, FullStudy) {
   for (std::size_t i = 1; i < stage.size(); ++i) {
     const bool asserted = i + 2 >= stage.size();
     const double x0 = levels.back().closure.r.params[0];
+    // on an iterate (almost always the fit): the next level's pair starts, below this level's runs
+    const auto on_iterate = [&, i](double x) {
+      if (i + 1 >= stage.size()) return;
+      const auto [a, b] = deoxy::warm_pair(x, kFdLnBeta);
+      const double M_next = stage[i + 1].planar.value;
+      runs[i + 1]->prefetch({{M_next, std::exp(a)}, {M_next, std::exp(b)}}, deoxy::level_priority(i) - 5);
+    };
     levels.push_back(closure_level(stage[i], *runs[i], cell, [&](const deoxy::PointOf& point) {
-      return deoxy::fit_log_warm(*runs[i], cell, "lnBeta", point, x0, x0 - kWarmHalfBracket, x0 + kWarmHalfBracket,
-                                 asserted ? kFineTolerance : 2e-3, vv::MisfitNorm::max_abs, kFdLnBeta);
+      return deoxy::fit_log_warm(*runs[i], cell, "lnBeta", point, x0, asserted ? kFineTolerance : 2e-3,
+                                 vv::MisfitNorm::max_abs, kFdLnBeta, -1, on_iterate);
     }));
   }
   const JointFit joint = joint_future.get();

@@ -215,15 +215,20 @@ TEST(Deoxygenation, FullStudy) {
   std::vector<Level> levels(deoxy::kLevels.size());
   std::vector<std::future<void>> extras;
   for (std::size_t i = 0; i < 2; ++i) {
-    runners[i]->prefetch({{1.0, 1.0}}, 1);
+    runners[i]->prefetch({{1.0, 1.0}}, 10);
     extras.push_back(std::async(std::launch::async, [&, i] {
-      levels[i].cell = fit_lnM(*runners[i], cell, deoxy::kLnMLower, deoxy::kLnMUpper, 0.01, 1);
+      levels[i].cell = fit_lnM(*runners[i], cell, deoxy::kLnMLower, deoxy::kLnMUpper, 0.01, 10);
       std::printf("h = %.2f um 3D cell: M = %.4f (bound %d), max %.5f rms %.5f; %.0f s\n", deoxy::kLevels[i],
                   levels[i].cell.value, static_cast<int>(levels[i].cell.r.at_bound[0]), levels[i].cell.r.misfit.max_abs,
                   levels[i].cell.r.misfit.rms, levels[i].cell.wall_s);
     }));
   }
-  const auto stage = deoxy::stage1_fits(runners, ref);
+  // The fixed-M run on the second-finest level (below) is at the finest fit's M: started as soon
+  // as the finest level's iterate is known (almost always the fit itself), beside its run.
+  Runner& second = *runners[levels.size() - 2];
+  const auto stage = deoxy::stage1_fits(runners, ref, [&second](double M) {
+    second.prefetch({{M, 1.0}}, deoxy::level_priority(deoxy::kLevels.size() - 1) - 5);
+  });
   for (auto& e : extras) e.get();
   const double stage1_wall = clock.seconds();
   for (std::size_t i = 0; i < levels.size(); ++i) {
@@ -241,8 +246,6 @@ TEST(Deoxygenation, FullStudy) {
 
   // Curve change between the two finest levels at FIXED M = M(finest): what moves the fit.
   // Linearised shift of ln M it implies: −J·Δr / J·J (J of the finest fit).
-  Runner& second = *runners[levels.size() - 2];
-  second.prefetch({{L1.planar.value, 1.0}});
   for (std::size_t i = 0; i < levels.size(); ++i) complete_level(levels[i], *runners[i], cell);
   const auto r_fine = vv::residuals(L1.calibrated.S, ref), r_second = vv::residuals(second.at(L1.planar.value).S, ref);
   double dd = 0.0, jd = 0.0, jj = 0.0;

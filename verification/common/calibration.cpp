@@ -305,6 +305,7 @@ CalibrationResult refine_1d(const CurveModel& model, const Curve& reference, con
       break;
     }
     x += step;
+    if (options.prefetch) options.prefetch({{x}});  // (one point: lets a caller start work that follows it)
     r = run(x);
     have_r = true;
     if (std::abs(x - xc) > 0.5 * delta) differences(x);  // the Jacobian follows a larger move

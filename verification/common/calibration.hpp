@@ -87,7 +87,10 @@ CalibrationResult calibrate_1d(const CurveModel& model, const Curve& reference, 
 // of the range; the iterate stays in [lower, upper]. For a misfit that is nearly linear in x
 // over the distance from x0 (a lattice level's shift of a calibrated parameter) this takes 3
 // model runs (the pair and one iterate), 2 of them concurrent with options.prefetch, where
-// Brent on the same bracket takes 8 + 3 sequential ones, and it is at least as accurate.
+// Brent on the same bracket takes 8 + 3 sequential ones; the result is within the tolerance of
+// the minimum, as Brent's is (the first step uses r(x0) interpolated from the pair, off by
+// O(δ²): the next predicted step then measures how far the iterate is from the minimum).
+// options.prefetch also receives each iterate, alone, just before it is run.
 CalibrationResult refine_1d(const CurveModel& model, const Curve& reference, const ParameterBound& bound, double x0,
                             const CalibrationOptions& options = {});
 
