@@ -1,12 +1,15 @@
 #!/usr/bin/env bash
 # CI tier: install what is missing, build, run the `ci` label of ctest (unit tests,
-# fast verification cases, regression checks), then build the report of that tier.
+# fast verification cases, regression checks), then build the report of that tier
+# (with ctest's times, from its JUnit output).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ERYTHRO_BUILD_DIR:-$root/build}
 start=$(date +%s)
 "$root/ci/install-deps.sh"
 "$root/ci/build.sh"
-ctest --test-dir "$build" -L ci --output-on-failure -j "$(nproc)"
+rm -f "$build"/results/*.junit.xml   # the report sums the runs it finds there
+ctest --test-dir "$build" -L ci --output-on-failure -j "$(nproc)" \
+  --output-junit "$build/results/ctest-ci.junit.xml"
 /usr/bin/python3 "$root/reports/generate.py" "$build/results" --out "$build/report-ci" --labels ci
 echo "ci tier finished in $(( $(date +%s) - start )) s"

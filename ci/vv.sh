@@ -2,20 +2,32 @@
 # Main job: install what is missing, build, run the whole V&V suite (ctest label
 # `full`: unit, verification, validation, regression, long studies) and the fluid
 # benchmark, then generate the report and print where it is. Exits non-zero if any
-# case failed.
+# case failed. Prints the expected duration first (reports/suite.py expect, from the
+# last recorded times), keeps ctest's per-test times in the results folder
+# (*.junit.xml, shown by the report) and in build/timings/full.tsv (for the next
+# estimate). To split the suite over machines: ci/vv-shard.sh and ci/vv-merge.sh.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ERYTHRO_BUILD_DIR:-$root/build}
 report=${ERYTHRO_REPORT_DIR:-$root/reports-out}
+results=$build/results
+start=$(date +%s)
 "$root/ci/install-deps.sh" || exit 1
 "$root/ci/build.sh" || exit 1
-ctest --test-dir "$build" -L full --output-on-failure -j "$(nproc)"
+/usr/bin/python3 "$root/reports/suite.py" expect --build "$build" -j "$(nproc)" || true
+rm -f "$results"/*.junit.xml
+ctest --test-dir "$build" -L full --output-on-failure -j "$(nproc)" \
+  --output-junit "$results/ctest-full.junit.xml"
 tests_status=$?
 # Speed against the machine's bandwidth bound, alone on the machine (not in parallel
 # with tests), so the report can show it.
-ctest --test-dir "$build" -L benchmark --output-on-failure || tests_status=1
-/usr/bin/python3 "$root/reports/generate.py" "$build/results" --out "$report"
+ctest --test-dir "$build" -L benchmark --output-on-failure \
+  --output-junit "$results/ctest-benchmark.junit.xml" || tests_status=1
+/usr/bin/python3 "$root/reports/suite.py" times "$results/ctest-full.junit.xml" \
+  --out "$build/timings/full.tsv" || true
+/usr/bin/python3 "$root/reports/generate.py" "$results" --out "$report"
 report_status=$?
 echo "report: $report/index.html"
 echo "summary: $report/summary.md"
+echo "vv.sh finished in $(( $(date +%s) - start )) s (build included)"
 if [[ $tests_status -ne 0 || $report_status -ne 0 ]]; then exit 1; fi

@@ -8,16 +8,43 @@
 # <results>/expected_cases.tsv so that the report generator can name a case whose
 # record is missing.
 #
-#   erythro_add_test(NAME n COMMAND cmd... LABELS unit [CI] [NO_FULL] [TIMEOUT s] [ENVIRONMENT k=v...])
+#   erythro_add_test(NAME n COMMAND cmd... LABELS unit [CI] [NO_FULL] [TIMEOUT s] [ENVIRONMENT k=v...]
+#                    [PROCESSORS n] [RESOURCE_LOCK r...])
 #   (NO_FULL: not in `full`, e.g. benchmarks)
-#   vv_add_case(CASE c COMMAND cmd... LABELS verification [CI] [TIMEOUT s] [ENVIRONMENT k=v...])
+#   vv_add_case(CASE c COMMAND cmd... LABELS verification [CI] [TIMEOUT s] [ENVIRONMENT k=v...]
+#               [PROCESSORS n] [RESOURCE_LOCK r...])
 #   (ENVIRONMENT entries come after the defaults and override them, e.g. OMP_NUM_THREADS=1
 #   for a long run on a small grid, where thread start-up per step costs more than it gains)
+#
+# Scheduling: every test listed in ERYTHRO_TIMINGS_FILE (default reference_data/timings/full.tsv,
+# "test<TAB>seconds", measured) gets that time as its ctest COST, so `ctest -j` starts the
+# longest tests first, on a fresh clone too. A COST overrides ctest's own measured costs
+# (Testing/Temporary/CTestCostData.txt); tests not in the file fall back to those. PROCESSORS
+# (default 1: two 2-thread tests share the 2 cores under -j2, as before) and RESOURCE_LOCK are
+# passed to ctest as they are. Refresh the file after a run: reports/suite.py times (docs/reports.md).
 
 set_property(GLOBAL PROPERTY ERYTHRO_VV_MANIFEST "")
 
+set(ERYTHRO_TIMINGS_FILE "${PROJECT_SOURCE_DIR}/reference_data/timings/full.tsv" CACHE FILEPATH
+    "Measured test times (test<TAB>seconds), used as ctest COST")
+
+function(_erythro_read_timings)
+  if(NOT EXISTS "${ERYTHRO_TIMINGS_FILE}")
+    return()
+  endif()
+  set_property(DIRECTORY "${PROJECT_SOURCE_DIR}" APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS "${ERYTHRO_TIMINGS_FILE}")
+  file(STRINGS "${ERYTHRO_TIMINGS_FILE}" lines REGEX "^[^#]")
+  foreach(line IN LISTS lines)
+    if(line MATCHES "^([^\t ]+)[\t ]+([0-9.]+)$")
+      set_property(GLOBAL PROPERTY "ERYTHRO_COST_${CMAKE_MATCH_1}" "${CMAKE_MATCH_2}")
+    endif()
+  endforeach()
+endfunction()
+_erythro_read_timings()
+
 function(erythro_add_test)
-  cmake_parse_arguments(T "CI;NO_FULL" "NAME;TIMEOUT;WORKING_DIRECTORY" "COMMAND;LABELS;ENVIRONMENT" ${ARGN})
+  cmake_parse_arguments(T "CI;NO_FULL" "NAME;TIMEOUT;WORKING_DIRECTORY;PROCESSORS"
+                        "COMMAND;LABELS;ENVIRONMENT;RESOURCE_LOCK" ${ARGN})
   set(labels ${T_LABELS})
   if(NOT T_NO_FULL)
     list(APPEND labels full)
@@ -34,19 +61,34 @@ function(erythro_add_test)
   add_test(NAME ${T_NAME} COMMAND ${T_COMMAND} WORKING_DIRECTORY ${T_WORKING_DIRECTORY})
   set_tests_properties(${T_NAME} PROPERTIES LABELS "${labels}" TIMEOUT ${T_TIMEOUT}
     ENVIRONMENT "ERYTHRO_RESULTS_DIR=${ERYTHRO_RESULTS_DIR};ERYTHRO_SOURCE_DIR=${PROJECT_SOURCE_DIR};OMP_NUM_THREADS=2;OMP_WAIT_POLICY=passive;${T_ENVIRONMENT}")
+  get_property(cost GLOBAL PROPERTY "ERYTHRO_COST_${T_NAME}")
+  if(cost)
+    set_tests_properties(${T_NAME} PROPERTIES COST ${cost})
+  endif()
+  if(T_PROCESSORS)
+    set_tests_properties(${T_NAME} PROPERTIES PROCESSORS ${T_PROCESSORS})
+  endif()
+  if(T_RESOURCE_LOCK)
+    set_tests_properties(${T_NAME} PROPERTIES RESOURCE_LOCK "${T_RESOURCE_LOCK}")
+  endif()
 endfunction()
 
 function(vv_add_case)
-  cmake_parse_arguments(V "CI" "CASE;TIMEOUT" "COMMAND;LABELS;ENVIRONMENT" ${ARGN})
-  set(ci_flag "")
+  cmake_parse_arguments(V "CI" "CASE;TIMEOUT;PROCESSORS" "COMMAND;LABELS;ENVIRONMENT;RESOURCE_LOCK" ${ARGN})
+  set(extra "")
   if(V_CI)
-    set(ci_flag CI)
+    list(APPEND extra CI)
   endif()
-  set(env "")
   if(V_ENVIRONMENT)
-    set(env ENVIRONMENT ${V_ENVIRONMENT})
+    list(APPEND extra ENVIRONMENT ${V_ENVIRONMENT})
   endif()
-  erythro_add_test(NAME ${V_CASE} COMMAND ${V_COMMAND} LABELS ${V_LABELS} ${ci_flag} TIMEOUT ${V_TIMEOUT} ${env})
+  if(V_PROCESSORS)
+    list(APPEND extra PROCESSORS ${V_PROCESSORS})
+  endif()
+  if(V_RESOURCE_LOCK)
+    list(APPEND extra RESOURCE_LOCK ${V_RESOURCE_LOCK})
+  endif()
+  erythro_add_test(NAME ${V_CASE} COMMAND ${V_COMMAND} LABELS ${V_LABELS} TIMEOUT ${V_TIMEOUT} ${extra})
   get_test_property(${V_CASE} LABELS labels)  # as erythro_add_test completed them (full, ci)
   list(JOIN labels "," label_text)
   set_property(GLOBAL APPEND PROPERTY ERYTHRO_VV_MANIFEST "${V_CASE}\t${label_text}")

@@ -1,7 +1,9 @@
 #!/usr/bin/python3
 """Writes the erythro V&V report from the result records in RESULTS_DIR.
 
-usage: reports/generate.py RESULTS_DIR --out DIR [--expect FILE] [--labels ci,...]
+usage: reports/generate.py RESULTS_DIR [RESULTS_DIR ...] --out DIR [--expect FILE] [--labels ci,...]
+
+Several RESULTS_DIRs (one per shard of a run) are merged into one report.
 
 See docs/reports.md. Run with Debian's /usr/bin/python3 (numpy, matplotlib, h5py).
 """

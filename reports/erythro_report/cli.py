@@ -11,6 +11,7 @@ from . import html_report, markdown_report
 from .expected import parse_labels
 from .figures import render_all
 from .model import build_report
+from .regression import summary_text
 
 EXIT_OK, EXIT_FAIL, EXIT_USAGE = 0, 1, 2
 EXPECTED_NAME = "expected_cases.tsv"
@@ -24,29 +25,34 @@ def parse_args(argv):
     parser = argparse.ArgumentParser(
         prog="generate.py",
         description="Write an HTML and Markdown report from erythro V&V result records.")
-    parser.add_argument("results_dir", metavar="RESULTS_DIR",
-                        help="folder of result records (*.h5)")
+    parser.add_argument("results_dirs", metavar="RESULTS_DIR", nargs="+",
+                        help="folder of result records (*.h5); several folders (one per shard) "
+                             "are merged into one report")
     parser.add_argument("--out", required=True, metavar="DIR",
                         help="output folder (index.html, summary.md, img/)")
     parser.add_argument("--expect", metavar="FILE",
-                        help=f"expected cases (default: RESULTS_DIR/{EXPECTED_NAME} if it exists)")
+                        help=f"expected cases (default: every RESULTS_DIR/{EXPECTED_NAME} that exists)")
     parser.add_argument("--labels", metavar="L1,L2",
                         help="require only expected cases carrying one of these labels")
     return parser.parse_args(argv)   # exits with status 2 on a malformed command line
 
 
 def check_usage(args):
-    """(expect_file, labels) after checking the arguments; raises UsageError."""
-    if not os.path.isdir(args.results_dir):
-        raise UsageError(f"RESULTS_DIR {args.results_dir} is not a folder")
+    """(expect_files, labels) after checking the arguments; raises UsageError."""
+    for folder in args.results_dirs:
+        if not os.path.isdir(folder):
+            raise UsageError(f"RESULTS_DIR {folder} is not a folder")
+    if len(set(map(os.path.realpath, args.results_dirs))) != len(args.results_dirs):
+        raise UsageError("a RESULTS_DIR is given twice")
     if os.path.exists(args.out) and not os.path.isdir(args.out):
         raise UsageError(f"--out {args.out} exists and is not a folder")
-    expect = args.expect
-    if expect is None:
-        default = os.path.join(args.results_dir, EXPECTED_NAME)
-        expect = default if os.path.isfile(default) else ""
-    elif not os.path.isfile(expect):
-        raise UsageError(f"--expect {expect}: no such file")
+    if args.expect is None:
+        expect = [p for p in (os.path.join(d, EXPECTED_NAME) for d in args.results_dirs)
+                  if os.path.isfile(p)]
+    elif not os.path.isfile(args.expect):
+        raise UsageError(f"--expect {args.expect}: no such file")
+    else:
+        expect = [args.expect]
     labels = parse_labels(args.labels) if args.labels is not None else ()
     if args.labels is not None and not labels:
         raise UsageError("--labels needs at least one label")
@@ -74,6 +80,8 @@ def print_findings(report, stream=sys.stderr):
         failed = [m.name for m in record.metrics if m.verdict == "fail"]
         detail = f"failed metrics: {', '.join(failed)}" if failed else "no failed metric recorded"
         print(f"report: case {record.case} FAILED ({record.path}); {detail}", file=stream)
+    for check in report.failed_regressions:
+        print(f"report: regression {check.name} FAILED: {summary_text(check)}", file=stream)
 
 
 def main(argv=None):
@@ -83,7 +91,7 @@ def main(argv=None):
     except UsageError as exc:
         print(f"generate.py: error: {exc}", file=sys.stderr)
         return EXIT_USAGE
-    report = build_report(args.results_dir, expect, labels)
+    report = build_report(args.results_dirs, expect, labels)
     try:
         index = write_outputs(report, args.out)
     except OSError as exc:

@@ -21,6 +21,7 @@ class CaseFigures:
     speed_error: str = ""
     series: list = field(default_factory=list)   # one relative path ("" if none) per series
     stability_map: str = ""
+    fields: list = field(default_factory=list)   # one relative path ("" if none) per field
 
 
 @dataclass
@@ -75,6 +76,9 @@ def _render_case(record, out_dir, namer, problems):
                                    out_dir, record, problems)
     for series in record.series:
         figs.series.append(_draw(plots.series_figure, series, namer(record.case, series.name),
+                                 out_dir, record, problems))
+    for fld in record.fields:
+        figs.fields.append(_draw(plots.field_figure, fld, namer(record.case, "field", fld.name),
                                  out_dir, record, problems))
     return figs
 

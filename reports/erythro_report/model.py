@@ -11,6 +11,8 @@ import glob
 import os
 from dataclasses import dataclass, field
 
+from . import regression
+from .timing import SuiteTiming, attach_times, read_runs
 from .expected import ExpectedFileError, read_expected, required_cases
 from .records import SCHEMA_VERSION, RecordError, read_record
 
@@ -26,14 +28,29 @@ class Problem:
 
 @dataclass
 class Report:
-    results_dir: str
-    expect_file: str            # "" when there is no expected list
+    results_dirs: list          # one folder, or one per shard
+    expect_files: list          # [] when there is no expected list
     labels: tuple
     records: list               # sorted by family, then case
     problems: list
     required: list
     generated_utc: str
-    regression: list = field(default_factory=list)   # (file name, text)
+    regression: list = field(default_factory=list)   # regression.RegressionCheck, by name
+    timing: SuiteTiming = field(default_factory=SuiteTiming)
+
+    @property
+    def results_dir(self):
+        return ", ".join(self.results_dirs)
+
+    @property
+    def expect_file(self):
+        return ", ".join(self.expect_files)
+
+    @property
+    def missing(self):
+        """Required cases without a record, in the order of the expected list."""
+        present = {r.case for r in self.records}
+        return [case for case in self.required if case not in present]
 
     @property
     def n_metrics(self):
@@ -52,8 +69,12 @@ class Report:
         return sorted({r.git_revision for r in self.records if r.git_revision})
 
     @property
+    def failed_regressions(self):
+        return [c for c in self.regression if c.verdict == "fail"]
+
+    @property
     def ok(self):
-        return not self.problems and not self.failed_records
+        return not self.problems and not self.failed_records and not self.failed_regressions
 
     def families(self):
         """[(family, [records])] in report order."""
@@ -63,10 +84,14 @@ class Report:
         return list(groups.items())
 
 
-def load_records(results_dir):
-    """All result records in results_dir/*.h5 and the problems met reading them."""
+def load_records(results_dirs):
+    """All result records in DIR/*.h5 of every folder, and the problems met reading them.
+
+    A case found in two folders (or twice in one) is a problem: check_records names both files.
+    """
     records, problems = [], []
-    for path in sorted(glob.glob(os.path.join(results_dir, "*.h5"))):
+    paths = [p for d in results_dirs for p in sorted(glob.glob(os.path.join(d, "*.h5")))]
+    for path in paths:
         try:
             record = read_record(path)
         except RecordError as exc:
@@ -74,6 +99,7 @@ def load_records(results_dir):
             continue
         if record is not None:
             records.append(record)
+            problems += [Problem(path, f"field picture skipped: {e}") for e in record.field_errors]
     records.sort(key=lambda r: (r.family, r.case))
     return records, problems
 
@@ -137,34 +163,72 @@ def missing_cases(records, required, results_dir):
             for case in required if case not in present]
 
 
-def read_regression(results_dir):
-    """(name, text) for each results_dir/regression/*.txt."""
-    texts = []
-    for path in sorted(glob.glob(os.path.join(results_dir, "regression", "*.txt"))):
-        try:
-            with open(path, encoding="utf-8", errors="replace") as fh:
-                texts.append((os.path.basename(path), fh.read()))
-        except OSError as exc:
-            texts.append((os.path.basename(path), f"(cannot read {path}: {exc})"))
-    return texts
+def read_regression(results_dirs):
+    """(checks, problems): a RegressionCheck for each DIR/regression/*.txt, sorted by name.
+
+    The same check in two folders is a problem, as for records.
+    """
+    checks, problems, seen = [], [], {}
+    for folder in results_dirs:
+        for path in sorted(glob.glob(os.path.join(folder, "regression", "*.txt"))):
+            name = os.path.basename(path)
+            if name in seen:
+                problems.append(Problem(name, f"two regression texts: {seen[name]} and {path}"))
+                continue
+            seen[name] = path
+            try:
+                with open(path, encoding="utf-8", errors="replace") as fh:
+                    text = fh.read()
+            except OSError as exc:
+                text = f"(cannot read {path}: {exc})"
+            checks.append(regression.parse(name, text))
+    checks.sort(key=lambda c: c.name)
+    return checks, problems
 
 
-def build_report(results_dir, expect_file="", labels=()):
-    """Reads everything and returns the Report; every difficulty becomes a Problem."""
-    records, problems = load_records(results_dir)
-    required = []
-    if expect_file:
+def read_required(expect_files, labels):
+    """(required cases, problems): the union of the lists; lists that differ are a problem."""
+    required, problems, lists = [], [], []
+    for path in expect_files:
         try:
-            required = required_cases(read_expected(expect_file), labels)
+            cases = required_cases(read_expected(path), labels)
         except ExpectedFileError as exc:
-            problems.append(Problem(expect_file, str(exc).removeprefix(f"{expect_file}: ")))
+            problems.append(Problem(path, str(exc).removeprefix(f"{path}: ")))
+            continue
+        lists.append((path, cases))
+        required += [c for c in cases if c not in required]
+    for path, cases in lists[1:]:
+        if set(cases) != set(lists[0][1]):
+            problems.append(Problem(path, f"lists other required cases than {lists[0][0]}: "
+                                          "the folders come from different builds"))
+    return required, problems
+
+
+def build_report(results_dirs, expect_files=(), labels=()):
+    """Reads everything and returns the Report; every difficulty becomes a Problem.
+
+    results_dirs: one folder, or the folders of the shards of one run, merged here.
+    """
+    if isinstance(results_dirs, str):
+        results_dirs = [results_dirs]
+    if isinstance(expect_files, str):
+        expect_files = [expect_files] if expect_files else []
+    records, problems = load_records(results_dirs)
+    required, more = read_required(expect_files, labels)
+    problems += more
     problems += check_records(records)
-    problems += missing_cases(records, required, results_dir)
+    where = " or ".join(results_dirs)
+    problems += missing_cases(records, required, where)
     if not records and not problems:
-        problems.append(Problem(results_dir, "no result records (*.h5 with a root attribute 'case')"))
-    return Report(results_dir=results_dir, expect_file=expect_file, labels=tuple(labels),
-                  records=records, problems=problems, required=required,
-                  generated_utc=_now_utc(), regression=read_regression(results_dir))
+        problems.append(Problem(where, "no result records (*.h5 with a root attribute 'case')"))
+    checks, more = read_regression(results_dirs)
+    problems += more
+    runs, unreadable = read_runs(results_dirs)
+    problems += [Problem(path, message) for path, message in unreadable]
+    return Report(results_dirs=list(results_dirs), expect_files=list(expect_files),
+                  labels=tuple(labels), records=records, problems=problems, required=required,
+                  generated_utc=_now_utc(), regression=checks,
+                  timing=attach_times(records, runs))
 
 
 def _now_utc():

@@ -11,12 +11,14 @@ matplotlib.use("Agg")
 from matplotlib.figure import Figure  # noqa: E402  (after choosing the backend)
 import numpy as np  # noqa: E402
 
+from . import speed  # noqa: E402
 from .formatting import ERROR_TARGET, ERROR_TARGET_TEXT, cheapest_setup, number  # noqa: E402
 
 DPI = 110
 PANEL_COLUMNS = 3
 PANELS_PER_PAGE = 9        # overview figures: up to a 3 × 3 grid each
 FORMAL_LINE_SHIFT = 0.5    # formal-order line drawn at half the finest error
+MANY_LINES = 8             # more lines than this: a wider figure, the legend on the right
 
 
 def _new_figure(width=6.4, height=4.6):
@@ -51,42 +53,51 @@ def _fit_line(h, e, slope):
 # -- convergence -----------------------------------------------------------------
 
 def convergence_figure(record, path):
-    """All /convergence series of a case: error vs h, fit and formal-order lines."""
-    fig = _new_figure()
-    ax = fig.add_subplot()
-    several = len(record.convergence) > 1
-    drawn = 0
-    for i, series in enumerate(record.convergence):
-        drawn += _draw_convergence(ax, series, f"C{i}", f"{series.name}: " if several else "")
-    if not drawn:
+    """All /convergence series of a case: error vs h, fit and formal-order lines.
+
+    One legend entry per series ("name: slope p", marker and fit line) and one for the
+    dashed formal-order lines; with many series the legend goes to the right."""
+    series = [s for s in record.convergence if len(_log_points(s.h, s.error)[0])]
+    if not series:
         return False
-    norms = sorted({s.norm for s in record.convergence if s.norm})
+    many = len(series) > MANY_LINES
+    fig = _new_figure(9.5 if many else 6.4, 5.2 if many else 4.6)
+    ax = fig.add_subplot()
+    for i, s in enumerate(series):
+        _draw_convergence(ax, s, _color(i), _marker(i), s.name if len(series) > 1 else "")
+    formal = sorted({s.formal_order for s in series if math.isfinite(s.formal_order)})
+    if formal:
+        orders = ", ".join(number(p, 3) for p in formal)
+        ax.plot([], [], "--", color="0.4", lw=1.0, label=f"formal order {orders} (dashed)")
+    norms = sorted({s.norm for s in series if s.norm})
     ax.set_xlabel("h (grid spacing)")
-    ax.set_ylabel(f"error ({'; '.join(norms)})" if norms else "error")
+    ax.set_ylabel(f"error ({norms[0]})" if len(norms) == 1 else
+                  "error (norms: see the table)" if norms else "error")
     ax.set_title(f"{record.case}: convergence")
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    if many:
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                  ncol=1 + len(series) // 26)
+    else:
+        ax.legend(fontsize=8)
     return _save(fig, path)
 
 
-def _draw_convergence(ax, series, color, prefix):
+def _draw_convergence(ax, series, color, marker, name):
     h, e = _log_points(series.h, series.error)
-    if len(h) == 0:
-        return 0
-    ax.loglog(h, e, "o", color=color, label=f"{prefix}error" if prefix else series.name or "error")
     fit = _fit_line(h, e, series.observed_order) if len(h) >= 2 else None
+    slope = f"slope {number(fit[2], 3)}" if fit else "no fit"
+    label = f"{name}: {slope}" if name else f"error, least-squares {slope}"
+    ax.loglog(h, e, marker, color=color, ms=5, label=label, ls="none")
     if fit:
-        hh, ee, slope = fit
-        ax.loglog(hh, ee, "-", color=color, lw=1.2,
-                  label=f"{prefix}least-squares fit, slope {number(slope, 3)}")
+        ax.loglog(fit[0], fit[1], "-", color=color, lw=1.2)
     if math.isfinite(series.formal_order) and len(h) >= 2:
         # Through the finest point, shifted down so that it does not hide the fit.
         finest = int(np.argmin(h))
         hh = np.array([h.min(), h.max()])
         anchor = FORMAL_LINE_SHIFT * e[finest]
         ax.loglog(hh, anchor * (hh / h[finest]) ** series.formal_order, "--", color=color,
-                  lw=1.0, alpha=0.7, label=f"{prefix}formal order {number(series.formal_order, 3)}")
-    return 1
+                  lw=1.0, alpha=0.7)
 
 
 # -- speed against error ------------------------------------------------------------
@@ -100,10 +111,12 @@ def speed_error_figure(record, path):
 
 
 def draw_speed_error(ax, record, title, label_points=True):
-    """One line per /speed_error series; returns the number of series drawn."""
+    """One line per parameter set of each /speed_error series (see speed.py);
+    returns the number of lines drawn."""
     drawn = 0
-    for i, s in enumerate(record.speed_error):
-        drawn += _draw_speed_series(ax, s, f"C{i}", label_points)
+    all_lines = [line for s in record.speed_error for line in speed.lines(s)]
+    for i, line in enumerate(all_lines):
+        drawn += _draw_speed_line(ax, line, _color(i), _marker(i), label_points)
     if not drawn:
         ax.set_axis_off()
         ax.set_title(title, fontsize=10)
@@ -119,19 +132,25 @@ def draw_speed_error(ax, record, title, label_points=True):
     ax.set_ylabel("error")
     ax.set_title(title, fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7)
+    ax.legend(fontsize=7 if drawn <= 6 else 6, ncol=1 if drawn <= 6 else 2)
     return drawn
 
 
-def _draw_speed_series(ax, s, color, label_points):
-    n = min(len(s.wall_time_s), len(s.error))
-    t, e = _log_points(s.wall_time_s[:n], s.error[:n])
+def _color(i):
+    return f"C{i % 10}"
+
+
+def _marker(i):
+    return "osD^v<>"[(i // 10) % 7]
+
+
+def _draw_speed_line(ax, line, color, marker, label_points):
+    t, e = _log_points(line.wall_time_s, line.error)
     if len(t) == 0:
         return 0
-    order = np.argsort(t)
-    ax.loglog(t[order], e[order], "o-", color=color, ms=4, label=s.name)
+    ax.loglog(t, e, "-", marker=marker, color=color, ms=4, label=line.name)
     if label_points:
-        for ti, ei, text in zip(s.wall_time_s[:n], s.error[:n], s.label[:n]):
+        for ti, ei, text in zip(line.wall_time_s, line.error, line.labels):
             if ti > 0 and ei > 0 and math.isfinite(ti) and math.isfinite(ei):
                 ax.annotate(text, (ti, ei), textcoords="offset points", xytext=(4, 4),
                             fontsize=7, color=color)
@@ -154,7 +173,8 @@ def _overview_page(records, path):
     fig = _new_figure(4.3 * cols, 3.5 * rows)
     fig.suptitle("Speed against error")
     for i, record in enumerate(records):
-        draw_speed_error(fig.add_subplot(rows, cols, i + 1), record, record.case)
+        draw_speed_error(fig.add_subplot(rows, cols, i + 1), record, record.case,
+                         label_points=False)
     _save(fig, path)
     return path
 
@@ -220,3 +240,42 @@ def stability_map_figure(record, path):
         ax.set_visible(False)
     fig.suptitle(f"{record.case}: stability map")
     return _save(fig, path)
+
+
+# -- field pictures ------------------------------------------------------------------
+
+def field_figure(fld, path):
+    """A /fields picture: the 2-D data as colours, with its colour bar and the membranes
+    drawn as closed outlines on top."""
+    data = np.ma.masked_invalid(fld.data)
+    if data.count() == 0:
+        return False
+    ny, nx = fld.data.shape
+    x = fld.x if fld.x is not None else np.arange(nx, dtype=float)
+    y = fld.y if fld.y is not None else np.arange(ny, dtype=float)
+    aspect = (np.ptp(y) + 1e-300) / (np.ptp(x) + 1e-300) if nx > 1 and ny > 1 else 1.0
+    # About 4.4 in of the 6.4 in width is the picture (the rest: labels, colour bar), so this
+    # height keeps the colour bar as tall as the picture.
+    fig = _new_figure(6.4, min(max(4.4 * aspect + 1.0, 2.4), 7.5))
+    ax = fig.add_subplot()
+    mesh = ax.pcolormesh(_edges(x), _edges(y), data, shading="flat", cmap="viridis")
+    for outline in fld.membranes:
+        closed = np.vstack([outline, outline[:1]])
+        ax.plot(closed[:, 0], closed[:, 1], "-", color="white", lw=1.6)
+        ax.plot(closed[:, 0], closed[:, 1], "-", color="#d62728", lw=0.9)
+    ax.set_aspect("equal")
+    label = fld.quantity or fld.name
+    fig.colorbar(mesh, ax=ax, label=f"{label} ({fld.unit})" if fld.unit else label, shrink=0.9)
+    ax.set_xlabel(fld.xlabel or ("x" if fld.x is not None else "x (node)"))
+    ax.set_ylabel(fld.ylabel or ("y" if fld.y is not None else "y (node)"))
+    ax.set_title(fld.title or fld.name, fontsize=10)
+    return _save(fig, path)
+
+
+def _edges(centres):
+    """Cell edges around cell centres (uniform or not)."""
+    c = np.asarray(centres, dtype=float)
+    if len(c) == 1:
+        return np.array([c[0] - 0.5, c[0] + 0.5])
+    mid = 0.5 * (c[1:] + c[:-1])
+    return np.concatenate([[c[0] - (mid[0] - c[0])], mid, [c[-1] + (c[-1] - mid[-1])]])

@@ -4,12 +4,14 @@ A record is an HDF5 file with a root attribute `case`. read_record() returns
 None for an HDF5 file without that attribute (not a result record) and raises
 RecordError, naming the file, for a file that cannot be read.
 """
+import re
 from dataclasses import dataclass, field
 from typing import Optional
 
 import h5py
 import numpy as np
 
+from .fields import FieldError, read_field
 from .h5text import (attr_float, attr_text, read_column, read_floats,
                      to_scalar, to_text_list)
 
@@ -58,6 +60,7 @@ class SpeedError:
     wall_time_s: np.ndarray
     error: np.ndarray
     label: list
+    group: list = field(default_factory=list)   # optional: the line each point belongs to
 
 
 @dataclass
@@ -101,6 +104,12 @@ class Record:
     convergence: list
     speed_error: list
     series: list
+    fields: list = field(default_factory=list)
+    field_errors: list = field(default_factory=list)   # /fields groups that could not be read
+    key_metric: str = ""         # root attr `key_metric`: the metric the summary shows
+    # Filled in by the model: the time shown and where it came from ("record", "ctest", "").
+    time_s: float = float("nan")
+    time_source: str = ""
 
     @property
     def verdict_valid(self):
@@ -135,15 +144,35 @@ def _read_root(f, path):
     return Record(
         path=path,
         **_attrs(f, texts=("case", "family", "requirement", "reference", "verdict", "git_revision",
-                           "compiler", "compile_flags", "created_utc", "schema_version"),
+                           "compiler", "compile_flags", "created_utc", "schema_version",
+                           "key_metric"),
                  floats=("wall_time_s",)),
         parameters=_read_parameters(f),
         metrics=[_read_metric(n, g) for n, g in _subgroups(f, "metrics")],
         runs=_read_runs(f, path),
         convergence=[_read_convergence(n, g) for n, g in _subgroups(f, "convergence")],
         speed_error=[_read_speed_error(n, g) for n, g in _subgroups(f, "speed_error")],
-        series=[_read_series(n, g) for n, g in _subgroups(f, "series")],
+        series=sorted((_read_series(n, g) for n, g in _subgroups(f, "series")),
+                      key=lambda s: natural_key(s.name)),
+        **_read_fields(f, path),
     )
+
+
+def _read_fields(f, path):
+    """fields and field_errors: a /fields group that cannot be drawn does not hide the verdict."""
+    fields, errors = [], []
+    for name, group in _subgroups(f, "fields"):
+        try:
+            fields.append(read_field(name, group, path))
+        except FieldError as exc:
+            errors.append(str(exc).removeprefix(f"{path}: "))
+    return dict(fields=fields, field_errors=errors)
+
+
+def natural_key(text):
+    """Sort key that puts 'gt=2.0' before 'gt=10.0' (HDF5 lists groups alphabetically)."""
+    return [(0, float(part), "") if i % 2 else (1, 0.0, part)
+            for i, part in enumerate(re.split(r"(\d+(?:\.\d+)?)", text))]
 
 
 def _subgroups(f, name):
@@ -208,8 +237,9 @@ def _read_convergence(name, g):
 
 def _read_speed_error(name, g):
     labels = to_text_list(g["label"][()]) if "label" in g else []
+    groups = to_text_list(g["group"][()]) if "group" in g else []
     return SpeedError(name=name, wall_time_s=read_floats(g, "wall_time_s"),
-                      error=read_floats(g, "error"), label=labels)
+                      error=read_floats(g, "error"), label=labels, group=groups)
 
 
 def _read_series(name, g):

@@ -34,7 +34,8 @@ def metric(name, value, expected, tolerance, comparison="absolute", verdict="pas
 
 def write_record(path, case, family="verification.fluid", verdict="pass", metrics=(),
                  fixed=False, convergence=(), speed_error=(), series=(), runs=None,
-                 parameters=None, git_revision="abc1234", schema_version=1):
+                 parameters=None, git_revision="abc1234", schema_version=1, wall_time_s=1.5,
+                 fields=(), key_metric=None):
     with h5py.File(path, "w") as f:
         root = dict(case=case, family=family, requirement=f"{case} meets its requirement",
                     reference="Synthetic et al. (2024)", verdict=verdict,
@@ -42,7 +43,10 @@ def write_record(path, case, family="verification.fluid", verdict="pass", metric
                     created_utc="2024-01-01T00:00:00Z")
         for key, value in root.items():
             _set_attr(f, key, value, fixed)
-        f.attrs["wall_time_s"] = 1.5
+        if wall_time_s is not None:
+            f.attrs["wall_time_s"] = wall_time_s
+        if key_metric is not None:
+            _set_attr(f, "key_metric", key_metric, fixed)
         f.attrs["schema_version"] = np.int32(schema_version)
         params = f.create_group("parameters")
         for key, value in (parameters or {"tau": 0.8, "collision": "BGK", "N": 64}).items():
@@ -62,6 +66,8 @@ def write_record(path, case, family="verification.fluid", verdict="pass", metric
             g["wall_time_s"] = np.asarray(s["wall_time_s"], dtype=float)
             g["error"] = np.asarray(s["error"], dtype=float)
             _string_dataset(g, "label", s["label"], fixed)
+            if "group" in s:
+                _string_dataset(g, "group", s["group"], fixed)
         for s in series:
             g = f.require_group("series").create_group(s["name"])
             for key in ("x", "y", "y_reference"):
@@ -69,6 +75,32 @@ def write_record(path, case, family="verification.fluid", verdict="pass", metric
                     g[key] = np.asarray(s[key], dtype=float)
             for key in ("title", "xlabel", "ylabel"):
                 _set_attr(g, key, s.get(key, ""), fixed)
+        for fld in fields:
+            _write_field(f, fld, fixed)
+
+
+def _write_field(f, fld, fixed):
+    g = f.require_group("fields").create_group(fld["name"])
+    for key, value in fld.items():
+        if key in ("data", "x", "y"):
+            g[key] = np.asarray(value, dtype=float)
+        elif key == "membranes":
+            for i, outline in enumerate(value):
+                g.require_group("membranes")[str(i)] = np.asarray(outline, dtype=float)
+        elif key != "name":
+            _set_attr(g, key, value, fixed)
+
+
+def velocity_field(name="velocity", nx=48, ny=24):
+    """|u| of a channel flow around a circular cell, with the cell's outline."""
+    x = (np.arange(nx) + 0.5) / nx * 2.0
+    y = (np.arange(ny) + 0.5) / ny
+    xx, yy = np.meshgrid(x, y)
+    speed = 4 * yy * (1 - yy) * (1 - np.exp(-((xx - 1) ** 2 + (yy - 0.5) ** 2) / 0.02))
+    angle = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    outline = np.column_stack([1 + 0.15 * np.cos(angle), 0.5 + 0.15 * np.sin(angle)])
+    return dict(name=name, data=speed, x=x, y=y, membranes=[outline], title="|u| at t = T",
+                quantity="|u|", unit="mm/s", xlabel="x (mm)", ylabel="y (mm)")
 
 
 def _write_runs(f, runs, fixed):
@@ -142,3 +174,15 @@ def failing_case(path, case="couette_2d", fixed=True):
                         description="peak velocity", unit="lu/ts")],
         convergence=[convergence_series("bounce-back", 1.2)],
         speed_error=[speed_series("BGK", 0.02, 8e-3, order=1.2)])
+
+
+# Regression texts as `erythro compare` writes them (solver/io/baseline_compare.cpp).
+REGRESSION_PASSED = """same  /diagnostics/step: max |diff| = 0, max rel = 0 (atol 0, rtol 0)
+same  /fields/velocity: max |diff| = 3e-15, max rel = 159 (atol 1e-09, rtol 1e-09)
+same  /fields/density: max |diff| = 2e-13, max rel = 2e-16 (atol 0, rtol 1e-12)
+regression check: all quantities within tolerance
+"""
+REGRESSION_MOVED = """same  /diagnostics/step: max |diff| = 0, max rel = 0 (atol 0, rtol 0)
+MOVED /fields/density: max |diff| = 0.2, max rel = 0.0002 (atol 0, rtol 1e-12); worst at element 7: baseline 1000 -> current 1000.2
+regression check: FAILED
+"""

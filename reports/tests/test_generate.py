@@ -85,7 +85,7 @@ class PassingReport(SharedReportTestCase):
         ws.write_expected([("poiseuille_2d", "verification,full,ci")])
         os.makedirs(ws.record("regression"))
         with open(ws.record("regression/fluid.txt"), "w", encoding="utf-8") as fh:
-            fh.write("poiseuille_2d: 0 of 4096 values differ <beyond> 1e-12\n")
+            fh.write(synthetic.REGRESSION_PASSED)
         return ws.run_generate(ws.results)
 
     def test_exit_status_0_when_all_pass(self):
@@ -112,21 +112,36 @@ class PassingReport(SharedReportTestCase):
                      "Local orders, TRT magic=0.25", "u(y) at x = L/2", "Runs (4)"):
             self.assertIn(text, html)
         self.assertIn("<strong>TRT N=32 (0.096 s, error 0.0005)</strong>", html)
-        self.assertIn("<td class=\"pass\">PASS</td>", html)
-        self.assertNotIn("class=\"fail\"", html)
+        self.assertIn("<td class=\"pass verdict\">PASS</td>", html)
+        self.assertNotIn("class=\"fail", html)
 
-    def test_regression_text_is_included_verbatim(self):
+    def test_one_row_per_case_comes_before_the_details(self):
         html = self.ws.read_out("index.html")
-        self.assertIn("poiseuille_2d: 0 of 4096 values differ &lt;beyond&gt; 1e-12", html)
+        row = ("<td class='num'>3 / 3</td><td class='key'>order_bgk_tau0.8 = 1.98 (2 ± 0.1)</td>"
+               "<td class='num'>1.5 s</td>")
+        self.assertIn(row, html)
+        self.assertLess(html.index(row), html.index("<details class='case' id='case-poiseuille_2d'>"))
+        self.assertIn("Slowest tests", html)
 
-    def test_summary_md_has_the_table_rows(self):
+    def test_regression_is_summarised_and_its_text_kept(self):
+        html = self.ws.read_out("index.html")
+        self.assertIn("/fields/velocity", html)
+        self.assertIn("within atol", html)
+        self.assertIn("large only where the baseline is near 0", html)
+        self.assertNotIn("<td>same</td>", html)
+        self.assertIn("same  /fields/velocity: max |diff| = 3e-15, max rel = 159", html)   # verbatim
+
+    def test_summary_md_has_one_row_per_case_then_the_metrics(self):
         md = self.ws.read_out("summary.md")
         self.assertIn("**PASS**", md)
-        self.assertIn("| Case | Requirement | Metric | Value | Expected | Tolerance | Verdict |", md)
-        self.assertIn("| poiseuille_2d | poiseuille_2d meets its requirement | "
-                      "order_bgk_tau0.8: observed order, BGK | 1.98 | 2 | ± 0.1 (absolute) | PASS |", md)
+        self.assertIn("| verification.fluid | poiseuille_2d | PASS | 3 / 3 | order_bgk_tau0.8 = 1.98 (2 ± 0.1) | 1.5 s |", md)
+        self.assertLess(md.index("## Cases"), md.index("## Metrics of each case"))
+        self.assertEqual(md.count("poiseuille_2d meets its requirement"), 1)
+        self.assertIn("| order_bgk_tau0.8: observed order, BGK | 1.98 | 2 | ± 0.1 (absolute) | PASS |", md)
         self.assertIn("| error_N128: relative L2 error at N=128 | 4e-05 | ≤ 0.0001 |", md)
-        self.assertIn("| mass_drift: mass after 1000 steps | 1.001 | 1 | ± 1 % (relative) | PASS |", md)
+        self.assertIn("| mass_drift: mass after 1000 steps | 1.001 | 1 | ± 1 % (relative) | PASS | as above |",
+                      md)
+        self.assertIn("| fluid.txt | PASS | 3 datasets within tolerance (1 identical) |", md)
 
     def test_regenerating_into_the_same_folder_works(self):
         proc = self.ws.run_generate(self.ws.results)
@@ -149,16 +164,21 @@ class FailingReport(SharedReportTestCase):
 
     def test_failed_metric_is_red_and_table_sorted_by_family(self):
         html = self.ws.read_out("index.html")
-        self.assertIn("<td class=\"fail\">FAIL</td>", html)
+        self.assertIn("<td class=\"fail verdict\">FAIL</td>", html)
         # verification.boundary sorts before verification.fluid
         self.assertLess(html.index("#case-couette_2d"), html.index("#case-poiseuille_2d"))
         self.assertIn("2 cases, 5 metrics, 1 failed case (1 failed metric)", html)
+        failed = "<li><a href='#case-couette_2d'><strong>couette_2d</strong></a>: failed metrics order_wall</li>"
+        self.assertIn(failed, html)
+        self.assertLess(html.index(failed), html.index("<h2 id='cases'>"))
 
     def test_summary_md_escapes_pipes_and_marks_failure(self):
         md = self.ws.read_out("summary.md")
         self.assertIn("**FAIL**", md)
+        self.assertLess(md.index("- **couette_2d**: failed metrics order_wall"), md.index("## Cases"))
         self.assertIn("| order_wall: observed order with bounce-back walls | 1.2 | 2 | "
                       "± 0.1 (absolute) | FAIL | Richardson \\| pipes must survive Markdown |", md)
+        self.assertIn("| verification.boundary | couette_2d | FAIL | 1 / 2 | order_wall = 1.2 (2 ± 0.1) |", md)
         self.assertIn("| max_velocity: peak velocity | 0.1 lu/ts | 0.1 lu/ts | "
                       "± 1e-06 lu/ts (absolute) | PASS |", md)
 
@@ -175,7 +195,9 @@ class ExpectedCases(GenerateTestCase):
         self.assertEqual(proc.returncode, 1)
         self.assertIn("womersley_2d", proc.stderr)
         self.assert_report_written(proc)
-        self.assertIn("womersley_2d", self.ws.read_out("index.html"))
+        self.assertIn("<tr><td>womersley_2d</td><td class=\"invalid verdict\">MISSING</td>",
+                      self.ws.read_out("index.html"))
+        self.assertIn("|  | womersley_2d | MISSING |  | no result record |  |", self.ws.read_out("summary.md"))
 
     def test_labels_limit_the_required_cases(self):
         self.ws.write_expected([("poiseuille_2d", "verification,full,ci"),
@@ -218,7 +240,7 @@ class BadRecords(GenerateTestCase):
         self.assertEqual(proc.returncode, 1)
         self.assertIn("'maybe'", proc.stderr)
         self.assertIn("'skipped'", proc.stderr)
-        self.assertIn("class=\"invalid\"", self.ws.read_out("index.html"))
+        self.assertIn("class=\"invalid verdict\"", self.ws.read_out("index.html"))
 
     def test_root_verdict_contradicting_metrics_is_flagged(self):
         synthetic.write_record(self.ws.record("liar.h5"), "liar", verdict="pass",
@@ -239,8 +261,8 @@ class BadRecords(GenerateTestCase):
         proc = self.ws.run_generate(self.ws.results)
         self.assertEqual(proc.returncode, 0, proc.stderr)
         md = self.ws.read_out("summary.md")
-        self.assertIn("| poiseuille_fixed | poiseuille_fixed meets its requirement | "
-                      "order_bgk_tau0.8: observed order, BGK | 1.98 |", md)
+        self.assertIn("| verification.fluid | poiseuille_fixed | PASS | 3 / 3 | order_bgk_tau0.8 = 1.98 (2 ± 0.1) |", md)
+        self.assertIn("Requirement: poiseuille_fixed meets its requirement", md)
         self.assertNotIn("b'", md)
 
 
@@ -253,6 +275,18 @@ class SpeedErrorTarget(GenerateTestCase):
         self.assertEqual(proc.returncode, 0, proc.stderr)
         self.assertIn("none reaches 1e-3", self.ws.read_out("index.html"))
         self.assertIn("| coarse | none reaches 1e-3 |", self.ws.read_out("summary.md"))
+
+
+class RegressionMoved(GenerateTestCase):
+    def test_a_moved_dataset_fails_the_report(self):
+        synthetic.passing_case(self.ws.record("poiseuille_2d.h5"))
+        os.makedirs(self.ws.record("regression"))
+        with open(self.ws.record("regression/fluid.txt"), "w", encoding="utf-8") as fh:
+            fh.write(synthetic.REGRESSION_MOVED)
+        proc = self.ws.run_generate(self.ws.results)
+        self.assertEqual(proc.returncode, 1)
+        self.assertIn("regression fluid.txt FAILED: 1 of 2 datasets MOVED", proc.stderr)
+        self.assertIn("| fluid.txt | FAIL | 1 of 2 datasets MOVED |", self.ws.read_out("summary.md"))
 
 
 class UsageErrors(GenerateTestCase):

@@ -175,6 +175,24 @@ void write_dataset(hid_t parent, const std::string& name, const std::vector<std:
   }
 }
 
+void write_dataset(hid_t parent, const std::string& name, const std::vector<long>& data,
+                   const std::vector<hsize_t>& dims) {
+  Handle space(check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace"), H5Sclose);
+  Handle set(check(H5Dcreate2(parent, name.c_str(), H5T_STD_I64LE, space.id(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                   "cannot create dataset '" + name + "' in " + object_name(parent)),
+             H5Dclose);
+  static_assert(sizeof(long) == 8, "integer datasets are written as 64-bit");
+  if (!data.empty()) {
+    check_status(H5Dwrite(set.id(), H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
+                 "cannot write dataset '" + name + "'");
+  }
+}
+
+Handle open_dataset(hid_t parent, const std::string& name) {
+  return Handle(check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "no dataset '" + name + "' in " + object_name(parent)),
+                H5Dclose);
+}
+
 std::vector<double> read_dataset(hid_t parent, const std::string& name, std::vector<hsize_t>* dims) {
   Handle set(check(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "no dataset '" + name + "' in " + object_name(parent)),
              H5Dclose);

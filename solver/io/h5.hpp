@@ -57,6 +57,11 @@ inline void write_dataset(hid_t parent, const std::string& name, const std::vect
   write_dataset(parent, name, data, {static_cast<hsize_t>(data.size())});
 }
 void write_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& data);
+// Integer datasets (counts, indices) as 64-bit integers.
+void write_dataset(hid_t parent, const std::string& name, const std::vector<long>& data,
+                   const std::vector<hsize_t>& dims);
+// The dataset `name` of `parent`, e.g. to give it attributes (write_attr on its id()).
+Handle open_dataset(hid_t parent, const std::string& name);
 std::vector<double> read_dataset(hid_t parent, const std::string& name, std::vector<hsize_t>* dims = nullptr);
 
 // A growable 1-D float64 dataset (chunked), for time series written as a run goes.

@@ -187,6 +187,21 @@ void ResultRecord::write(const std::string& path) const {
       h5::write_dataset(g.id(), "label", s.label);
     }
 
+    h5::Handle fields = h5::create_group(root, "fields");
+    for (const auto& f : fields_) {
+      h5::Handle g = h5::create_group(fields.id(), safe_name(f.name));
+      h5::write_dataset(g.id(), "data", f.data, {static_cast<hsize_t>(f.ny), static_cast<hsize_t>(f.nx)});
+      if (!f.x.empty()) h5::write_dataset(g.id(), "x", f.x);
+      if (!f.y.empty()) h5::write_dataset(g.id(), "y", f.y);
+      h5::write_attrs(g.id(), {{"title", f.title}, {"quantity", f.quantity}, {"unit", f.unit},
+                               {"xlabel", f.xlabel}, {"ylabel", f.ylabel}, {"name", f.name}});
+      if (!f.membranes.empty()) {
+        h5::Handle m = h5::create_group(g.id(), "membranes");
+        for (std::size_t k = 0; k < f.membranes.size(); ++k)
+          h5::write_dataset(m.id(), std::to_string(k), f.membranes[k], {f.membranes[k].size() / 2, 2});
+      }
+    }
+
     h5::Handle scenes = h5::create_group(root, "scenes");
     if (!scenes_.empty()) h5::write_dataset(scenes.id(), "texts", scenes_);
 

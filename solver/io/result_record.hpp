@@ -15,6 +15,8 @@
 //                     observed_order, order_tolerance, asymptotic (0|1), asymptotic_rule
 //   /speed_error/<s>  datasets wall_time_s, error, label
 //   /series/<s>       datasets x, y (and y_reference if given); attrs xlabel, ylabel, title
+//   /fields/<f>       data (ny, nx), x (nx), y (ny), membranes/<k> (n, 2); attrs title,
+//                     quantity, unit, xlabel, ylabel: a field picture (add_field)
 //   /scenes/texts     string dataset: the scene text (TOML after overrides) of every
 //                     distinct scene the case ran; a run row's `scene_index` column
 //                     names its entry (runs added with add_run(row, scene_text))
@@ -70,6 +72,15 @@ struct Series {
   std::vector<double> x, y, y_reference;  // y_reference may be empty
 };
 
+// A picture of a field for the report (docs/reports.md "Field pictures"): data[y][x]
+// (row-major, ny × nx), cell-centre coordinates, membrane outlines on top.
+struct FieldPicture {
+  std::string name, title, quantity, unit, xlabel = "x (um)", ylabel = "y (um)";
+  int nx = 0, ny = 0;
+  std::vector<double> data, x, y;
+  std::vector<std::vector<double>> membranes;  // each (n, 2) flattened: x0, y0, x1, y1, ...
+};
+
 using Value = std::variant<double, std::string>;
 
 class ResultRecord {
@@ -92,6 +103,7 @@ class ResultRecord {
   void add_convergence(const ConvergenceSeries& series) { convergence_.push_back(series); }
   void add_speed_error(const SpeedErrorSeries& series) { speed_error_.push_back(series); }
   void add_series(const Series& series) { series_.push_back(series); }
+  void add_field(const FieldPicture& picture) { fields_.push_back(picture); }
   void set_wall_time(double seconds) { wall_time_s_ = seconds; }
 
   const std::string& case_name() const { return case_name_; }
@@ -116,6 +128,7 @@ class ResultRecord {
   std::vector<SpeedErrorSeries> speed_error_;
   std::vector<Series> series_;
   std::vector<std::string> scenes_;
+  std::vector<FieldPicture> fields_;
   double wall_time_s_ = 0.0;
 };
 

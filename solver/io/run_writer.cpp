@@ -107,12 +107,13 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
   const auto& f = scene.output.fields;
   write_density_ = setup.has_fluid && std::find(f.begin(), f.end(), "density") != f.end();
   write_velocity_ = setup.has_fluid && std::find(f.begin(), f.end(), "velocity") != f.end();
-  xdmf_grid_ = {setup.grid.nx, setup.grid.ny, h_um, 0.5 * h_um, 0.5 * h_um, {}, {}};
-  if (write_density_) xdmf_grid_.scalar_fields.push_back("density");
-  if (write_velocity_) xdmf_grid_.vector_fields.push_back("velocity");
+  XdmfGrid xdmf_grid{setup.grid.nx, setup.grid.ny, h_um, 0.5 * h_um, 0.5 * h_um, {}, {}};
+  if (write_density_) xdmf_grid.scalar_fields.push_back("density");
+  if (write_velocity_) xdmf_grid.vector_fields.push_back("velocity");
   if (setup.transport)
-    for (const auto& sp : setup.transport->species) xdmf_grid_.scalar_fields.push_back(sp.name);
+    for (const auto& sp : setup.transport->species) xdmf_grid.scalar_fields.push_back(sp.name);
   H5Fflush(root, H5F_SCOPE_GLOBAL);
+  xdmf_ = XdmfIndex(xdmf_path(), kH5Name, std::move(xdmf_grid));
 }
 
 void RunWriter::on_series_declared(std::span<const sim::SeriesInfo> series) {
@@ -144,13 +145,27 @@ void RunWriter::flush_samples() {
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
 }
 
+XdmfFrame& RunWriter::xdmf_frame(long step) {
+  if (has_frame_ && frame_.step != step) commit_xdmf_frame();
+  if (!has_frame_) {
+    frame_ = {step, static_cast<double>(step) * setup_.scales.time_s, "", "", 0};
+    has_frame_ = true;
+  }
+  return frame_;
+}
+
+void RunWriter::commit_xdmf_frame() {
+  if (has_frame_ && xdmf_.valid()) xdmf_.append(frame_);
+  has_frame_ = false;
+}
+
 h5::Handle RunWriter::frame_group(long step) {
   const std::string name = frame_group_name(step);
   if (h5::exists(fields_group_.id(), name)) return h5::open_group(fields_group_.id(), name);
   h5::Handle frame = h5::create_group(fields_group_.id(), name);
   const double time_s = static_cast<double>(step) * setup_.scales.time_s;
   h5::write_attrs(frame.id(), {{"step", step}, {"time_s", time_s}});
-  frames_.push_back({step, time_s, "/fields/" + name});
+  xdmf_frame(step).fields_group = "/fields/" + name;
   return frame;
 }
 
@@ -159,12 +174,13 @@ void RunWriter::on_transport_fields(long step, const sim::TransportFields& f) {
   h5::Handle frame = frame_group(step);
   const Grid& g = setup_.grid;
   const std::vector<hsize_t> shape{static_cast<hsize_t>(g.ny), static_cast<hsize_t>(g.nx)};
-  for (std::size_t i = 0; i < f.names.size(); ++i)
+  for (std::size_t i = 0; i < f.names.size(); ++i) {
     h5::write_dataset(frame.id(), f.names[i], std::vector<double>(f.concentration[i].begin(), f.concentration[i].end()),
                       shape);
+    h5::write_attr(h5::open_dataset(frame.id(), f.names[i]).id(), "units", std::string("uM"));
+  }
   frame.reset();
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
-  write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
 }
 
 void RunWriter::on_fields(long step, const fluid::Moments& m) {
@@ -177,19 +193,20 @@ void RunWriter::on_fields(long step, const fluid::Moments& m) {
     std::vector<double> rho(m.rho.size());
     std::transform(m.rho.begin(), m.rho.end(), rho.begin(), [&](double r) { return r * s.density_kg_m3; });
     h5::write_dataset(frame.id(), "density", rho, shape);
+    h5::write_attr(h5::open_dataset(frame.id(), "density").id(), "units", std::string("kg/m^3"));
   }
-  if (write_velocity_) {
+  if (write_velocity_) {  // (ny, nx, 3): x, y and a zero z component (a vector in the x–y plane)
     const double to_um_s = s.velocity_m_s() * 1e6;
-    std::vector<double> u(2 * m.ux.size());
+    std::vector<double> u(3 * m.ux.size(), 0.0);
     for (std::size_t n = 0; n < m.ux.size(); ++n) {
-      u[2 * n] = m.ux[n] * to_um_s;
-      u[2 * n + 1] = m.uy[n] * to_um_s;
+      u[3 * n] = m.ux[n] * to_um_s;
+      u[3 * n + 1] = m.uy[n] * to_um_s;
     }
-    h5::write_dataset(frame.id(), "velocity", u, {shape[0], shape[1], 2});
+    h5::write_dataset(frame.id(), "velocity", u, {shape[0], shape[1], 3});
+    h5::write_attr(h5::open_dataset(frame.id(), "velocity").id(), "units", std::string("um/s"));
   }
   frame.reset();
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
-  write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
 }
 
 void RunWriter::on_cells(long step, const membrane::ImmersedCells& cells) {
@@ -201,23 +218,36 @@ void RunWriter::on_cells(long step, const membrane::ImmersedCells& cells) {
                                {"time_s", static_cast<double>(step) * s.time_s},
                                {"cells", static_cast<long>(cells.cell_count())}});
   const std::size_t M = cells.marker_count();
-  std::vector<double> xy(2 * M), offsets;
+  std::vector<double> xy(2 * M);
+  std::vector<long> offsets, edges(2 * M), cell(M);
   for (int c = 0; c < cells.cell_count(); ++c) {
-    offsets.push_back(static_cast<double>(cells.offset(c)));
+    const std::size_t o = cells.offset(c), n = cells.size(c);
+    offsets.push_back(static_cast<long>(o));
     const auto x = cells.x(c), y = cells.y(c);
-    for (std::size_t m = 0; m < x.size(); ++m) {
-      xy[2 * (cells.offset(c) + m)] = x[m] * to_um;
-      xy[2 * (cells.offset(c) + m) + 1] = y[m] * to_um;
+    for (std::size_t m = 0; m < n; ++m) {
+      xy[2 * (o + m)] = x[m] * to_um;
+      xy[2 * (o + m) + 1] = y[m] * to_um;
+      edges[2 * (o + m)] = static_cast<long>(o + m);                 // edge m joins marker m to m + 1,
+      edges[2 * (o + m) + 1] = static_cast<long>(o + (m + 1) % n);   // the last one back to marker 0
+      cell[o + m] = c;
     }
   }
-  offsets.push_back(static_cast<double>(M));
-  h5::write_dataset(frame.id(), "positions", xy, {static_cast<hsize_t>(M), 2});
-  h5::write_dataset(frame.id(), "offsets", offsets);
+  offsets.push_back(static_cast<long>(M));
+  const hsize_t markers = M;
+  h5::write_dataset(frame.id(), "positions", xy, {markers, 2});
+  h5::write_attr(h5::open_dataset(frame.id(), "positions").id(), "units", std::string("um"));
+  h5::write_dataset(frame.id(), "offsets", offsets, {static_cast<hsize_t>(offsets.size())});
+  h5::write_dataset(frame.id(), "edges", edges, {markers, 2});
+  h5::write_dataset(frame.id(), "cell", cell, {markers});
   H5Fflush(file_.id(), H5F_SCOPE_GLOBAL);
+  XdmfFrame& f = xdmf_frame(step);
+  f.cells_group = "/cells/" + frame_group_name(step);
+  f.markers = static_cast<long>(M);
 }
 
 void RunWriter::on_finish(const sim::RunSummary& summary) {
   flush_samples();
+  commit_xdmf_frame();
   h5::Handle meta = h5::open_group(file_.id(), "metadata");
   h5::write_attrs(meta.id(), {{"status", sim::to_string(summary.status)},
                               {"diagnosis", summary.diagnosis},
@@ -241,6 +271,7 @@ void RunWriter::abort(const std::string& reason) {
   if (committed_) return;
   if (file_.valid()) {
     flush_samples();
+    commit_xdmf_frame();
     if (h5::exists(file_.id(), "metadata")) {
       h5::Handle meta = h5::open_group(file_.id(), "metadata");
       h5::write_attr(meta.id(), "status", "aborted: " + reason);
@@ -257,9 +288,6 @@ void RunWriter::close_and_commit() {
   file_.reset();
   commit_temporary(h5_path());
   committed_ = true;
-  if (frames_.empty()) {
-    write_text_atomically(xdmf_path(), make_xdmf(kH5Name, xdmf_grid_, frames_));
-  }
 }
 
 }  // namespace erythro::io

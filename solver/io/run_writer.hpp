@@ -12,7 +12,8 @@
 //   /grid             attrs nx, ny, spacing_um, origin_um (cell-centred nodes)
 //   /diagnostics/*    one 1-D dataset per diagnostics series (sim::Probe; attrs units,
 //                     description), one entry per sample: step, time_s; with a fluid
-//                     total_mass_kg_per_m, kinetic_energy_J_per_m, max_speed_um_s, max_mach;
+//                     total_mass_kg_per_m, kinetic_energy_J_per_m, max_speed_um_s, max_mach,
+//                     momentum_x_N_s_per_m, momentum_y_N_s_per_m;
 //                     with moving cells, per cell c: cell_<c>_area_change, _taylor_deformation,
 //                     _orientation_deg, _inclination_deg, _centroid_x_um, _centroid_y_um, _max_edge_strain,
 //                     _marker_phase_deg, _marker0_angle_deg, and cells_max_area_change,
@@ -21,13 +22,18 @@
 //                     <species>_max_mass_balance_residual, and with [hemoglobin]
 //                     cell_<c>_saturation (simulation/probes/transport_probe.hpp)
 //   /timing           attrs <stage>_s, <stage>_calls: wall time of each time-loop stage
-//   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 2), and one
-//                     concentration [µM] (ny, nx) per species, named as the species; attrs step, time_s
+//   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 3; z = 0), and one
+//                     concentration [µM] (ny, nx) per species, named as the species; attrs
+//                     step, time_s; every dataset has a `units` attribute
 //   /cells/<step>/    only for scenes with [[cells]], at every field output:
 //                     positions [µm] (markers of all cells, 2): (x, y) from the domain's
 //                     lower-left corner, unwrapped across periodic sides; cell c owns rows
 //                     offsets[c] … offsets[c+1] − 1 of
-//                     offsets (cells + 1) [marker index]; attrs step, time_s, cells
+//                     offsets (cells + 1) [int64 marker index]; edges (markers, 2) [int64]:
+//                     the closed polyline of each cell; cell (markers) [int64]: its cell;
+//                     attrs step, time_s, cells
+//   run.xdmf          the XDMF index of the fields and membranes (xdmf.hpp), appended at
+//                     every output
 #include <chrono>
 #include <memory>
 #include <string>
@@ -63,6 +69,9 @@ class RunWriter : public sim::RunObserver {
   void close_and_commit();
   void flush_samples();  // writes the buffered samples and flushes the file
   h5::Handle frame_group(long step);  // /fields/<step>, created (and listed for XDMF) once
+  // The XDMF frame of `step` being assembled (fields, cells); a new step commits the last.
+  XdmfFrame& xdmf_frame(long step);
+  void commit_xdmf_frame();
 
   std::string out_dir_;
   scene::LatticeSetup setup_;
@@ -74,8 +83,9 @@ class RunWriter : public sim::RunObserver {
   std::vector<std::vector<double>> pending_;  // per series, samples not yet written
   std::size_t pending_samples_ = 0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
-  std::vector<XdmfFrame> frames_;
-  XdmfGrid xdmf_grid_;
+  XdmfIndex xdmf_;
+  XdmfFrame frame_;
+  bool has_frame_ = false;
   bool write_density_ = true, write_velocity_ = true;
   bool committed_ = false;
 };

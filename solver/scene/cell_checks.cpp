@@ -76,10 +76,13 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     if (c.markers != 0 && c.markers < 8)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(c.markers) + " must be >= 8");
     std::string size_key = cell_key(i, "radius_um"), size_shown = num(c.radius_um) + " µm";
-    const auto make = [&](int count) {
-      if (c.shape == "circle") return geometry::circle(count, c.radius_um / h_um);
-      if (c.shape == "ellipse") return geometry::ellipse(count, c.semi_axes_um[0] / h_um, c.semi_axes_um[1] / h_um);
-      if (c.shape == "biconcave") return geometry::biconcave(count, c.radius_um / h_um);
+    // The shape centred at the origin, its size divided by `shrink` (the rest shape of a
+    // pre-stressed cell: shrink = prestretch).
+    const auto make = [&](int count, double shrink = 1.0) {
+      if (c.shape == "circle") return geometry::circle(count, c.radius_um / h_um / shrink);
+      if (c.shape == "ellipse")
+        return geometry::ellipse(count, c.semi_axes_um[0] / h_um / shrink, c.semi_axes_um[1] / h_um / shrink);
+      if (c.shape == "biconcave") return geometry::biconcave(count, c.radius_um / h_um / shrink);
       reject(s, "key '" + cell_key(i, "shape") + "' = \"" + c.shape + "\" is not one of \"circle\", \"ellipse\", \"biconcave\"");
     };
     if (c.shape == "ellipse") {
@@ -98,6 +101,10 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     cell.shape = geometry::transformed(base, c.scale, c.angle_deg * std::numbers::pi / 180.0, c.center_um[0] / h_um,
                                        c.center_um[1] / h_um);
     geometry::make_counter_clockwise(cell.shape);
+    if (c.prestretch != 1.0) {  // rest shape: placement-free (lengths, angles and area only)
+      cell.rest = geometry::transformed(make(m, c.prestretch), c.scale, 0.0, 0.0, 0.0);
+      geometry::make_counter_clockwise(cell.rest);
+    }
     cell.equivalent_radius = std::sqrt(std::abs(geometry::signed_area(cell.shape)) / std::numbers::pi);
     cell.min_edge = std::numeric_limits<double>::infinity();
     for (std::size_t e = 0; e < cell.shape.size(); ++e) {
@@ -113,11 +120,12 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                     num(h_um * cell.equivalent_radius / kMinCellRadius) + " µm");
     // Marker spacing matters for a membrane in a fluid (leaks, stiffness); a fixed shape in a
     // still medium is only a polygon (e.g. 800 markers for exact area fractions).
-    if (mechanics && cell.max_edge > kMaxMarkerSpacing)
+    const double max_spacing = s.limits.max_marker_spacing;
+    if (mechanics && cell.max_edge > max_spacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too few: markers are up to " +
-                    num(cell.max_edge) + " h apart, more than " + num(kMaxMarkerSpacing) +
-                    " h (fluid leaks between markers): use markers >= " +
-                    std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / kMaxMarkerSpacing))));
+                    num(cell.max_edge) + " h apart, more than " + num(max_spacing) +
+                    " h (limits.max_marker_spacing; fluid leaks between markers): use markers >= " +
+                    std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / max_spacing))));
     if (mechanics && cell.min_edge < kMinMarkerSpacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too many: markers are as close as " +
                     num(cell.min_edge) + " h, less than " + num(kMinMarkerSpacing) +
@@ -133,11 +141,11 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       const auto& coords = a == 0 ? cell.shape.x : cell.shape.y;
       const auto [lo, hi] = std::minmax_element(coords.begin(), coords.end());
       const double gap = std::min(*lo, n[a] - *hi);
-      if (gap < kMinCellGap)
+      if (gap < s.limits.min_cell_gap)
         reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm places cell " +
                       std::to_string(i) + " " + num(gap) + " h from the " +
-                      (a == 0 ? "left/right" : "bottom/top") + " wall, closer than " + num(kMinCellGap) +
-                      " h (overlaps the wall): move it inward or shrink it");
+                      (a == 0 ? "left/right" : "bottom/top") + " wall, closer than " + num(s.limits.min_cell_gap) +
+                      " h (limits.min_cell_gap; overlaps the wall): move it inward or shrink it");
     }
     for (std::size_t j = 0; j < M.cells.size(); ++j) {
       const geometry::Polygon& o = M.cells[j].shape;
@@ -147,12 +155,13 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
           closest = std::min(closest, std::hypot(axis_gap(cell.shape.x[p] - o.x[q], n[0], periodic[0]),
                                                  axis_gap(cell.shape.y[p] - o.y[q], n[1], periodic[1])));
       const bool nested = inside(o, cell.shape.x[0], cell.shape.y[0]) || inside(cell.shape, o.x[0], o.y[0]);
-      if (nested || closest < kMinCellGap)
+      if (nested || closest < s.limits.min_cell_gap)
         reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm makes cell " +
                       std::to_string(i) + " overlap cell " + std::to_string(j) + " (" + cell_key(j, "center_um") +
                       " = " + vec(s.cells[j].center_um) + " µm): " +
                       (nested ? std::string("one lies inside the other")
-                              : "their markers are " + num(closest) + " h apart, closer than " + num(kMinCellGap) + " h") +
+                              : "their markers are " + num(closest) + " h apart, closer than " +
+                                    num(s.limits.min_cell_gap) + " h (limits.min_cell_gap)") +
                       "; move them apart");
     }
     M.cells.push_back(std::move(cell));
@@ -198,7 +207,8 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
   in.model = M.cells.empty() ? M.model : M.cells[stiffest].model;
   in.viscosity = L.viscosity;
   in.density = 1.0;
-  in.max_stretch = 1.0;  // cells start at their rest shape
+  in.max_stretch = 1.0;  // cells start at their rest shape, or pre-stressed (cells.prestretch)
+  for (const CellSpec& c : s.cells) in.max_stretch = std::max(in.max_stretch, c.prestretch);
   M.stability = membrane::estimate_stability(in);
   if (!M.stability.acceptable()) {
     const auto& e = M.stability;
@@ -222,7 +232,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     for (const Term& t : terms)
       if (t.value / t.limit > worst->value / worst->limit) worst = &t;
     const double factor = std::sqrt(worst->limit / worst->value);
-    reject(s, "key '" + std::string(worst->key) + "' = " + worst->shown +
+    const std::string why = "key '" + std::string(worst->key) + "' = " + worst->shown +
                   " is outside the membrane's stability limit: " + worst->number + " = " + num(worst->value) +
                   " exceeds " + num(worst->limit) + " (explicit immersed-boundary update, " +
                   std::string(ib::to_string(M.kernel)) + " kernel, membrane::estimate_stability, " +
@@ -230,7 +240,10 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                   num(1.0 / (factor * factor)) + ", or shrink the time step by a factor " + num(1.0 / factor) + " (" +
                   (s.time.tau ? "time.tau <= " + num(0.5 + (L.collision.tau - 0.5) * factor)
                               : "time.step_s <= " + num(L.scales.time_s * factor) + " s") +
-                  ") or refine domain.spacing_um");
+                  ") or refine domain.spacing_um";
+    if (s.limits.membrane_stability != "warn") reject(s, why);
+    // limits.membrane_stability = "warn": run it anyway (e.g. to find where it diverges).
+    M.stability.warning += (M.stability.warning.empty() ? "" : "; ") + why + " (limits.membrane_stability = \"warn\")";
   }
   return M;
 }

@@ -24,11 +24,20 @@ struct TimeSpec {
   std::optional<double> tau;     // [time] tau
 };
 
+// [[fluid.layers]]: a rectangle of another viscosity (e.g. a cytoplasm layer beside
+// plasma). Nodes whose centre lies in [x0, x1) × [y0, y1) get it; later entries win.
+struct ViscosityLayerSpec {
+  std::array<double, 2> y_um{0.0, 0.0};  // [y0, y1], required
+  std::optional<std::array<double, 2>> x_um;  // [x0, x1]; absent: the whole width
+  double viscosity_cP = 0.0;             // required
+};
+
 struct FluidSpec {
   double density_kg_m3 = 1025.0;  // [fluid] density_kg_m3 (plasma, docs/parameters.md)
   double viscosity_cP = 1.2;      // [fluid] viscosity_cP (plasma, thesis §II.4)
   std::string collision = "bgk";  // [fluid] collision = "bgk" | "trt"
   double trt_magic = 3.0 / 16.0;  // [fluid] trt_magic (Λ)
+  std::vector<ViscosityLayerSpec> layers;  // [[fluid.layers]]
 };
 
 struct SideSpec {
@@ -49,9 +58,14 @@ struct BodyForceSpec {
 struct InitialSpec {
   // "rest" | "uniform" | "shear" (linear profile between the bottom and top walls'
   // velocities) | "taylor_green" (u = −U cos(kx x) sin(ky y), v = U (kx/ky) sin(kx x) cos(ky y),
-  // wavelengths = domain size; see simulation.cpp)
+  // wavelengths = domain size; see simulation.cpp) | "double_shear_layer" (Minion & Brown's
+  // thick layer, fluid/initial_state.hpp)
   std::string type = "rest";
-  std::array<double, 2> velocity_um_s{0.0, 0.0};  // uniform: the velocity; taylor_green: [U, 0]
+  std::array<double, 2> velocity_um_s{0.0, 0.0};  // uniform: the velocity; taylor_green, double_shear_layer: [U, 0]
+  // Start from the populations after a collision at t = 0: equilibrium plus the
+  // Chapman–Enskog non-equilibrium part of the flow's velocity gradient (and the Guo
+  // half force of [body_force]), fluid/initial_state.hpp; false: equilibrium only.
+  bool non_equilibrium = false;
 };
 
 struct SteadyStateSpec {
@@ -131,6 +145,10 @@ struct CellSpec {
   // This cell's shear modulus E_s [dyn/cm]; absent: [membrane] shear_modulus_dyn_cm (e.g. a
   // doublet of cells of different deformability, thesis ch. III cases II–IV).
   std::optional<double> shear_modulus_dyn_cm;
+  // The cell starts stretched by this factor over its stress-free rest shape, which is the
+  // shape before placement scaled by scale / prestretch (a pre-stressed membrane, e.g. an
+  // inflated circle); 1: the rest shape is the shape as placed.
+  double prestretch = 1.0;
 };
 
 // [aggregation]: Morse aggregation between the membranes of different cells (docs/model.md
@@ -168,7 +186,7 @@ struct TransportSpec {
   // Diffusivity at the membrane with "area_fraction": "series" (node rule T9), "node_tensor"
   // (T10 on each node, TRT only), "face_tensor" (T10 on each face, correction T11; TRT Λ = 1/4).
   std::string interface = "series";
-  // D of a node shared by two [[layers]]: "harmonic" (series across the layers) or "arithmetic".
+  // D of a node shared by two [[transport.layers]]: "harmonic" (series across them) or "arithmetic".
   std::string layer_mean = "harmonic";
   // Concentration handed to the observers (fields): "concentration" (C, eq T4) or
   // "source_corrected" (Ĉ = C + c q/D, eq T7: the steady finite-volume value in a source region).
@@ -190,12 +208,14 @@ struct SpeciesSpec {
   double decay_per_s = 0.0;      // first-order sink rate everywhere (implicit, eq T4), 1/s
 };
 
-// [[layers]]: a band y_um[0] <= y < y_um[1] where one species has its own diffusivity,
-// first-order sink and zero-order source (absent: the species' values); a node cut by a
-// band's edge mixes by the fractions of its square (transport.layer_mean for D).
-struct LayerSpec {
+// [[transport.layers]]: a band y_um[0] <= y < y_um[1] (within x_um, if given; like
+// [[fluid.layers]]) where one species has its own diffusivity, first-order sink and zero-order
+// source (absent: the species' values); a node cut by an edge mixes by the fraction of its
+// square inside (transport.layer_mean for D).
+struct TransportLayerSpec {
   std::string species;
   std::array<double, 2> y_um{0.0, 0.0};
+  std::optional<std::array<double, 2>> x_um;  // absent: the whole width
   std::optional<double> diffusivity_um2_s, decay_per_s, source_uM_per_s;
 };
 
@@ -227,6 +247,16 @@ struct LimitsSpec {
   double min_tau_margin = 0.005;   // reject τ < 0.5 + margin
   double max_mach = 0.1;           // reject a set-up whose expected |u|/c_s exceeds this
   int min_nodes_across_channel = 4;  // reject a wall-bounded direction with fewer nodes
+  // A membrane beyond the explicit-update stability estimate (membrane/stability.hpp):
+  // "reject" the set-up, or "warn" (MembraneSetup::stability.warning) and run it anyway,
+  // e.g. to measure where it diverges.
+  std::string membrane_stability = "reject";
+  // Cells (lattice spacings h): the largest marker spacing (fluid leaks between markers
+  // farther apart) and the smallest distance between markers of two cells or a marker and
+  // a wall. Relaxed, e.g., by the doublet cases: the thesis's 100 markers at h = 0.15 µm,
+  // an aggregated pair at its flat-contact gap on a coarse lattice.
+  double max_marker_spacing = 1.0;
+  double min_cell_gap = 1.0;
 };
 
 struct Scene {
@@ -249,7 +279,7 @@ struct Scene {
   std::optional<AggregationSpec> aggregation;  // [aggregation] (needs cells and a fluid)
   std::optional<TransportSpec> transport;  // [transport]; absent: no transport
   std::vector<SpeciesSpec> species;        // [[species]] (needs [transport])
-  std::vector<LayerSpec> layers;           // [[layers]] (needs [[species]])
+  std::vector<TransportLayerSpec> transport_layers;  // [[transport.layers]] (needs [[species]])
   std::optional<HemoglobinSpec> hemoglobin;  // [hemoglobin] (needs cells and an O2 species)
   std::vector<StopWhenSpec> stop_when;       // [[stop_when]]
 };

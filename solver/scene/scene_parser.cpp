@@ -24,9 +24,11 @@
 namespace erythro::scene {
 namespace {
 
-// The scene's arrays of tables: [[cells]], [[species]], [[stop_when]] and [[layers]].
+// The scene's arrays of tables: [[cells]], [[species]], [[stop_when]], [[fluid.layers]] and
+// [[transport.layers]].
 bool is_array_of_tables(std::string_view name) {
-  return name == "cells" || name == "species" || name == "stop_when" || name == "layers";
+  return name == "cells" || name == "species" || name == "stop_when" || name == "fluid.layers" ||
+         name == "transport.layers";
 }
 
 using namespace detail;  // the schema: Kind, KeySpec, find_key, range_text, ...
@@ -71,6 +73,7 @@ std::string kind_of(const toml::node& n) {
 class Reader;
 void read_transport(const Reader& r, Scene& s);
 void read_stop_when(const Reader& r, Scene& s);
+void read_layers(const Reader& r, Scene& s);
 
 class Reader {
  public:
@@ -167,6 +170,13 @@ class Reader {
     const auto* a = n->as_array();
     if (!a || a->size() != 2) wrong_type(*n, k);
     return {number_of(*a->get(0), k, n), number_of(*a->get(1), k, n)};
+  }
+
+  bool flag(std::string_view path, bool fallback) const {
+    const toml::node* n = find(path);
+    if (!n) return fallback;
+    if (!n->is_boolean()) wrong_type(*n, spec(path));
+    return n->as_boolean()->get();
   }
 
   std::vector<std::string> string_list(std::string_view path, std::vector<std::string> fallback) const {
@@ -294,7 +304,7 @@ void apply_override(toml::table& root, const std::string& text, const std::strin
   toml::table* t = &root;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
     if (parts[i].find('[') != std::string::npos || is_array_of_tables(parts[i])) {
-      t = array_entry(root, parts[i], text, origin);  // "cells[1]": an entry the file already has
+      t = array_entry(*t, parts[i], text, origin);  // "cells[1]", "fluid.layers[0]": an entry the file has
       continue;
     }
     toml::node* n = t->get(parts[i]);
@@ -371,6 +381,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.fluid.viscosity_cP = r.number("fluid.viscosity_cP", s.fluid.viscosity_cP);
   s.fluid.collision = r.text("fluid.collision", s.fluid.collision);
   s.fluid.trt_magic = r.number("fluid.trt_magic", s.fluid.trt_magic);
+  read_layers(r, s);
 
   s.boundaries.left = read_side(r, "left");
   s.boundaries.right = read_side(r, "right");
@@ -387,14 +398,15 @@ Scene read_scene(const Reader& r, const std::string& origin) {
 
   s.initial.type = r.text("initial.type", s.initial.type);
   s.initial.velocity_um_s = r.vec2("initial.velocity_um_s", s.initial.velocity_um_s);
+  s.initial.non_equilibrium = r.flag("initial.non_equilibrium", s.initial.non_equilibrium);
   const auto& u0 = s.initial.velocity_um_s;
   if ((s.initial.type == "rest" || s.initial.type == "shear") && (u0[0] != 0.0 || u0[1] != 0.0))
     r.fail(*r.find("initial.velocity_um_s"), "initial.velocity_um_s",
            "is not allowed with initial.type = \"" + s.initial.type +
                "\" (only \"uniform\" and \"taylor_green\" take a velocity)");
-  if (s.initial.type == "taylor_green" && u0[1] != 0.0)
+  if ((s.initial.type == "taylor_green" || s.initial.type == "double_shear_layer") && u0[1] != 0.0)
     r.fail(*r.find("initial.velocity_um_s"), "initial.velocity_um_s",
-           "is out of range: with initial.type = \"taylor_green\" it must be [U, 0] (µm/s)");
+           "is out of range: with initial.type = \"" + s.initial.type + "\" it must be [U, 0] (µm/s)");
 
   if (exactly_one(r, "run", "steps", "duration_s", "steps, an integer >= 1; or duration_s in s, > 0") == 0)
     s.run.steps = r.integer("run.steps", 0);
@@ -431,6 +443,9 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.limits.max_mach = r.number("limits.max_mach", s.limits.max_mach);
   s.limits.min_nodes_across_channel =
       static_cast<int>(r.integer("limits.min_nodes_across_channel", s.limits.min_nodes_across_channel));
+  s.limits.membrane_stability = r.text("limits.membrane_stability", s.limits.membrane_stability);
+  s.limits.max_marker_spacing = r.number("limits.max_marker_spacing", s.limits.max_marker_spacing);
+  s.limits.min_cell_gap = r.number("limits.min_cell_gap", s.limits.min_cell_gap);
 
   if (r.has("membrane")) {
     MembraneSpec m;
@@ -476,6 +491,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
       c.scale = r.number(p + "scale", c.scale);
       c.markers = r.integer(p + "markers", c.markers);
       if (r.has(p + "shear_modulus_dyn_cm")) c.shear_modulus_dyn_cm = r.number(p + "shear_modulus_dyn_cm", 0.0);
+      c.prestretch = r.number(p + "prestretch", c.prestretch);
       s.cells.push_back(c);
     }
   }
@@ -503,6 +519,25 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   }
   read_transport(r, s);
   return s;
+}
+
+// [[fluid.layers]] (scene.hpp; docs/scenes.md): y_um and viscosity_cP required.
+void read_layers(const Reader& r, Scene& s) {
+  const toml::node* layers = r.find("fluid.layers");
+  if (!layers) return;
+  const std::size_t count = layers->as_array()->size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string p = "fluid.layers[" + std::to_string(i) + "].";
+    for (const char* required : {"y_um", "viscosity_cP"})
+      if (!r.has(p + required))
+        throw InputError(r.where(layers->as_array()->get(i)) + ": missing key '" + p + required + "' (required; " +
+                         range_text(*find_key(std::string("fluid.layers.") + required)) + ")");
+    ViscosityLayerSpec layer;
+    layer.y_um = r.vec2(p + "y_um", layer.y_um);
+    if (r.has(p + "x_um")) layer.x_um = r.vec2(p + "x_um", {});
+    layer.viscosity_cP = r.number(p + "viscosity_cP", 0.0);
+    s.fluid.layers.push_back(layer);
+  }
 }
 
 // [[stop_when]] (scene.hpp; docs/scenes.md): exactly one condition per entry.
@@ -591,26 +626,31 @@ void read_transport(const Reader& r, Scene& s) {
   }
   if (s.transport && s.species.empty())
     throw InputError(r.where_table("transport") + ": [transport] needs at least one [[species]] entry");
-  if (const toml::node* layers = r.find("layers")) {  // [[layers]] (scene.hpp LayerSpec)
+  if (const toml::node* layers = r.find("transport.layers")) {  // [[transport.layers]] (scene.hpp)
     const std::size_t count = layers->as_array()->size();
     for (std::size_t i = 0; i < count; ++i) {
-      const std::string p = "layers[" + std::to_string(i) + "].";
+      const std::string p = "transport.layers[" + std::to_string(i) + "].";
       const toml::node* entry = layers->as_array()->get(i);
       for (const char* required : {"species", "y_um"})
         if (!r.has(p + required))
           throw InputError(r.where(entry) + ": missing key '" + p + required + "' (required; " +
-                           range_text(*find_key(std::string("layers.") + required)) + ")");
-      LayerSpec l;
+                           range_text(*find_key(std::string("transport.layers.") + required)) + ")");
+      TransportLayerSpec l;
       l.species = r.text(p + "species", "");
       if (std::none_of(s.species.begin(), s.species.end(), [&](const SpeciesSpec& sp) { return sp.name == l.species; }))
         r.fail(*r.find(p + "species"), p + "species", "names no [[species]] entry");
       l.y_um = r.vec2(p + "y_um", {});
       if (!(l.y_um[0] < l.y_um[1]))
         r.fail(*r.find(p + "y_um"), p + "y_um", "is out of range: it must be [from, to] with from < to (µm)");
+      if (r.has(p + "x_um")) {
+        l.x_um = r.vec2(p + "x_um", {});
+        if (!((*l.x_um)[0] < (*l.x_um)[1]))
+          r.fail(*r.find(p + "x_um"), p + "x_um", "is out of range: it must be [from, to] with from < to (µm)");
+      }
       if (r.has(p + "diffusivity_um2_s")) l.diffusivity_um2_s = r.number(p + "diffusivity_um2_s", 0.0);
       if (r.has(p + "decay_per_s")) l.decay_per_s = r.number(p + "decay_per_s", 0.0);
       if (r.has(p + "source_uM_per_s")) l.source_uM_per_s = r.number(p + "source_uM_per_s", 0.0);
-      s.layers.push_back(l);
+      s.transport_layers.push_back(l);
     }
   }
   if (r.has("hemoglobin")) {

@@ -36,8 +36,13 @@ const std::vector<KeySpec>& known_keys() {
         {"body_force.density_N_m3", Kind::vec2, "N/m³", any, {}},
         {"body_force.frequency_Hz", Kind::number, "Hz", non_negative, {}},
         {"body_force.phase_rad", Kind::number, "rad", any, {}},
-        {"initial.type", Kind::string, "", any, {"rest", "uniform", "shear", "taylor_green"}},
+        {"initial.type", Kind::string, "", any, {"rest", "uniform", "shear", "taylor_green", "double_shear_layer"}},
         {"initial.velocity_um_s", Kind::vec2, "µm/s", any, {}},
+        {"initial.non_equilibrium", Kind::boolean, "", any, {}},
+        // [[fluid.layers]] entries: the schema path drops the index.
+        {"fluid.layers.y_um", Kind::vec2, "µm", any, {}},
+        {"fluid.layers.x_um", Kind::vec2, "µm", any, {}},
+        {"fluid.layers.viscosity_cP", Kind::number, "cP", positive, {}},
         {"run.steps", Kind::integer, "steps", at_least_one, {}},
         {"run.duration_s", Kind::number, "s", positive, {}},
         {"run.steady_state.tolerance", Kind::number, "", positive, {}},
@@ -63,6 +68,9 @@ const std::vector<KeySpec>& known_keys() {
         {"limits.min_tau_margin", Kind::number, "", non_negative, {}},
         {"limits.max_mach", Kind::number, "", positive, {}},
         {"limits.min_nodes_across_channel", Kind::integer, "nodes", Bound{1.0, false, 1e6, false}, {}},
+        {"limits.membrane_stability", Kind::string, "", any, {"reject", "warn"}},
+        {"limits.max_marker_spacing", Kind::number, "h", positive, {}},
+        {"limits.min_cell_gap", Kind::number, "h", non_negative, {}},
         {"membrane.law", Kind::string, "", any, {"neo_hookean", "skalak", "hookean"}},
         {"membrane.shear_modulus_dyn_cm", Kind::number, "dyn/cm", non_negative, {}},
         {"membrane.bending_modulus_dyn_cm", Kind::number, "dyn·cm", non_negative, {}},
@@ -81,7 +89,8 @@ const std::vector<KeySpec>& known_keys() {
         {"cells.scale", Kind::number, "", positive, {}},
         {"cells.markers", Kind::integer, "markers", Bound{8.0, false, 1e6, false}, {}},
         {"cells.shear_modulus_dyn_cm", Kind::number, "dyn/cm", non_negative, {}},
-        {"aggregation.de_star", Kind::number, "", positive, {}},
+        {"cells.prestretch", Kind::number, "", Bound{1.0, false, 2.0, false}, {}},
+        {"aggregation.de_star", Kind::number, "", non_negative, {}},  // 0: no adhesion, pair probe kept
         {"aggregation.surface_energy_J_m2", Kind::number, "J/m²", positive, {}},
         {"aggregation.pair_density_Pa", Kind::number, "Pa", positive, {}},
         {"aggregation.zero_force_distance_um", Kind::number, "µm", positive, {}},
@@ -105,12 +114,13 @@ const std::vector<KeySpec>& known_keys() {
         {"species.cell_initial_uM", Kind::number, "µM", non_negative, {}},
         {"species.source_uM_per_s", Kind::number, "µM/s", any, {}},
         {"species.decay_per_s", Kind::number, "1/s", non_negative, {}},
-        // [[layers]] entries: the schema path drops the index.
-        {"layers.species", Kind::string, "", any, {}},
-        {"layers.y_um", Kind::vec2, "µm", any, {}},
-        {"layers.diffusivity_um2_s", Kind::number, "µm²/s", positive, {}},
-        {"layers.decay_per_s", Kind::number, "1/s", non_negative, {}},
-        {"layers.source_uM_per_s", Kind::number, "µM/s", any, {}},
+        // [[transport.layers]] entries: the schema path drops the index.
+        {"transport.layers.species", Kind::string, "", any, {}},
+        {"transport.layers.y_um", Kind::vec2, "µm", any, {}},
+        {"transport.layers.x_um", Kind::vec2, "µm", any, {}},
+        {"transport.layers.diffusivity_um2_s", Kind::number, "µm²/s", positive, {}},
+        {"transport.layers.decay_per_s", Kind::number, "1/s", non_negative, {}},
+        {"transport.layers.source_uM_per_s", Kind::number, "µM/s", any, {}},
         {"hemoglobin.species", Kind::string, "", any, {}},
         {"hemoglobin.k_off_per_s", Kind::number, "1/s", positive, {}},
         {"hemoglobin.heme_uM", Kind::number, "µM", positive, {}},
@@ -185,6 +195,7 @@ std::string range_text(const KeySpec& k) {
     return s;
   }
   if (k.kind == Kind::string) return "must be a string";
+  if (k.kind == Kind::boolean) return "must be true or false";
   const Bound& b = k.bound;
   const bool has_lo = std::isfinite(b.lo), has_hi = std::isfinite(b.hi);
   if (has_lo && has_hi) {
@@ -209,6 +220,7 @@ std::string type_text(Kind kind) {
     case Kind::integer: return "an integer";
     case Kind::vec2: return "an array of 2 numbers";
     case Kind::string_list: return "an array of strings";
+    case Kind::boolean: return "true or false";
   }
   return "?";
 }

@@ -11,7 +11,7 @@ namespace erythro::scene::detail {
 
 inline constexpr double inf = std::numeric_limits<double>::infinity();
 
-enum class Kind { string, number, integer, vec2, string_list };
+enum class Kind { string, number, integer, vec2, string_list, boolean };
 
 // Allowed interval of a number (or of each element of a vec2).
 struct Bound {

@@ -100,6 +100,9 @@ std::vector<SpeedSource> speed_sources(const Scene& s, const LatticeSetup& L) {
     out.push_back({std::abs(L.initial_velocity[0]) * std::max(1.0, ratio), "initial.velocity_um_s",
                    vec(s.initial.velocity_um_s) + " µm/s", false});
   }
+  if (s.initial.type == "double_shear_layer")  // |u| <= U, |v| <= 0.05 U
+    out.push_back({std::abs(L.initial_velocity[0]) * std::hypot(1.0, 0.05), "initial.velocity_um_s",
+                   vec(s.initial.velocity_um_s) + " µm/s", false});
   if (s.body_force) {
     std::array<double, 2> u{};
     bool estimate = false;
@@ -177,6 +180,9 @@ LatticeSetup derive_still_medium(const Scene& s) {
     reject(s, "initial.type = \"" + s.initial.type + "\" needs a fluid, but transport.coupling = \"none\" builds none");
   if (s.membrane && s.membrane->interior_viscosity_cP)
     reject(s, "membrane.interior_viscosity_cP needs a fluid, but transport.coupling = \"none\" builds none");
+  if (!s.fluid.layers.empty()) derive_layers(s, L);  // rejects: no fluid
+  if (s.initial.non_equilibrium)
+    reject(s, "initial.non_equilibrium = true needs a fluid, but transport.coupling = \"none\" builds none");
   const double h = s.domain.spacing_um * 1e-6;
   const double dt = *s.transport->time_step_s;
   L.scales = UnitScales{h, dt, s.fluid.density_kg_m3};
@@ -253,12 +259,14 @@ LatticeSetup derive_lattice(const Scene& s) {
 
   // --- initial state
   if (s.initial.type != "rest" && s.initial.type != "uniform" && s.initial.type != "shear" &&
-      s.initial.type != "taylor_green")
-    reject(s, "initial.type = \"" + s.initial.type + "\" is not one of \"rest\", \"uniform\", \"shear\", \"taylor_green\"");
+      s.initial.type != "taylor_green" && s.initial.type != "double_shear_layer")
+    reject(s, "initial.type = \"" + s.initial.type +
+                  "\" is not one of \"rest\", \"uniform\", \"shear\", \"taylor_green\", \"double_shear_layer\"");
   if (s.initial.type == "shear" && !wall_bounded(s, 1))
     reject(s, "initial.type = \"shear\" needs walls at bottom and top (the profile joins their velocities)");
-  if (s.initial.type == "taylor_green" && (wall_bounded(s, 0) || wall_bounded(s, 1)))
-    reject(s, "initial.type = \"taylor_green\" needs all four sides periodic");
+  if ((s.initial.type == "taylor_green" || s.initial.type == "double_shear_layer") &&
+      (wall_bounded(s, 0) || wall_bounded(s, 1)))
+    reject(s, "initial.type = \"" + s.initial.type + "\" needs all four sides periodic");
   L.initial_velocity = {s.initial.velocity_um_s[0] * u_scale, s.initial.velocity_um_s[1] * u_scale};
 
   // --- body force: F_lat = F Δt² / (ρ h);  f_lat = f Δt (cycles per step)
@@ -300,6 +308,7 @@ LatticeSetup derive_lattice(const Scene& s) {
   L.reynolds_length_m = length * h;
   if (!s.cells.empty()) L.membrane = derive_membrane(s, L);
   if (s.transport) L.transport = derive_transport(s, L);
+  L.viscosity_layers = derive_layers(s, L);
   return L;
 }
 
@@ -377,6 +386,13 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
   };
   pair_row("left / right", L.boundaries.left, L.boundaries.right, "left", "right");
   pair_row("bottom / top", L.boundaries.bottom, L.boundaries.top, "bottom", "top");
+  for (std::size_t i = 0; i < L.viscosity_layers.size(); ++i) {
+    const fluid::ViscosityLayer& l = L.viscosity_layers[i];
+    const double h_um = u.length_m * um;
+    rows.push_back({"layer " + std::to_string(i), "τ = " + num(l.tau) + ", " + std::to_string(fluid::covered_nodes(L.grid, l)) + " nodes",
+                    num(s.fluid.layers[i].viscosity_cP) + " cP, x " + vec({l.x_lo * h_um, l.x_hi * h_um}) + ", y " +
+                        vec({l.y_lo * h_um, l.y_hi * h_um}) + " µm"});
+  }
 
   if (const auto& M = L.membrane) {
     const membrane::StabilityEstimate& e = M->stability;

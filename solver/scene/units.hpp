@@ -8,6 +8,7 @@
 #include "aggregation/morse.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
+#include "fluid/viscosity_layers.hpp"
 #include "geometry/polygon.hpp"
 #include "ib/kernel.hpp"
 #include "interior/index_field.hpp"
@@ -35,6 +36,9 @@ struct UnitScales {
 // One cell placed on the lattice (lattice units: nodes at i + ½, walls at 0 and n).
 struct CellSetup {
   geometry::Polygon shape;        // markers, counter-clockwise; also the stress-free rest shape
+                                  // unless `rest` is given
+  geometry::Polygon rest;         // the stress-free rest shape of a pre-stressed cell (cells.prestretch:
+                                  // unplaced, scaled by scale / prestretch); empty: `shape`
   membrane::MembraneModel model;  // lattice moduli of this cell (MembraneSetup::model unless overridden)
   double equivalent_radius = 0.0; // √(A/π)
   double min_edge = 0.0, max_edge = 0.0;  // marker spacing
@@ -59,9 +63,9 @@ struct MembraneSetup {
 
 // Fixed set-up rules for cells (docs/scenes.md "Checks done by units.cpp"), in h.
 inline constexpr double kMinCellRadius = 3.0;   // equivalent radius >= 3 h
-inline constexpr double kMaxMarkerSpacing = 1.0; // every edge <= h (no leaks between markers)
+inline constexpr double kMaxMarkerSpacing = LimitsSpec{}.max_marker_spacing; // default: every edge <= h (no leaks)
 inline constexpr double kMinMarkerSpacing = 0.3; // every edge >= 0.3 h (over-resolved markers stiffen)
-inline constexpr double kMinCellGap = 1.0;       // markers of two cells, or a marker and a wall, >= h apart
+inline constexpr double kMinCellGap = LimitsSpec{}.min_cell_gap;  // default: markers of two cells, or a marker and a wall, >= h apart
 inline constexpr double kAutoMarkerSpacing = 0.7; // cells.markers absent: perimeter / 0.7 h markers (>= 16)
 
 // One transported species in transport lattice units (h, Δt_T; concentrations in µM).
@@ -78,11 +82,14 @@ struct SpeciesSetup {
   double source_uM_per_s = 0.0, decay_per_s = 0.0;
 };
 
-// [[layers]]: a band of one species' own D, k, q; y in lattice units (node j spans [j, j+1]),
-// values physical (mixed by the fractions of a cut node's square, then converted).
-struct LayerSetup {
+// [[transport.layers]]: a band (rectangle) of one species' own D, k, q; x, y in lattice units
+// (node (i, j) spans [i, i+1] × [j, j+1]), values physical (mixed by the fractions of a cut
+// node's square, then converted).
+struct TransportLayerSetup {
   int species = 0;
   double y_lo = 0.0, y_hi = 0.0;
+  bool full_width = true;  // no x_um: x_lo = 0, x_hi = nx
+  double x_lo = 0.0, x_hi = 0.0;
   double diffusivity_um2_s = 0.0, decay_per_s = 0.0, source_uM_per_s = 0.0;
 };
 
@@ -109,7 +116,7 @@ struct TransportSetup {
   std::string cell_representation = "ray_cast", interface = "series", layer_mean = "harmonic";
   std::string readout = "concentration";
   std::string hb_coupling = "cell_implicit", mean_pressure = "concentration", heme_weights = "area_fraction";
-  std::vector<LayerSetup> layers;
+  std::vector<TransportLayerSetup> layers;
   std::optional<std::array<double, 2>> concentration_range;
 };
 
@@ -123,6 +130,7 @@ struct LatticeSetup {
   double force_frequency = 0.0;                // per step (lattice)
   double force_phase = 0.0;
   std::array<double, 2> initial_velocity{0.0, 0.0};  // lattice
+  std::vector<fluid::ViscosityLayer> viscosity_layers;  // [[fluid.layers]], lattice rectangles and τ
   long total_steps = 0;
   double viscosity = 0.0;           // lattice kinematic viscosity ν = (τ − ½)/3
   double expected_max_speed = 0.0;  // lattice, estimated from walls, force, initial state

@@ -33,8 +33,8 @@ inline bool wall_bounded(const Scene& s, int axis) {
 
 // [membrane] and [[cells]] → lattice moduli, placed marker polygons and the stability
 // estimate. Rules (docs/scenes.md): equivalent radius >= kMinCellRadius h, marker
-// spacing in [kMinMarkerSpacing, kMaxMarkerSpacing] h, markers >= kMinCellGap h from
-// another cell's markers and from a wall, stability numbers below their limits.
+// spacing in [kMinMarkerSpacing, limits.max_marker_spacing] h, markers >= limits.min_cell_gap h
+// from another cell's markers and from a wall, stability numbers below their limits.
 // `mechanics` = false (no flow, cells are fixed shapes): placement and geometry checks only.
 MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechanics = true);
 
@@ -42,10 +42,14 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
 // grid, scales (the fluid's, or the transport's own without fluid) and boundaries set.
 TransportSetup derive_transport(const Scene& s, const LatticeSetup& L);
 // The options of [transport] and [hemoglobin] beyond species and coupling (collision, cell
-// representation, interface rule, uniform velocity, [[layers]], the monitor's concentration
+// representation, interface rule, uniform velocity, [[transport.layers]], the monitor's concentration
 // range), checked and converted into T (transport_options.cpp; T.units already set).
 void derive_transport_options(const Scene& s, const LatticeSetup& L, TransportSetup& T);
 // Rows of `erythro check` for those options (collision, cells, coupling, velocity, layers).
 void append_transport_option_rows(const TransportSetup& T, std::vector<std::array<std::string, 3>>& rows);
+
+// [[fluid.layers]] → lattice rectangles and relaxation times (layer_setup.cpp). L has its
+// grid and collision set.
+std::vector<fluid::ViscosityLayer> derive_layers(const Scene& s, const LatticeSetup& L);
 
 }  // namespace erythro::scene::detail

@@ -16,7 +16,7 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
       nu_exterior_(exterior_viscosity),
       index_interval_(std::max(1L, setup.index_update_interval)) {
   for (const scene::CellSetup& c : setup.cells)
-    cells_.add_cell(c.shape, membrane::RestShape::from_polygon(c.shape), c.model);
+    cells_.add_cell(c.shape, membrane::RestShape::from_polygon(c.rest.size() != 0 ? c.rest : c.shape), c.model);
   if (setup.aggregation)
     aggregation_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()), *setup.aggregation);
   if (setup.indicator != interior::Method::indexless) {

@@ -21,8 +21,8 @@ namespace erythro::sim {
 
 class CellPhysics {
  public:
-  // Places the cells of `setup` (stress-free at their initial shape, each with its own
-  // membrane model) on `lattice`; with an interior viscosity, builds the index field and
+  // Places the cells of `setup` (stress-free at their initial shape, or pre-stressed over
+  // their CellSetup::rest, each with its own membrane model) on `lattice`; with an interior viscosity, builds the index field and
   // writes the whole τ field once.
   CellPhysics(const scene::MembraneSetup& setup, double exterior_viscosity, fluid::FluidLattice& lattice);
 

@@ -7,10 +7,12 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "lattice/d2q9.hpp"
+#include "fluid/initial_state.hpp"
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
+#include "simulation/probes/marker_speed_probe.hpp"
+#include "simulation/probes/pair_probe.hpp"
 #include "simulation/probes/transport_probe.hpp"
 
 namespace erythro::sim {
@@ -31,14 +33,19 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
   // a still-medium transport scene has no fluid. Each registers its stages.
   if (setup_.has_fluid) {
     fluid_ = std::make_unique<fluid::FluidLattice>(setup_.grid, setup_.collision, setup_.boundaries);
-    apply_initial_condition();
+    fluid::apply_viscosity_layers(*fluid_, setup_.viscosity_layers);  // before the start: its τ is per node
     apply_body_force(0);
-    if (setup_.membrane)  // cells start at their stress-free rest shape
+    apply_initial_condition();
+    if (setup_.membrane)  // cells start at their stress-free rest shape (or pre-stressed, cells.prestretch)
       cells_ = std::make_unique<CellPhysics>(*setup_.membrane, setup_.viscosity, *fluid_);
     register_fluid_stages();
     probes_.push_back(std::make_unique<FluidProbe>());
     if (cells_)
       probes_.push_back(std::make_unique<CellShapeProbe>(*cells_, scene_.output.extremes_interval_steps));
+    if (cells_)
+      probes_.push_back(std::make_unique<MarkerSpeedProbe>(*cells_, scene_.output.extremes_interval_steps));
+    if (cells_ && cells_->aggregation() && cells_->cells().cell_count() == 2)  // a doublet
+      probes_.push_back(std::make_unique<PairProbe>(*cells_));
   } else if (setup_.membrane) {
     for (const scene::CellSetup& c : setup_.membrane->cells) fixed_cells_.push_back(c.shape);
   }
@@ -56,7 +63,9 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
 
 void Simulation::register_fluid_stages() {
   if (setup_.body_force[0] != 0.0 || setup_.body_force[1] != 0.0)
-    loop_.add(Phase::prepare, "body_force", [this](long step) { apply_body_force(step); });
+    // The collision of step n (state n → n + 1) happens at t = n + 1, and the velocity
+    // after it carries that collision's half force: it uses F(t = n + 1).
+    loop_.add(Phase::prepare, "body_force", [this](long step) { apply_body_force(step + 1); });
   // One immersed-boundary cycle per fluid step around the fluid's own stage (cell_physics.hpp).
   if (cells_) cells_->register_stages(loop_, *fluid_);
   loop_.add(Phase::fluid, "fluid_step", [this](long) { fluid_->step(); });
@@ -97,37 +106,25 @@ void Simulation::add_probe(std::unique_ptr<Probe> probe) {
 }
 
 void Simulation::apply_initial_condition() {
+  // The analytic flows of [initial] (fluid/initial_state.hpp); with initial.non_equilibrium
+  // the populations after a collision at t = 0 (non-equilibrium part, Guo half force F(0)).
   const Grid& g = setup_.grid;
-  const std::size_t N = g.size();
-  std::vector<double> rho(N, 1.0), ux(N, 0.0), uy(N, 0.0);
   const std::string& type = scene_.initial.type;
-  const auto [u0x, u0y] = setup_.initial_velocity;
-  constexpr double two_pi = 2.0 * std::numbers::pi;
-  for (int y = 0; y < g.ny; ++y) {
-    for (int x = 0; x < g.nx; ++x) {
-      const std::size_t n = g.index(x, y);
-      // Node centres sit at (i + ½)h: walls (halfway bounce-back) are at 0 and L.
-      const double px = x + 0.5, py = y + 0.5;
-      if (type == "uniform") {
-        ux[n] = u0x;
-        uy[n] = u0y;
-      } else if (type == "shear") {
-        const auto& b = setup_.boundaries.bottom;
-        const auto& t = setup_.boundaries.top;
-        const double s = py / g.ny;
-        ux[n] = b.ux + (t.ux - b.ux) * s;
-      } else if (type == "taylor_green") {
-        // u = −U cos(kx x) sin(ky y), v = U (kx/ky) sin(kx x) cos(ky y),
-        // p = p0 − ρU²/4 [cos(2kx x) + (kx/ky)² cos(2ky y)], ρ = 1 + p'/c_s².
-        const double kx = two_pi / g.nx, ky = two_pi / g.ny, U = u0x;
-        ux[n] = -U * std::cos(kx * px) * std::sin(ky * py);
-        uy[n] = U * (kx / ky) * std::sin(kx * px) * std::cos(ky * py);
-        const double p = -0.25 * U * U * (std::cos(2 * kx * px) + (kx / ky) * (kx / ky) * std::cos(2 * ky * py));
-        rho[n] = 1.0 + p * d2q9::inv_cs2;
-      }
-    }
+  const bool neq = scene_.initial.non_equilibrium;
+  fluid::FlowField field(g.size());
+  if (type == "uniform") field = fluid::uniform_flow(g, setup_.initial_velocity, neq);
+  if (type == "shear") field = fluid::shear_flow(g, setup_.boundaries, neq);
+  if (type == "taylor_green") field = fluid::taylor_green_flow(g, setup_.initial_velocity[0], neq);
+  if (type == "double_shear_layer") field = fluid::double_shear_layer_flow(g, setup_.initial_velocity[0], neq);
+  if (!neq) {
+    fluid_->initialize(field.rho, field.ux, field.uy);
+    return;
   }
-  fluid_->initialize(rho, ux, uy);
+  if (!field.has_gradients()) field.resize(g.size(), true);  // rest: u = 0, ∇u = 0
+  const auto [fx, fy] = fluid_->uniform_force();
+  if (fx == 0.0 && fy == 0.0) return fluid::initialize_post_collision(*fluid_, field);
+  const std::vector<double> force_x(g.size(), fx), force_y(g.size(), fy);
+  fluid::initialize_post_collision(*fluid_, field, force_x, force_y);
 }
 
 void Simulation::apply_body_force(long step) {

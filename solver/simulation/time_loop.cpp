@@ -31,8 +31,9 @@ void TimeLoop::add(Phase phase, std::string name, Function function, long every,
 
 void TimeLoop::run_step(long step) {
   using clock = std::chrono::steady_clock;
-  // One clock reading per stage run (its end is the next one's start): on small lattices the
-  // readings are a visible part of a step.
+  // One clock read per stage run: a stage's end is the next one's start (the skipped
+  // stages' due checks in between are a few ns). On small grids a step takes about a
+  // microsecond and each read ~20 ns.
   auto start = clock::now();
   for (Stage& s : stages_) {
     if (step < s.first || (step - s.first) % s.every != 0) continue;

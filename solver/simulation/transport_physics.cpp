@@ -56,7 +56,7 @@ TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geo
   }
 }
 
-// The species' own fields: D, k and q from the species' values and its [[layers]]
+// The species' own fields: D, k and q from the species' values and its [[transport.layers]]
 // (transport_layers.hpp); fields are allocated only where something is set.
 void TransportPhysics::apply_species_fields(std::size_t i) {
   const LayerFields f = layer_fields(setup_, static_cast<int>(i), domain_.grid);

@@ -1,7 +1,7 @@
 #pragma once
 // The NO/O2 transport of a scene (docs/transport.md): one advection–diffusion–reaction
 // lattice per [[species]] (BGK or TRT, transport.collision), zero-order sources and
-// first-order sinks everywhere and per [[layers]] band, the cells as a compartment with
+// first-order sinks everywhere and per [[transport.layers]] band, the cells as a compartment with
 // their own diffusivity and initial concentration (ray-cast nodes, or area fractions with
 // a membrane rule: series, node or face subpixel tensor, eqs T9–T11), and Hb–O2 kinetics
 // per cell (cell-averaged saturation, release spread over the cell's heme weights; coupling

@@ -38,9 +38,11 @@ TEST(DoubletShear, CiSubset) {
   weak.de_star = kWeak;
   weak.strain = 6.0;
   weak.stop_theta_deg = -5.0;
-  const vv::DoubletShearResult rs = vv::run_doublet_shear(strong);
+  const std::vector<vv::DoubletShearResult> runs =
+      vv::run_doublet_shears({{strong, "strong"}, {weak, "weak"}}, rec.case_name());  // at once
+  const vv::DoubletShearResult& rs = runs[0];
+  const vv::DoubletShearResult& rw = runs[1];
   vv::print_run("strong", rs);
-  const vv::DoubletShearResult rw = vv::run_doublet_shear(weak);
   vv::print_run("weak", rw);
   vv::add_mapping(rec, strong, rs);
   rec.set_parameter("capillary_number", rs.capillary0);

@@ -33,15 +33,18 @@ TEST(DoubletShear, Deformability50) {
       "thesis Table III-2 lists the dimensionless shear rates (its definition is not in our copy: Ca_i = "
       "mu*gamma*a/E_S,i and Ca/De* are reported).");
   const double de = vv::deformability_de_star();
-  std::vector<vv::DoubletShearResult> runs;
+  const auto cases = vv::deformability_cases();
+  std::vector<vv::DoubletRun> plan;
+  for (const auto& cs : cases) plan.push_back({vv::deformability_config(cs), std::string("case ") + cs.name});
+  const std::vector<vv::DoubletShearResult> runs = vv::run_doublet_shears(plan, rec.case_name());  // at once
   std::vector<double> progress;
-  for (const auto& cs : vv::deformability_cases()) {
-    vv::DoubletShearConfig c = vv::deformability_config(cs);
-    runs.push_back(vv::run_doublet_shear(c));
-    const vv::DoubletShearResult& r = runs.back();
-    const std::string label = std::string("case ") + cs.name;
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    const auto& cs = cases[i];
+    const vv::DoubletShearConfig& c = plan[i].config;
+    const std::string& label = plan[i].label;
+    const vv::DoubletShearResult& r = runs[i];
     vv::print_run(label, r);
-    if (runs.size() == 1) {
+    if (i == 0) {
       vv::add_mapping(rec, c, r);
       rec.set_parameter("initial_gap_um", c.initial_gap_m < 0 ? r.flat_gap_lat * c.h_m * 1e6 : c.initial_gap_m * 1e6);
     }

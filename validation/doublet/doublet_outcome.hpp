@@ -13,7 +13,7 @@ namespace erythro::vv {
 std::string doublet_outcome(const DoubletShearResult& r);
 
 // Contact mode (thesis §III.2: flat, sigmoid, relaxed sigmoid) from the S amplitude of
-// the contact line (doublet_geometry.hpp, |c3|, µm) over the aggregated part of the
+// the contact line (pair_contact_sigmoid_um of the pair probe, |c3|, µm) over the aggregated part of the
 // run after γ̇t = 1: "flat" if it never exceeds `threshold_um`; "sigmoid" if its mean
 // over the last 10 % of that part is ≥ half its maximum; "relaxed sigmoid" if it fell
 // below half; "none" without aggregated samples or without any contact (De* = 0).

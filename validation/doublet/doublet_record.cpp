@@ -104,7 +104,8 @@ void add_row(io::ResultRecord& rec, const std::string& label, const DoubletShear
                {"max_edge_strain", r.max_edge_strain},
                {"max_edge_strain_cell0", r.max_edge_strain_cell[0]},
                {"max_edge_strain_cell1", r.max_edge_strain_cell[1]},
-               {"wall_time_s", r.wall_time_s}});
+               {"wall_time_s", r.wall_time_s}},
+              r.scene_text);
 }
 
 void add_health_metrics(io::ResultRecord& rec, const std::string& label, const DoubletShearResult& r) {

@@ -1,238 +1,144 @@
 #include "doublet_shear_run.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <limits>
-#include <numbers>
-#include <optional>
-#include <stdexcept>
+#include <memory>
+#include <numeric>
 
-#include "aggregation/morse_aggregation.hpp"
 #include "aggregation/morse_units.hpp"
-#include "capsule_run.hpp"  // make_shear_lattice: the undisturbed shear flow
-#include "doublet_geometry.hpp"
-#include "fluid/fluid_lattice.hpp"
-#include "geometry/domain.hpp"
-#include "geometry/shapes.hpp"
-#include "membrane/immersed_cells.hpp"
+#include "common/concurrent_runs.hpp"
+#include "common/scene_case.hpp"
+#include "doublet_scene.hpp"
 #include "membrane/stability.hpp"
+#include "simulation/cell_physics.hpp"
 
 namespace erythro::vv {
 
 namespace {
-constexpr double kPi = std::numbers::pi;
-constexpr double kTauMax = 5.0;  // as validation/rbc: a guard against a mistyped ratio
-double wrap(double d, double period) { return d - period * std::round(d / period); }
-}  // namespace
 
-DoubletShearResult run_doublet_shear(const DoubletShearConfig& c) {
-  using namespace membrane;
-  using namespace geometry;
-  const auto t_start = std::chrono::steady_clock::now();
-  DoubletShearResult r;
-  if (c.cells != 1 && c.cells != 2) throw std::invalid_argument("doublet run: cells must be 1 or 2");
-  // Dimensionless groups of the physical cells (docs/model.md §3, §6).
+// Outline pictures for the record (not a diagnostic): the cells' markers (µm, cell 1 at its
+// nearest periodic image in x to cell 0, NaN between cells) at the first sample of every
+// 2 strain units. A probe without series, so it sees exactly the samples, healthy states only.
+class OutlineSnapshots : public sim::Probe {
+ public:
+  OutlineSnapshots(const sim::CellPhysics& cells, double gamma, DoubletShearResult& out)
+      : cells_(cells), gamma_(gamma), out_(out) {}
+  void declare(std::vector<sim::SeriesInfo>&) const override {}
+  void sample(const sim::ProbeContext& context, std::span<double>) override {
+    const double strain = static_cast<double>(context.step) * gamma_;
+    if (strain < next_ - 0.5 * gamma_) return;
+    const membrane::ImmersedCells& cells = cells_.cells();
+    const double um = context.setup.scales.length_m * 1e6;
+    const int nx = context.setup.grid.nx;
+    std::vector<double> xs, ys;
+    double cx0 = 0;
+    for (int k = 0; k < cells.cell_count(); ++k) {
+      const geometry::Polygon p = cells.polygon(k);
+      double cx = 0, cy = 0;
+      geometry::centroid(p, cx, cy);
+      if (k == 0) cx0 = cx;
+      const double shift = k == 0 ? 0.0 : nx * std::round((cx - cx0) / nx);
+      if (k > 0) {
+        xs.push_back(std::nan(""));
+        ys.push_back(std::nan(""));
+      }
+      for (std::size_t m = 0; m <= p.size(); ++m) {
+        xs.push_back((p.x[m % p.size()] - shift) * um);
+        ys.push_back(p.y[m % p.size()] * um);
+      }
+    }
+    out_.snap_strain.push_back(strain);
+    out_.snap_x.push_back(std::move(xs));
+    out_.snap_y.push_back(std::move(ys));
+    next_ += 2.0;
+  }
+
+ private:
+  const sim::CellPhysics& cells_;
+  double gamma_, next_ = 0.0;
+  DoubletShearResult& out_;
+};
+
+// The mapping of the physical inputs, for the record (lattice values of the set-up).
+void fill_mapping(const DoubletShearConfig& c, const scene::LatticeSetup& setup, double gamma, DoubletShearResult& r) {
   r.capillary0 = c.mu_Pa_s * c.shear_rate * c.a_m / c.Es0_N_m;  // Ca = μγ̇a/E_S
   r.capillary1 = c.mu_Pa_s * c.shear_rate * c.a_m / c.Es1_N_m;
   r.bending_reduced = c.Eb_J / (c.a_m * c.a_m * c.Es0_N_m);
-  r.reynolds_physical = 1000.0 * c.shear_rate * c.a_m * c.a_m / c.mu_Pa_s;
-  // Lattice (h = Δt = ρ0 = 1): ν from τ, γ̇ from the chosen Re = γ̇a²/ν; the moduli keep Ca, E_B*, k_A a/E_S.
-  const double a = c.a_m / c.h_m;
-  const double nu = (c.tau - 0.5) / 3.0;
-  r.a_lat = a;
-  r.gamma_lat = c.reynolds * nu / (a * a);
-  r.Es0_lat = nu * r.gamma_lat * a / r.capillary0;
-  r.Es1_lat = nu * r.gamma_lat * a / r.capillary1;
-  r.Eb_lat = r.bending_reduced * a * a * r.Es0_lat;
-  r.kA_lat = c.area_modulus * r.Es0_lat / a;
-  r.nx = r.ny = static_cast<int>(std::lround(c.box_m / c.h_m));
-  const int nx = r.nx, ny = r.ny;
-  const double gamma = r.gamma_lat;
-  fluid::FluidLattice lat = make_shear_lattice(nx, ny, gamma, c.tau);
-  // Interior viscosity (eq 27): τ_in = ½ + 3λν_ex.
-  const bool varying = c.indicator != interior::Method::indexless;
-  const double nu_in = varying ? c.viscosity_ratio * nu : nu;
-  r.tau_in = 0.5 + 3.0 * nu_in;
-  if (!(c.tau > 0.5) || c.tau > kTauMax || r.tau_in > kTauMax)
-    throw std::invalid_argument("doublet run: relaxation times outside (0.5, 5]");
-  if (c.index_update_interval < 1) throw std::invalid_argument("doublet run: index_update_interval must be >= 1");
-
-  // Morse (docs/model.md §4) in lattice units; D_e from the surface energy γ = De*·E_S0
-  // through the flat-contact integral (morse_units.hpp).
-  aggregation::MorseParameters morse{1.0, c.r0_m / c.h_m, c.beta_per_m * c.h_m, 0.0};
+  r.reynolds_physical = 1000.0 * c.shear_rate * c.a_m * c.a_m / c.mu_Pa_s;  // water-like plasma
+  r.a_lat = c.a_m / c.h_m;
+  r.gamma_lat = gamma;
+  r.nx = setup.grid.nx;
+  r.ny = setup.grid.ny;
+  r.markers = c.markers;
+  const scene::MembraneSetup& M = *setup.membrane;
+  r.tau_in = M.interior_tau;
+  const membrane::MembraneModel& m0 = M.cells.front().model;
+  const membrane::MembraneModel& m1 = M.cells.back().model;
+  r.Es0_lat = m0.tension.modulus;
+  r.Es1_lat = c.cells == 2 ? m1.tension.modulus : m0.tension.modulus;
+  r.Eb_lat = m0.bending;
+  r.kA_lat = m0.area_modulus;
+  // Morse in lattice units (with De* = 0 and for the single cell too: the record shows the range).
+  aggregation::MorseParameters morse{0.0, c.r0_m / c.h_m, c.beta_per_m * c.h_m, 0.0};
   morse.cutoff = morse.r0 + c.cutoff_k / morse.beta;
-  const aggregation::FlatContact flat = aggregation::flat_contact(morse);
-  morse.De = aggregation::pair_density_for_de_star(c.de_star, r.Es0_lat, morse);
-  r.De_lat = morse.De;
+  r.De_lat = M.aggregation ? M.aggregation->De : 0.0;
   r.r0_lat = morse.r0;
   r.beta_lat = morse.beta;
   r.cutoff_lat = morse.cutoff;
-  r.flat_gap_lat = flat.gap;
-
-  // Cells. Doublet: two Evans–Fung cells with their long axes normal to the line of
-  // centres at θ0 (face to face), rims the flat-contact gap apart; single: one cell
-  // with its long axis at θ0. Centre off the lattice symmetry by 0.123 h.
-  const double xc = 0.5 * nx + 0.123, yc = 0.5 * ny;
-  const double th0 = c.theta0_deg * kPi / 180.0;
-  std::vector<Polygon> shapes;
-  if (c.cells == 2) {
-    const Polygon base = c.shape == CellShape::biconcave ? biconcave(c.markers, a)
-                                                         : ellipse(c.markers, a, a / c.ellipse_axis_ratio);
-    double half = 0;
-    for (double y : base.y) half = std::max(half, std::abs(y));
-    const double gap = c.initial_gap_m < 0 ? flat.gap : c.initial_gap_m / c.h_m;
-    const double d = half + 0.5 * gap;
-    const double ex = std::cos(th0), ey = std::sin(th0);
-    shapes.push_back(transformed(base, 1.0, th0 - 0.5 * kPi, xc - d * ex, yc - d * ey));
-    shapes.push_back(transformed(base, 1.0, th0 - 0.5 * kPi, xc + d * ex, yc + d * ey));
-  } else {
-    const Polygon base = c.shape == CellShape::biconcave ? biconcave(c.markers, a)
-                                                         : ellipse(c.markers, a, a / c.ellipse_axis_ratio);
-    shapes.push_back(transformed(base, 1.0, th0, xc, yc));
-  }
-  const MembraneModel m0{{TensionLawType::neo_hookean, r.Es0_lat}, r.Eb_lat, r.kA_lat};
-  const MembraneModel m1{{TensionLawType::neo_hookean, r.Es1_lat}, r.Eb_lat, r.kA_lat};
-  StabilityInput si;
+  r.flat_gap_lat = aggregation::flat_contact(morse).gap;
+  // Explicit-update margin of the stiffer membrane at 20 % stretch, the slower viscosity.
+  membrane::StabilityInput si;
   si.kernel = c.kernel;
-  si.model = r.Es1_lat > r.Es0_lat ? m1 : m0;  // the stiffer membrane limits the step
-  si.viscosity = std::min(nu, nu_in);
+  si.model = r.Es1_lat > r.Es0_lat ? m1 : m0;
+  si.viscosity = std::min(setup.viscosity, M.interior_viscosity);
   si.max_stretch = 1.2;
-  const StabilityEstimate est = estimate_stability(si);
-  r.stability_factor = est.max_dt_factor;
-  if (!est.acceptable()) throw std::runtime_error(est.problem);
-  ImmersedCells cells(c.kernel, lat);
-  std::vector<double> A0;
-  for (std::size_t k = 0; k < shapes.size(); ++k) {
-    const RestShape rest = RestShape::from_polygon(shapes[k]);
-    cells.add_cell(shapes[k], rest, k == 0 ? m0 : m1);
-    A0.push_back(rest.area);
-  }
-  r.markers = c.markers;
-  const geometry::Domain dom = fluid::domain_of(lat.grid(), lat.boundaries());
-  std::optional<aggregation::MorseAggregation> agg;
-  if (c.cells == 2) agg.emplace(dom, morse);
-  const std::vector<std::size_t> offsets = aggregation::cell_offsets(cells);
+  r.stability_factor = membrane::estimate_stability(si).max_dt_factor;
+}
 
-  // Index field → τ field (thesis §II.4), every k steps before the fluid step.
-  std::optional<interior::IndexField> field;
-  std::vector<Polygon> polys(shapes.size());
-  auto current_polygons = [&]() -> std::span<const Polygon> {
-    for (int k = 0; k < cells.cell_count(); ++k) polys[k] = cells.polygon(k);
-    return polys;
-  };
-  if (varying) {
-    lat.enable_tau_field();
-    field.emplace(dom, interior::IndexFieldOptions{c.indicator, 2.0});
-    field->update(current_polygons());
-    field->write_relaxation_times(lat.tau_field(), nu_in, nu);
-  }
-
-  const long steps = std::lround(c.strain / gamma);
-  const long sample_every = std::max(1L, std::lround(c.sample_strain / gamma));
-  double theta_unwrapped = 0, theta_prev = 0;
+// The histories and outcome from the run's series (one entry per sample).
+void fill_histories(const DoubletShearConfig& c, const io::RunFile& f, double gamma, DoubletShearResult& r) {
+  const bool pair = c.cells == 2;
+  const auto& step = f.series("step");
+  const auto& theta = f.series(theta_series(c));
+  const std::size_t n = step.size();
+  const auto series_or_zero = [&](const char* name) { return pair ? f.series(name) : std::vector<double>(n, 0.0); };
+  const std::vector<double> c0 = series_or_zero("cell_0_contact_area"), c1 = series_or_zero("cell_1_contact_area");
+  const std::vector<double> sep = series_or_zero("pair_separation_um"), gap = series_or_zero("pair_gap_um");
+  const std::vector<double> sig = series_or_zero("pair_contact_sigmoid_um"), bow = series_or_zero("pair_contact_bow_um");
+  const std::vector<double> diss = series_or_zero("pair_dissociated");
+  const auto& D0 = f.series("cell_0_taylor_deformation");
+  const std::vector<double> D1 = pair ? f.series("cell_1_taylor_deformation") : std::vector<double>(n, 0.0);
   double aspect_sum = 0;
   int aspect_n = 0;
-  double next_snap = 0;
   r.min_contact_after1 = std::numeric_limits<double>::infinity();
-  const double um = c.h_m * 1e6;
-  for (long s = 0; s <= steps; ++s) {
-    if (s > 0) {
-      try {
-        if (field && (s - 1) % c.index_update_interval == 0 && s > 1) {
-          field->update(current_polygons());
-          field->write_changed_relaxation_times(lat.tau_field(), nu_in, nu);
-        }
-        cells.compute_forces();
-        if (agg) agg->add_forces(cells);
-        cells.advance_after_forces(lat);
-      } catch (const interior::FillLeakError& e) {
-        r.diverged = true;
-        r.diagnosis = "index field at step " + std::to_string(s) + ": " + e.what();
-        break;
-      } catch (const std::domain_error& e) {
-        r.diverged = true;
-        r.diagnosis = "step " + std::to_string(s) + ": " + e.what();
-        break;
-      }
-      r.steps = s;
-    }
-    if (s % sample_every != 0 && s != steps) continue;
-    const HealthReport health = lat.check_health(c.max_mach);
-    if (!health.healthy) {
-      r.diverged = true;
-      r.diagnosis = "step " + std::to_string(s) + ": fluid unhealthy (" + health.quantity + ")";
-      break;
-    }
-    const double strain = static_cast<double>(s) * gamma;
-    std::vector<Polygon> p;
-    for (int k = 0; k < cells.cell_count(); ++k) p.push_back(cells.polygon(k));
-    std::vector<double> cx(p.size()), cy(p.size());
-    for (std::size_t k = 0; k < p.size(); ++k) centroid(p[k], cx[k], cy[k]);
-    double area_change = 0, edge = 0;
-    for (std::size_t k = 0; k < p.size(); ++k) {
-      area_change = std::max(area_change, std::abs(signed_area(p[k]) / A0[k] - 1.0));
-      const RestShape& rest = cells.rest(static_cast<int>(k));
-      for (std::size_t e = 0; e < p[k].size(); ++e) {
-        const std::size_t f = (e + 1) % p[k].size();
-        const double eps = std::abs(std::hypot(p[k].x[f] - p[k].x[e], p[k].y[f] - p[k].y[e]) / rest.length[e] - 1.0);
-        edge = std::max(edge, eps);
-        r.max_edge_strain_cell[k] = std::max(r.max_edge_strain_cell[k], eps);
-      }
-    }
-    if (!std::isfinite(area_change) || area_change > 0.2) {
-      r.diverged = true;
-      r.diagnosis = "area change " + std::to_string(area_change) + " at step " + std::to_string(s);
-      break;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double strain = step[i] * gamma;
+    double area_change = 0;
+    for (int k = 0; k < c.cells; ++k) {
+      const std::string p = "cell_" + std::to_string(k) + "_";
+      area_change = std::max(area_change, std::abs(f.series(p + "area_change")[i]));
+      const double edge = f.series(p + "max_edge_strain")[i];
+      r.max_edge_strain = std::max(r.max_edge_strain, edge);
+      r.max_edge_strain_cell[k] = std::max(r.max_edge_strain_cell[k], edge);
     }
     r.max_area_change = std::max(r.max_area_change, area_change);
-    r.max_edge_strain = std::max(r.max_edge_strain, edge);
-    double D0, th_axis, D1 = 0, dummy;
-    taylor_deformation(p[0], D0, th_axis);
-    double theta_raw = th_axis, period = 180.0;
-    double separation = 0, gap = 0, c0 = 0, c1 = 0, sig = 0, bow = 0, aspect = 0;
-    if (p.size() == 2) {
-      // Cell 1 next to cell 0 (minimum image in x; walls in y).
-      const double shift = nx * std::round((cx[1] - cx[0]) / nx);
-      for (double& x : p[1].x) x -= shift;
-      cx[1] -= shift;
-      taylor_deformation(p[1], D1, dummy);
-      const double dx = cx[1] - cx[0], dy = cy[1] - cy[0];
-      theta_raw = std::atan2(dy, dx) * 180.0 / kPi;  // thesis §III.2: line of centres vs horizontal
-      period = 360.0;
-      separation = std::hypot(dx, dy);
-      gap = min_marker_gap(p[0], p[1]);
-      // Contact area from the aggregation forces of the last step (1.2 % of the largest).
-      if (s > 0) {
-        const auto mag = agg->force_magnitude();
-        c0 = aggregation::relative_contact_area(mag, offsets, 0);
-        c1 = aggregation::relative_contact_area(mag, offsets, 1);
-        const double fmax = *std::max_element(mag.begin(), mag.end());
-        std::vector<char> flag(p[0].size(), 0);
-        for (std::size_t m = 0; m < p[0].size(); ++m) flag[m] = fmax > 0 && mag[offsets[0] + m] > 0.012 * fmax;
-        const ContactShape cs = contact_shape(p[0], flag, cx[0], cy[0],
-                                              dx / separation, dy / separation);
-        sig = cs.sigmoid * um;
-        bow = cs.bow * um;
-      }
-      aspect = equivalent_ellipse(p).axis_ratio;
-      if (!r.dissociated && gap > morse.cutoff) {  // no marker pair within reach: no Morse force left
-        r.dissociated = true;
-        r.dissociation_strain = strain;
-      }
-      if (strain >= 1.0 && !r.dissociated) r.min_contact_after1 = std::min(r.min_contact_after1, std::min(c0, c1));
-    } else {
-      aspect = equivalent_ellipse(p).axis_ratio;
+    // Single cell: the equivalent ellipse's a/b = (1 + D)/(1 − D) (geometry::taylor_deformation).
+    const double aspect = pair ? f.series("pair_aspect_ratio")[i] : (1.0 + D0[i]) / (1.0 - D0[i]);
+    if (pair && !r.dissociated && diss[i] > 0.5) {  // no marker pair within reach: no Morse force left
+      r.dissociated = true;
+      r.dissociation_strain = strain;
     }
-    if (s == 0) theta_unwrapped = theta_raw;
-    else theta_unwrapped += wrap(theta_raw - theta_prev, period);
-    theta_prev = theta_raw;
+    if (pair && strain >= 1.0 && !r.dissociated) r.min_contact_after1 = std::min(r.min_contact_after1, std::min(c0[i], c1[i]));
     // First crossings of 0, −90°, −180°, interpolated linearly between samples.
     auto crossing = [&](double level, double& t) {
-      if (t >= 0 || theta_unwrapped > level) return;
-      if (r.strain_h.empty()) { t = strain; return; }
+      if (t >= 0 || theta[i] > level) return;
+      if (r.strain_h.empty()) {
+        t = strain;
+        return;
+      }
       const double ta = r.strain_h.back(), qa = r.theta_h.back();
-      t = qa > theta_unwrapped ? ta + (strain - ta) * (qa - level) / (qa - theta_unwrapped) : strain;
+      t = qa > theta[i] ? ta + (strain - ta) * (qa - level) / (qa - theta[i]) : strain;
     };
     crossing(0.0, r.t_theta0);
     crossing(-90.0, r.t_theta_m90);
@@ -242,42 +148,55 @@ DoubletShearResult run_doublet_shear(const DoubletShearConfig& c) {
       ++aspect_n;
     }
     r.strain_h.push_back(strain);
-    r.theta_h.push_back(theta_unwrapped);
-    r.contact0_h.push_back(c0);
-    r.contact1_h.push_back(c1);
-    r.separation_h.push_back(separation * um);
-    r.gap_h.push_back(gap * um);
-    r.D0_h.push_back(D0);
-    r.D1_h.push_back(D1);
-    r.sigmoid_h.push_back(sig);
-    r.bow_h.push_back(bow);
+    r.theta_h.push_back(theta[i]);
+    r.contact0_h.push_back(c0[i]);
+    r.contact1_h.push_back(c1[i]);
+    r.separation_h.push_back(sep[i]);
+    r.gap_h.push_back(gap[i]);
+    r.D0_h.push_back(D0[i]);
+    r.D1_h.push_back(D1[i]);
+    r.sigmoid_h.push_back(sig[i]);
+    r.bow_h.push_back(bow[i]);
     r.aspect_h.push_back(aspect);
     r.area_h.push_back(area_change);
-    if (strain >= next_snap - 0.5 * gamma) {  // outlines every 2 strain units, NaN between cells
-      std::vector<double> xs, ys;
-      for (std::size_t k = 0; k < p.size(); ++k) {
-        if (k > 0) {
-          xs.push_back(std::nan(""));
-          ys.push_back(std::nan(""));
-        }
-        for (std::size_t m = 0; m <= p[k].size(); ++m) {
-          xs.push_back(p[k].x[m % p[k].size()] * um);
-          ys.push_back(p[k].y[m % p[k].size()] * um);
-        }
-      }
-      r.snap_strain.push_back(strain);
-      r.snap_x.push_back(std::move(xs));
-      r.snap_y.push_back(std::move(ys));
-      next_snap += 2.0;
-    }
-    if (theta_unwrapped < c.stop_theta_deg) break;
-    if (r.dissociated && strain >= r.dissociation_strain + c.stop_after_dissociation) break;
   }
   if (aspect_n > 0) r.aspect_quadrant = aspect_sum / aspect_n;
   if (!r.strain_h.empty()) r.strain = r.strain_h.back();
   if (!std::isfinite(r.min_contact_after1)) r.min_contact_after1 = 0;
-  r.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+}
+
+}  // namespace
+
+DoubletShearResult run_doublet_shear(const DoubletShearConfig& c, const std::string& case_name,
+                                     const std::string& label) {
+  const DoubletScene d = doublet_scene(c);
+  DoubletShearResult r;
+  CaseRunOptions options;
+  options.configure = [&](sim::Simulation& sim) {
+    sim.add_probe(std::make_unique<OutlineSnapshots>(*sim.cell_physics(), d.gamma, r));
+  };
+  const CaseRun run = run_case_scene(d.scene, case_name, label, options);
+  r.scene_text = run.file.scene_text();
+  r.wall_time_s = run.wall_time_s;
+  r.steps = run.summary.steps;
+  r.diverged = !run.ok();
+  if (r.diverged) r.diagnosis = run.summary.diagnosis;
+  fill_mapping(c, run.setup, d.gamma, r);
+  fill_histories(c, run.file, d.gamma, r);
   return r;
+}
+
+std::vector<DoubletShearResult> run_doublet_shears(const std::vector<DoubletRun>& runs, const std::string& case_name) {
+  std::vector<DoubletShearResult> results(runs.size());
+  std::vector<std::size_t> order(runs.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto cost = [&](std::size_t i) { return runs[i].config.strain / std::pow(runs[i].config.h_m * 1e6, 4); };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return cost(a) > cost(b); });
+  std::vector<std::function<void()>> jobs;
+  for (std::size_t i : order)
+    jobs.push_back([&, i] { results[i] = run_doublet_shear(runs[i].config, case_name, runs[i].label); });
+  run_concurrently(jobs);
+  return results;
 }
 
 }  // namespace erythro::vv

@@ -1,16 +1,20 @@
 #pragma once
 // One run of the RBC doublet in simple shear (thesis ch. III, docs/model.md §6), or of a
-// single elliptical cell (the rigid limit, issue 6 item 7): cells between two walls
-// moving at ±U (γ̇ = 2U/H), periodic in x, with
+// single elliptical cell (the rigid limit, issue 6 item 7), as a scene run by the product
+// path (`erythro run` does the same): validation/doublet/doublet.toml (two biconcave
+// cells, Morse aggregation) or single_cell.toml (one ellipse), set for this run by
+// overrides. Cells between two walls moving at ∓U (γ̇ = 2U/H), periodic in x, with
 //   - the membrane of docs/model.md §3 (neo-Hookean tension, bending about the rest
 //     curvature, area penalty; rest shape = initial shape), one E_S per cell;
 //   - the cytoplasm viscosity by the flood-fill index field (docs/model.md §5, eqs 26–27);
 //   - Morse aggregation between the cells (docs/model.md §4, thesis eq 13) at surface-energy
-//     level De* = γ/E_S (docs/verification-aggregation.md §3).
-// Hemodynamic time mapping (as validation/rbc/rbc_run): the physical inputs fix the
+//     level De* = γ/E_S0 (docs/verification-aggregation.md §3; aggregation.de_star).
+// Hemodynamic time mapping (docs/model.md §10, eq 10.7): the physical inputs fix the
 // dimensionless groups Ca = μγ̇a/E_S, E_B* = E_B/(a²E_S), k_A a/E_S, De* = γ/E_S,
-// λ = μ_in/μ_ex, r0/a, βa and the box/a; the lattice Reynolds number γ̇a²/ν is chosen
-// (small, stated) and sets the lattice shear rate. Lattice units inside.
+// λ = μ_in/μ_ex, r0/a, βa and the box/a; the particle Reynolds number ργ̇a²/μ is chosen
+// (small, stated) through the scene's density, which sets the lattice shear rate.
+// The doublet diagnostics are the pair probe's series (simulation/probes/pair_probe.hpp),
+// the shapes the cell-shape probe's; the stop criteria are the scene's [[stop_when]] rules.
 #include <string>
 #include <vector>
 
@@ -41,7 +45,7 @@ struct DoubletShearConfig {
   double cutoff_k = 5.0;           // r_c = r0 + k/β (docs/verification-aggregation.md §1)
   // Lattice choices.
   double tau = 1.0;                // BGK exterior relaxation time (ν = (τ − ½)/3)
-  double reynolds = 0.1;           // lattice particle Reynolds number γ̇a²/ν_ex
+  double reynolds = 0.1;           // particle Reynolds number γ̇a²/ν_ex of the run (sets the scene's density)
   int markers = 100;               // per cell (thesis: 100 segments)
   // Geometry.
   int cells = 2;                   // 2: doublet; 1: single cell (rigid limit)
@@ -52,14 +56,15 @@ struct DoubletShearConfig {
   // Run control.
   double strain = 14.0;            // cap on γ̇t
   double sample_strain = 0.05;     // sampling interval of the histories
-  double stop_theta_deg = -1e9;    // stop once the unwrapped θ is below this (and 1 sample past it)
-  double stop_after_dissociation = 1.0;  // strain units kept after dissociation, then stop
+  double stop_theta_deg = -1e9;    // stop at the first sample where the unwrapped θ is below this
+  double stop_after_dissociation = 1.0;  // strain units kept after dissociation, then stop (doublet)
   double max_mach = 0.3;
 };
 
 struct DoubletShearResult {
   bool diverged = false;
   std::string diagnosis;
+  std::string scene_text;          // the scene as run (after overrides)
   int nx = 0, ny = 0, markers = 0;
   long steps = 0;
   double strain = 0;               // γ̇t reached
@@ -91,6 +96,17 @@ struct DoubletShearResult {
   std::vector<std::vector<double>> snap_x, snap_y;
 };
 
-DoubletShearResult run_doublet_shear(const DoubletShearConfig& c);
+// Runs the scene into <results>/runs/<case_name>/<label>/ and reads its series back.
+DoubletShearResult run_doublet_shear(const DoubletShearConfig& c, const std::string& case_name,
+                                     const std::string& label);
+
+// The runs of one case, at the same time on the cores the case was given (OMP_NUM_THREADS;
+// vv::run_concurrently: one OpenMP thread per run, the same bits as one after the other),
+// the most expensive first (nodes × steps ∝ strain/h⁴); results in the order given.
+struct DoubletRun {
+  DoubletShearConfig config;
+  std::string label;
+};
+std::vector<DoubletShearResult> run_doublet_shears(const std::vector<DoubletRun>& runs, const std::string& case_name);
 
 }  // namespace erythro::vv

@@ -65,9 +65,9 @@ TEST(DoubletExplore, DISABLED_LongRunsAndStarts) {
     c.strain = env_or("DOUBLET_STRAIN", 30.0);
     c.stop_theta_deg = theta0 - turn;
     c.stop_after_dissociation = env_or("DOUBLET_KEEP", c.stop_after_dissociation);
-    const vv::DoubletShearResult r = vv::run_doublet_shear(c);
     const std::string label = vv::fmt("De*=%.2g", de) + vv::fmt(" theta0=%.0f", theta0) +
                               (gap_um > 0 ? vv::fmt(" gap=%.2fum", gap_um) : std::string(" gap=d*"));
+    const vv::DoubletShearResult r = vv::run_doublet_shear(c, "doublet_explore", label);
     vv::print_run(label, r);
     const double rc_um = (c.r0_m + c.cutoff_k / c.beta_per_m) * 1e6;
     const double max_sep = r.separation_h.empty() ? 0 : *std::max_element(r.separation_h.begin(), r.separation_h.end());

@@ -24,11 +24,15 @@ TEST(DoubletShear, RigidLimit) {
   rec.set_reference("Jeffery 1922, Bretherton 1962 (docs/parameters.md, E1): rigid ellipse in 2D simple shear at Re -> 0, "
                     "gamma T = 2 pi (a/b + b/a) = 5 pi for a/b = 2; a quadrant of the orbit takes T/4.");
   const auto levels = vv::rigid_levels();
+  std::vector<vv::DoubletRun> plan;
+  for (const auto& lv : levels)
+    plan.push_back({vv::rigid_config(lv), vv::fmt("Ca=%.4g", lv.capillary) + vv::fmt(" ratio=%.3g", lv.viscosity_ratio)});
+  const std::vector<vv::DoubletShearResult> runs = vv::run_doublet_shears(plan, rec.case_name());  // at once
   std::vector<double> gaps;
-  for (const auto& lv : levels) {
-    const vv::DoubletShearConfig c = vv::rigid_config(lv);
-    const vv::DoubletShearResult r = vv::run_doublet_shear(c);
-    const std::string label = vv::fmt("Ca=%.4g", lv.capillary) + vv::fmt(" ratio=%.3g", lv.viscosity_ratio);
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const vv::DoubletShearConfig& c = plan[i].config;
+    const std::string& label = plan[i].label;
+    const vv::DoubletShearResult& r = runs[i];
     vv::print_run(label, r);
     if (gaps.empty()) vv::add_mapping(rec, c, r);
     vv::add_row(rec, label, c, r);

@@ -39,18 +39,40 @@ TEST(DoubletShear, SurfaceEnergy100) {
       "Zhang, Johnson & Popel 2008 J Biomech 41:47 (a rouleau rotates or separates depending on the relative "
       "strength of the intercellular interaction and the viscous forces) and Bagchi, Johnson & Popel 2005 J Biomech "
       "Eng 127:1070; Jeffery 1922: gamma T = 2 pi (a/b + b/a) (docs/parameters.md, E1).");
+  // Every run of the case (levels, the second start, the resolution check), run at once on the
+  // case's cores (vv::run_doublet_shears); the record is assembled below in this order.
   const std::vector<double> levels = vv::surface_energy_levels();
-  std::vector<vv::DoubletShearResult> runs;
+  const std::vector<double> wide_levels = vv::wide_start_levels();
+  std::vector<vv::DoubletRun> plan;
   for (double de : levels) {
     vv::DoubletShearConfig c = vv::study_config();
     c.de_star = de;
-    runs.push_back(vv::run_doublet_shear(c));
-    const std::string label = vv::fmt("De*=%.2g", de);
-    vv::print_run(label, runs.back());
-    if (runs.size() == 1) vv::add_mapping(rec, c, runs.back());
-    vv::add_row(rec, label, c, runs.back());
-    vv::add_histories(rec, label, runs.back());
-    vv::add_health_metrics(rec, label, runs.back());
+    plan.push_back({c, vv::fmt("De*=%.2g", de)});
+  }
+  for (double de : wide_levels) {
+    vv::DoubletShearConfig c = vv::study_config();
+    c.de_star = de;
+    c.initial_gap_m = vv::wide_start_gap_m();
+    plan.push_back({c, vv::fmt("De*=%.2g gap 1um", de)});
+  }
+  vv::DoubletShearConfig fine = vv::study_config();  // the thesis lattice h = 0.15 µm
+  fine.h_m = 0.15e-6;
+  fine.de_star = 0.0;
+  vv::DoubletShearConfig fine5 = fine;
+  fine5.de_star = 0.5;
+  plan.push_back({fine, "De*=0 h=0.15"});
+  plan.push_back({fine5, "De*=0.5 h=0.15"});
+  const std::vector<vv::DoubletShearResult> all = vv::run_doublet_shears(plan, rec.case_name());
+
+  std::vector<vv::DoubletShearResult> runs(all.begin(), all.begin() + static_cast<std::ptrdiff_t>(levels.size()));
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    const vv::DoubletShearConfig& c = plan[i].config;
+    const std::string& label = plan[i].label;
+    vv::print_run(label, runs[i]);
+    if (i == 0) vv::add_mapping(rec, c, runs[i]);
+    vv::add_row(rec, label, c, runs[i]);
+    vv::add_histories(rec, label, runs[i]);
+    vv::add_health_metrics(rec, label, runs[i]);
   }
   rec.set_parameter("capillary_number", runs.front().capillary0);
   // Classification table (parameters), monotonicity, contact and period.
@@ -105,15 +127,12 @@ TEST(DoubletShear, SurfaceEnergy100) {
   // Measured: the non-adhering pair separates past r_c in the first extensional quadrant (it
   // ends as a tandem ~7 µm apart, gap 1.6-3.3 µm) while De* = 0.25 pulls the rims to
   // 0.83 µm and turns as one: from this start the transition lies in 0 < De* <= 0.25.
-  const std::vector<double> wide_levels = vv::wide_start_levels();
   int wide_expected = 0;
   std::string wide_summary;
   for (std::size_t i = 0; i < wide_levels.size(); ++i) {
-    vv::DoubletShearConfig c = vv::study_config();
-    c.de_star = wide_levels[i];
-    c.initial_gap_m = vv::wide_start_gap_m();
-    const vv::DoubletShearResult r = vv::run_doublet_shear(c);
-    const std::string label = vv::fmt("De*=%.2g gap 1um", wide_levels[i]);
+    const vv::DoubletShearConfig& c = plan[levels.size() + i].config;
+    const std::string& label = plan[levels.size() + i].label;
+    const vv::DoubletShearResult& r = all[levels.size() + i];
     vv::print_run(label, r);
     vv::add_row(rec, label, c, r);
     vv::add_health_metrics(rec, vv::fmt("De*=%.2g_gap1um", wide_levels[i]), r);
@@ -138,16 +157,11 @@ TEST(DoubletShear, SurfaceEnergy100) {
                   "start brackets the transition, 0 < De*_c <= 0.25 (De* = 0.1 separates marginally, not asserted)"});
   // Resolution check on the thesis lattice h = 0.15 µm (a/h = 26, 200 × 200, ≈ 41 000 steps per
   // strain unit): the non-adhering pair (membrane gap, outcome) and De* = 0.5 (outcome, period).
-  vv::DoubletShearConfig fine = vv::study_config();
-  fine.h_m = 0.15e-6;
-  fine.de_star = 0.0;
-  const vv::DoubletShearResult rf = vv::run_doublet_shear(fine);
+  const vv::DoubletShearResult& rf = all[all.size() - 2];
   vv::print_run("De*=0 h=0.15", rf);
   vv::add_row(rec, "De*=0 h=0.15", fine, rf);
   vv::add_health_metrics(rec, "De*=0_h0.15", rf);
-  vv::DoubletShearConfig fine5 = fine;
-  fine5.de_star = 0.5;
-  const vv::DoubletShearResult rf5 = vv::run_doublet_shear(fine5);
+  const vv::DoubletShearResult& rf5 = all.back();
   vv::print_run("De*=0.5 h=0.15", rf5);
   vv::add_row(rec, "De*=0.5 h=0.15", fine5, rf5);
   vv::add_histories(rec, "De*=0.5 h=0.15", rf5);

@@ -1,7 +1,12 @@
 #pragma once
-// Two cells in still fluid with Morse aggregation: the IB cycle of
-// membrane::ImmersedCells::advance with the aggregation forces added between the
-// membrane forces and the spreading (solver/membrane is not changed).
+// Two cells in still fluid with Morse aggregation: the scene doublet.toml (the solver's
+// IB cycle with the aggregation forces added to the membrane forces, sim::CellPhysics),
+// set for a lattice set-up by overrides (common/lattice_inputs.hpp: each value the
+// physical number the solver converts to exactly the lattice one) and run as
+// `erythro run` does. The markers are copied in memory every sample_every steps (lattice
+// units, a stage of the case); the gap, drift, rotation and the force balance of the final
+// state are computed from them.
+#include <string>
 #include <vector>
 
 #include "aggregation/morse.hpp"
@@ -36,12 +41,13 @@ struct DoubletResult {
   double rotation_arc0 = 0.0, rotation_arc1 = 0.0;  // R·Δθ of marker 0 about its cell's centroid (signed)
   double balance_shift = 0.0;  // rigid shift of cell 1 along the centre line at which the net Morse force
                                // between the FINAL shapes vanishes (0 for a state at rest)
-  double max_marker_speed = 0.0;
+  std::string scene_text;         // the scene as run
   double wall_time_s = 0.0;
   long steps_done = 0;
   bool diverged = false;
 };
 
-DoubletResult run_doublet(const DoubletSetup& s, bool verbose = false);
+// Runs into <results>/runs/<case_name>/<label>.
+DoubletResult run_doublet(const DoubletSetup& s, const std::string& case_name, const std::string& label);
 
 }  // namespace erythro::vv

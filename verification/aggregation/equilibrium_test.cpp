@@ -37,6 +37,8 @@
 // 3.84 µm⁻¹ at h = 0.15 µm (docs/parameters.md; thesis doublet lattice): r0 = 3.267 h,
 // β = 0.576 /h, r_c = r0 + 5/β = 11.95 h; D_e = 3, 4, 5 × 1e-4 (lattice); initial gap 4 h
 // along x; cells rotated 0.3 and 1.1 rad, centres at y = 31.3 (off every lattice symmetry).
+// The runs are the scene doublet.toml (h = 0.15 µm) set by overrides (doublet_run.hpp);
+// the gap series from the markers every 100 steps (kept in memory by the case).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -92,7 +94,8 @@ void add_run_row(io::ResultRecord& record, const std::string& run, const std::st
                   {"com_drift", r.com_drift}, {"rotation_arc0", r.rotation_arc0}, {"rotation_arc1", r.rotation_arc1},
                   {"max_deformation", r.max_deformation}, {"contact_area0", r.contact_area0},
                   {"contact_area1", r.contact_area1}, {"discrete_rigid_gap", r.discrete_rigid_gap},
-                  {"wall_time_s", r.wall_time_s}});
+                  {"wall_time_s", r.wall_time_s}},
+                 r.scene_text);
 }
 
 }  // namespace
@@ -141,10 +144,10 @@ TEST(AggregationEquilibrium, SettledSeparation) {
   for (const Run& run : runs) {
     s.morse.De = run.De;
     s.steps = run.steps;
-    const vv::DoubletResult r = vv::run_doublet(s);
-    ASSERT_FALSE(r.diverged);
     char name[32];
     std::snprintf(name, sizeof name, "De=%.0e", run.De);
+    const vv::DoubletResult r = vv::run_doublet(s, record.case_name(), name);
+    ASSERT_FALSE(r.diverged);
     des.push_back(run.De);
     gaps.push_back(r.final_gap);
     if (run.De == 4e-4) gap_cosine4_4e4 = r.final_gap;
@@ -216,7 +219,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
     membrane::StabilityInput kin = in;
     kin.kernel = k.kernel;
     ASSERT_TRUE(membrane::estimate_stability(kin).acceptable());
-    const vv::DoubletResult r = vv::run_doublet(k);
+    const vv::DoubletResult r = vv::run_doublet(k, record.case_name(), "peskin4 De=4e-4");
     add_run_row(record, std::string("peskin4 De=4e-4"), "peskin4", k.morse.De, r, dstar);
     EXPECT_TRUE(record.add_metric({"kernel_independence", "|settled gap peskin4 - cosine4| at D_e = 4e-4", "h",
                                    std::abs(r.final_gap - gap_cosine4_4e4), 0.01, 0.0, io::Comparison::at_most,
@@ -232,7 +235,7 @@ TEST(AggregationEquilibrium, SettledSeparation) {
     m.angle1 = std::numbers::pi;
     m.y0 = 32.0;
     m.steps = 6000;
-    const vv::DoubletResult r = vv::run_doublet(m);
+    const vv::DoubletResult r = vv::run_doublet(m, record.case_name(), "symmetric De=4e-4");
     add_run_row(record, std::string("symmetric De=4e-4"), "cosine4", m.morse.De, r, dstar);
     EXPECT_TRUE(record.add_metric({"drift symmetric", "displacement of the pair's centre, mirror-symmetric doublet", "h",
                                    r.com_drift, 1e-9, 0.0, io::Comparison::at_most,

@@ -7,6 +7,7 @@
 
 #include "common/case_support.hpp"
 #include "common/error.hpp"
+#include "io/field_pictures.hpp"
 #include "io/scene_run.hpp"
 #include "scene/scene_parser.hpp"
 
@@ -61,6 +62,7 @@ CaseRun run_case_scene(const scene::Scene& scene, const std::string& case_name, 
   const io::SceneRunResult result = io::run_scene(scene, run.setup, dir.string(), options.observers, options.configure);
   run.summary = result.summary;
   run.file = io::RunFile(result.h5_path);
+  if (options.pictures) run.pictures = io::last_field_pictures(result.h5_path, label);
   if (!options.keep) fs::remove_all(dir);
   run.wall_time_s = clock.seconds();
   return run;

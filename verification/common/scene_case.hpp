@@ -32,6 +32,7 @@ struct CaseRun {
   sim::RunSummary summary;
   io::RunFile file;  // run.h5 as written
   double wall_time_s = 0.0;
+  std::vector<io::FieldPicture> pictures;  // with CaseRunOptions::pictures: the last field output
   bool ok() const { return summary.status != sim::RunStatus::diverged; }
 };
 
@@ -43,6 +44,9 @@ struct CaseRunOptions {
   // Keep <results>/runs/<case>/<label>/ (run.h5, run.xdmf) after the run has been read
   // back, e.g. for the report's field pictures; otherwise it is removed.
   bool keep = false;
+  // Read pictures of the last field output (speed, concentrations, membranes) for the
+  // report: record.add_field(p) for each of CaseRun::pictures.
+  bool pictures = false;
 };
 
 // Derives the lattice set-up (InputError for an impossible scene), runs the scene and

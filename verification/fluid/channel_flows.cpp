@@ -2,8 +2,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
-#include "common/case_support.hpp"
+#include "simulation/fields_recorder.hpp"
 
 namespace erythro::vv {
 
@@ -12,15 +13,19 @@ long steps_to_steady_state(int N, double nu, double residual) {
   return static_cast<long>(std::ceil(std::log(1.0 / residual) * N * N / (nu * pi * pi)));
 }
 
-ChannelResult run_channel(fluid::FluidLattice& lattice, long steps) {
-  Stopwatch clock;
-  for (long s = 0; s < steps; ++s) lattice.step();
-  const Grid g = lattice.grid();
-  const fluid::Moments m = lattice.moments();
+ChannelResult run_channel(const SceneFile& file, const std::vector<std::string>& overrides,
+                          const std::string& case_name, const std::string& label, CaseRunOptions options) {
+  sim::FieldsRecorder fields;  // the initial and the final state
+  options.observers.push_back(&fields);
+  const CaseRun run = run_case_scene(file.scene(overrides), case_name, label, options);
+  if (!run.ok()) throw std::runtime_error(case_name + " " + label + ": " + run.summary.diagnosis);
+  const Grid g = run.setup.grid;
+  const fluid::Moments& m = fields.last().moments;
   ChannelResult result;
   for (int y = 0; y < g.ny; ++y) result.ux.push_back(m.ux[g.index(g.nx / 2, y)]);
-  result.steps = steps;
-  result.wall_time_s = clock.seconds();
+  result.steps = run.summary.steps;
+  result.wall_time_s = run.summary.wall_time_s;
+  result.scene_text = run.file.scene_text();
   return result;
 }
 

@@ -1,7 +1,7 @@
 // Case verification.stability_map (issue 3 item 7; `full` tier only, about 3–5 min).
 //
 // Requirement: map where each collision operator stays stable on an under-resolved,
-// doubly periodic double shear layer (vv4_shear_layer.hpp: Minion & Brown 1997, δ = L/30,
+// doubly periodic double shear layer (fluid/initial_state.hpp: Minion & Brown 1997, δ = L/30,
 // L = 64, so δ ≈ 2.1 h), over τ ∈ [0.5001, 1] × lattice amplitude U ∈ [0.01, 0.4], for
 // BGK, TRT (Λ = 1/4 and 3/16) and the regularized model, and check the properties of
 // the map that we measured and can explain:
@@ -18,19 +18,30 @@
 //      Math Comput Simul 72:165). It is NOT true that TRT's or the regularized
 //      model's region contains BGK's: at τ = 0.501–0.505 BGK is stable at larger U than
 //      both (measured, recorded in /runs; not asserted either way).
-// A run is diverged when FluidLattice::check_health(max_mach = 1) fails at one of the
-// checks every K = 16 steps (non-finite or non-positive density, non-finite velocity,
-// |u|/c_s > 1); its diagnosis string is recorded. Stable = healthy for the whole run.
+// A run is diverged when the simulation's health monitor (monitor.max_mach = 1) fails at
+// one of its scans every K = 16 steps and at the end (non-finite or non-positive density,
+// non-finite velocity, |u|/c_s > 1): the run ends with status diverged and its diagnosis
+// is recorded. Stable = healthy for the whole run.
 // The run length is a fixed number of convective times L/U (kConvectiveTimes), so every
 // amplitude sees the same roll-up of the layers; "stable" is stability over that
 // horizon (docs/stability.md shows how the map moves with the horizon).
+// Runs: verification/fluid/double_shear_layer.toml (initial.type = "double_shear_layer")
+// with the collision, Λ, τ, U and run.steps = ⌈4 L/U⌉ set per run; two runs at once on
+// the case's two cores, one OpenMP thread each (a 64² step gains nothing from a second
+// thread: one thread did the whole map in 49 s of CPU, two in 57 s of wall time).
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+#include <functional>
 #include <iostream>
 #include <map>
+#include <stdexcept>
 
 #include "common/case_support.hpp"
-#include "vv4_shear_layer.hpp"
+#include "common/concurrent_runs.hpp"
+#include "common/scene_case.hpp"
+#include "fluid_scenes.hpp"
 
 using namespace erythro;
 
@@ -45,6 +56,32 @@ struct MapModel {
   fluid::CollisionModel model;
   double magic;
 };
+
+struct ShearLayerRun {
+  bool stable = true;
+  long steps = 0, steps_planned = 0;  // steps run (the failing scan's step if diverged)
+  std::string diagnosis, scene_text;
+  double wall_time_s = 0.0;
+};
+
+ShearLayerRun run_double_shear_layer(const MapModel& m, double tau, double U) {
+  static const vv::SceneFile file("verification/fluid/double_shear_layer.toml");
+  ShearLayerRun r;
+  r.steps_planned = static_cast<long>(std::ceil(kConvectiveTimes * kL / U));
+  std::vector<std::string> o = {vv::set_grid(kL, kL), vv::set_collision(m.model), vv::set("run.steps", r.steps_planned)};
+  if (m.model == fluid::CollisionModel::trt) o.push_back(vv::set("fluid.trt_magic", m.magic));
+  o.push_back(vv::set_tau(file, o, tau));
+  o.push_back(vv::set_initial_velocity(file, o, {U, 0.0}));
+  char label[64];
+  std::snprintf(label, sizeof label, "%s_tau%g_U%g", m.label.c_str(), tau, U);
+  const vv::CaseRun run = vv::run_case_scene(file.scene(o), "verification.stability_map", label);
+  r.stable = run.ok();
+  r.steps = run.summary.steps;
+  r.diagnosis = run.summary.diagnosis;
+  r.scene_text = run.file.scene_text();
+  r.wall_time_s = run.summary.wall_time_s;
+  return r;
+}
 
 }  // namespace
 
@@ -70,24 +107,42 @@ TEST(StabilityMap, DoubleShearLayer) {
                                         {"TRT 1/4", fluid::CollisionModel::trt, 0.25},
                                         {"TRT 3/16", fluid::CollisionModel::trt, 3.0 / 16.0},
                                         {"regularized", fluid::CollisionModel::regularized, 0.0}};
+  // Every run of the map, at once on the case's cores (vv::run_concurrently: one OpenMP
+  // thread each, the same bits), the longest (smallest U: 4L/U steps) first.
+  struct Point {
+    std::size_t model;
+    double tau, U;
+  };
+  std::vector<Point> points;
+  for (double U : kAmplitudes)
+    for (std::size_t m = 0; m < models.size(); ++m)
+      for (double tau : kTaus) points.push_back({m, tau, U});
+  std::vector<ShearLayerRun> runs(points.size());
+  std::vector<std::function<void()>> jobs;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    jobs.push_back([&, i] { runs[i] = run_double_shear_layer(models[points[i].model], points[i].tau, points[i].U); });
+  vv::run_concurrently(jobs);
+  auto run_at = [&](std::size_t m, double tau, double U) -> const ShearLayerRun& {
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (points[i].model == m && points[i].tau == tau && points[i].U == U) return runs[i];
+    throw std::logic_error("stability map: no run");
+  };
+
   std::map<std::string, std::vector<double>> u_max;  // per model, per τ
   int interval_violations = 0, monotonicity_violations = 0;
-  for (const MapModel& m : models) {
+  for (std::size_t mi = 0; mi < models.size(); ++mi) {
+    const MapModel& m = models[mi];
     io::Series series{"max stable U " + m.label, "Maximum stable amplitude, " + m.label, "tau",
                       "max stable U (lattice)", {}, {}, {}};
     for (double tau : kTaus) {
       double largest_stable = 0.0, smallest_diverged = 1e9;
       for (double U : kAmplitudes) {
-        vv::ShearLayerSpec spec;
-        spec.collision = {m.model, tau, m.magic};
-        spec.L = kL;
-        spec.U = U;
-        spec.convective_times = kConvectiveTimes;
-        const vv::ShearLayerRun r = vv::run_double_shear_layer(spec);
+        const ShearLayerRun& r = run_at(mi, tau, U);
         record.add_run({{"model", m.label}, {"collision", std::string(fluid::to_string(m.model))},
                         {"trt_magic", m.magic}, {"tau", tau}, {"U", U}, {"stable", r.stable ? 1.0 : 0.0},
                         {"steps", double(r.steps)}, {"steps_planned", double(r.steps_planned)},
-                        {"diagnosis", r.diagnosis}, {"wall_time_s", r.wall_time_s}});
+                        {"diagnosis", r.diagnosis}, {"wall_time_s", r.wall_time_s}},
+                       r.scene_text);
         if (r.stable) {
           largest_stable = std::max(largest_stable, U);
         } else {

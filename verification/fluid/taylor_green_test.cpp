@@ -9,7 +9,7 @@
 // run to T = 1/(2νk²) (one e-fold of the velocity).
 //
 // Initial state ("well prepared"): equilibrium at ρ = 1 + p/c_s² and u, plus the
-// post-collision non-equilibrium part −(τ − 1) 3 w_i ρ Q_i:∇u (vv3_flow_init.hpp),
+// post-collision non-equilibrium part −(τ − 1) 3 w_i ρ Q_i:∇u (fluid/initial_state.hpp),
 // plus the compressive velocity u_c of the weakly compressible slow solution (below).
 // Without u_c the initial ∂ρ/∂t disagrees with the decaying pressure and launches a
 // standing sound wave of relative amplitude 2νk/c_s ∝ h: the pressure then converges
@@ -19,17 +19,28 @@
 // Error norm: relative L2 over space and over the time window t ∈ [¾T, T] (every
 // step), so that the residual sound waves are averaged over their phase instead of
 // sampled at one arbitrary phase; the single-time error at T is recorded too.
+//
+// Runs: verification/fluid/periodic_box.toml with initial.type = "taylor_green",
+// initial.velocity_um_s = [U, 0] and initial.non_equilibrium (true: eq+neq, false:
+// equilibrium); the well-prepared start is that scene's with u_c added, set on the
+// fluid before the run (fluid::initialize_post_collision). The errors are the series of
+// the case's probe (taylor_green_probe.hpp) read back from run.h5; the TRT N = 64 runs
+// sample every step for the pressure traces.
 #include <gtest/gtest.h>
 
-#include <cmath>
-#include <numbers>
 #include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
 #include <string>
 
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
+#include "common/scene_case.hpp"
+#include "fluid/initial_state.hpp"
+#include "fluid_scenes.hpp"
 #include "lattice/d2q9.hpp"
-#include "vv3_flow_init.hpp"
+#include "taylor_green_probe.hpp"
 
 using namespace erythro;
 
@@ -56,20 +67,22 @@ struct TgRun {
   double error_u_final = 0, error_p_final = 0;  // at t = T
   double wall_time_s = 0, U = 0;
   long steps = 0;
+  std::string scene_text;
+  std::vector<double> trace_x, trace_p;  // t/T and the pressure error after every step (traced runs)
 };
 
 double wavenumber(int N) { return 2.0 * std::numbers::pi / N; }
 
 // Exact fields at t = 0 on the N×N cell-centred nodes; at time t the velocity is
 // multiplied by e^{−2νk²t} and the pressure (ρ − 1) by e^{−4νk²t}.
-vv::FlowField exact_at_zero(int N, double U) {
+fluid::FlowField exact_at_zero(int N, double U) {
   const double k = wavenumber(N);
   const Grid g{N, N};
-  vv::FlowField f;
+  fluid::FlowField f;
   f.resize(g.size(), true);
   for (int j = 0; j < N; ++j) {
     for (int i = 0; i < N; ++i) {
-      const double x = vv::node_position(i), y = vv::node_position(j);
+      const double x = i + 0.5, y = j + 0.5;
       const auto n = g.index(i, j);
       const double cx = std::cos(k * x), sx = std::sin(k * x), cy = std::cos(k * y), sy = std::sin(k * y);
       const double p = -0.25 * U * U * (std::cos(2 * k * x) + std::cos(2 * k * y));
@@ -89,13 +102,13 @@ vv::FlowField exact_at_zero(int N, double U) {
 // Continuity with ρ = 1 + 3p requires ∇·u = −3 Dp/Dt = 12νk²p − 3 u·∇p, where
 // u·∇p = (U³k/4)[sin kx sin 3ky − sin 3kx sin ky] =: g (checked with sympy). Both
 // parts are potential flows: u_c = −3ν∇p + (3/(10k²))∇g  (∇²p = −4k²p, ∇²g = −10k²g).
-void add_compressive_part(int N, double U, vv::FlowField& f) {
+void add_compressive_part(int N, double U, fluid::FlowField& f) {
   const double k = wavenumber(N);
   const Grid g{N, N};
   const double a = 1.5 * kNu * U * U * k, b = 3.0 * U * U * U / 40.0;
   for (int j = 0; j < N; ++j) {
     for (int i = 0; i < N; ++i) {
-      const double x = vv::node_position(i), y = vv::node_position(j);
+      const double x = i + 0.5, y = j + 0.5;
       const auto n = g.index(i, j);
       const double s1x = std::sin(k * x), c1x = std::cos(k * x), s3x = std::sin(3 * k * x), c3x = std::cos(3 * k * x);
       const double s1y = std::sin(k * y), c1y = std::cos(k * y), s3y = std::sin(3 * k * y), c3y = std::cos(3 * k * y);
@@ -110,52 +123,44 @@ void add_compressive_part(int N, double U, vv::FlowField& f) {
   }
 }
 
-// One run at resolution N; `trace` (optional) receives t/T and the single-time
-// relative pressure error after every step.
-TgRun run_taylor_green(fluid::CollisionModel model, int N, Init init, io::Series* trace = nullptr) {
+// One run at resolution N; `trace`: sample every step (the pressure error trace).
+TgRun run_taylor_green(fluid::CollisionModel model, int N, Init init, bool trace) {
+  static const vv::SceneFile box("verification/fluid/periodic_box.toml");
   const double k = wavenumber(N);
   TgRun run;
   run.U = kU16 * 16.0 / N;
   run.steps = std::lround(1.0 / (2.0 * kNu * k * k));
-  fluid::FluidLattice lattice(Grid{N, N}, {model, kTau, kMagic}, fluid::BoundaryConfig{});
-  const vv::FlowField exact0 = exact_at_zero(N, run.U);
-  vv::FlowField start = exact0;
-  if (init == Init::well_prepared) add_compressive_part(N, run.U, start);
-  if (init == Init::equilibrium) start.drop_gradients();
-  vv::initialize_post_collision(lattice, start);
-
-  // Sums for the space–time norms; moments() after step s are those of the collision
-  // at t = s (the stored populations are post-collision at t = 0).
-  double du2 = 0, u2 = 0, dp2 = 0, p2 = 0;
-  vv::Stopwatch clock;
-  for (long s = 1; s <= run.steps; ++s) {
-    lattice.step();
-    const bool in_window = 4 * s >= 3 * run.steps;
-    if (!in_window && !trace) continue;
-    const fluid::Moments m = lattice.moments();
-    const double fu = std::exp(-2.0 * kNu * k * k * double(s)), fp = fu * fu;
-    double du2_s = 0, u2_s = 0, dp2_s = 0, p2_s = 0;
-    for (std::size_t n = 0; n < m.rho.size(); ++n) {
-      const double ue = exact0.ux[n] * fu, ve = exact0.uy[n] * fu, pe = d2q9::cs2 * (exact0.rho[n] - 1.0) * fp;
-      const double pn = d2q9::cs2 * (m.rho[n] - 1.0);
-      du2_s += (m.ux[n] - ue) * (m.ux[n] - ue) + (m.uy[n] - ve) * (m.uy[n] - ve);
-      u2_s += ue * ue + ve * ve;
-      dp2_s += (pn - pe) * (pn - pe);
-      p2_s += pe * pe;
+  std::vector<std::string> o = {vv::set_grid(N, N), vv::set_collision(model), vv::set("run.steps", run.steps),
+                                vv::set("initial.type", "\"taylor_green\""),
+                                vv::set("initial.non_equilibrium", init == Init::equilibrium ? "false" : "true"),
+                                vv::set("output.diagnostics_interval_steps", trace ? 1L : 0L)};
+  o.push_back(vv::set_tau(box, o, kTau));
+  o.push_back(vv::set_initial_velocity(box, o, {run.U, 0.0}));
+  const fluid::FlowField exact0 = exact_at_zero(N, run.U);
+  vv::CaseRunOptions options;
+  options.configure = [&](sim::Simulation& simulation) {
+    if (init == Init::well_prepared) {  // the scene's eq+neq start plus the compressive velocity
+      fluid::FlowField start = exact0;
+      add_compressive_part(N, run.U, start);
+      fluid::initialize_post_collision(*simulation.fluid(), start);
     }
-    if (in_window) du2 += du2_s, u2 += u2_s, dp2 += dp2_s, p2 += p2_s;
-    if (s == run.steps) {
-      run.error_u_final = std::sqrt(du2_s / u2_s);
-      run.error_p_final = std::sqrt(dp2_s / p2_s);
-    }
-    if (trace) {
-      trace->x.push_back(double(s) / double(run.steps));
-      trace->y.push_back(std::sqrt(dp2_s / p2_s));
-    }
+    simulation.add_probe(std::make_unique<vv::TaylorGreenErrorProbe>(*simulation.fluid(), exact0, kNu, k, run.steps));
+  };
+  const std::string label = std::string(fluid::to_string(model)) + "_" + init_name(init) + "_N" + std::to_string(N);
+  const vv::CaseRun r = vv::run_case_scene(box.scene(o), "verification.taylor_green", label, options);
+  const auto& step = r.file.series("step");
+  const auto& error_u = r.file.series("tg_error_u");
+  const auto& error_p = r.file.series("tg_error_p");
+  run.error_u = r.file.series("tg_window_error_u").back();
+  run.error_p = r.file.series("tg_window_error_p").back();
+  run.error_u_final = error_u.back();
+  run.error_p_final = error_p.back();
+  run.wall_time_s = r.summary.wall_time_s;
+  run.scene_text = r.file.scene_text();
+  for (std::size_t i = 1; trace && i < step.size(); ++i) {
+    run.trace_x.push_back(step[i] / double(run.steps));
+    run.trace_p.push_back(error_p[i]);
   }
-  run.wall_time_s = clock.seconds();
-  run.error_u = std::sqrt(du2 / u2);
-  run.error_p = std::sqrt(dp2 / p2);
   return run;
 }
 
@@ -210,6 +215,7 @@ TEST(TaylorGreen, SecondOrderVelocity) {
                        std::string("well_prepared: f_eq(1 + 3p, u + u_c) - (tau - 1) 3 w rho Q:grad u, u_c the "
                                    "compressive slow-manifold velocity; eq+neq: without u_c; equilibrium: f_eq only"));
 
+  std::vector<std::pair<Init, TgRun>> traces;
   for (auto model : {fluid::CollisionModel::bgk, fluid::CollisionModel::trt}) {
     const std::string label = model == fluid::CollisionModel::bgk ? "BGK" : "TRT";
     io::SpeedErrorSeries speed{label, {}, {}, {}};
@@ -222,13 +228,17 @@ TEST(TaylorGreen, SecondOrderVelocity) {
       for (int N : kResolutions) {
         // The equilibrium-only start is shown for comparison only: the coarser levels suffice.
         if (init == Init::equilibrium && N > 64) continue;
-        const TgRun run = run_taylor_green(model, N, init);
+        // The TRT N = 64 runs of the two non-equilibrium starts also give the traces below.
+        const bool traced = model == fluid::CollisionModel::trt && N == 64 && init != Init::equilibrium;
+        const TgRun run = run_taylor_green(model, N, init, traced);
+        if (traced) traces.emplace_back(init, run);
         record.add_run({{"model", std::string(fluid::to_string(model))}, {"init", std::string(init_name(init))},
                         {"N", double(N)}, {"steps", double(run.steps)}, {"U_lattice", run.U},
                         {"error_u", run.error_u}, {"error_p", run.error_p}, {"error_u_final", run.error_u_final},
                         {"error_p_final", run.error_p_final},
                         {"error_p_predicted_acoustic", predicted_acoustic_pressure_error(N)},
-                        {"wall_time_s", run.wall_time_s}});
+                        {"wall_time_s", run.wall_time_s}},
+                       run.scene_text);
         const double h = 1.0 / N;
         if (init == Init::well_prepared) {
           u_series.h.push_back(h);
@@ -283,10 +293,11 @@ TEST(TaylorGreen, SecondOrderVelocity) {
 
   // Pressure error against time at N = 64 (TRT): the sound wave of the eq+neq start.
   for (Init init : {Init::nonequilibrium, Init::well_prepared}) {
+    const TgRun& traced =
+        std::find_if(traces.begin(), traces.end(), [&](const auto& t) { return t.first == init; })->second;
     io::Series trace{std::string("pressure_error_trace_") + init_name(init),
                      std::string("TRT N = 64: relative pressure error vs time, ") + init_name(init) + " start",
-                     "t / T", "relative L2 pressure error", {}, {}, {}};
-    run_taylor_green(fluid::CollisionModel::trt, 64, init, &trace);
+                     "t / T", "relative L2 pressure error", traced.trace_x, traced.trace_p, {}};
     if (init == Init::nonequilibrium) {
       // Envelope of the predicted sound wave: 2νk/c_s.
       trace.y_reference.assign(trace.x.size(), 2.0 * kNu * wavenumber(64) / std::sqrt(d2q9::cs2));

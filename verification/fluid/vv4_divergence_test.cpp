@@ -1,13 +1,13 @@
 // Case verification.divergence_diagnosis (issue 3 item 7).
 //
 // Requirement: every diverging run stops with the health monitor's diagnosis. A few
-// deliberately unstable set-ups run through the simulation layer (sim::Simulation with
-// a scene and lattice set-up built in code) and one through FluidLattice::check_health
-// directly; each must end with status `diverged` and a diagnosis naming the step (the
-// step at which the run stopped), the node (inside the grid) and the quantity
-// (density, velocity_x, velocity_y or mach), and no observer may ever receive a
-// non-finite density or velocity.
-// Reference: the monitor of solver/simulation/simulation.cpp (health scan before
+// deliberately unstable set-ups run as scenes through the product path
+// (verification/fluid/periodic_box.toml and double_shear_layer.toml with overrides, run
+// by vv::run_case_scene with an extra observer); each must end with status `diverged`
+// and a diagnosis naming the step (the step at which the run stopped), the node (inside
+// the grid) and the quantity (density, velocity_x, velocity_y or mach), and no observer
+// may ever receive a non-finite density or velocity.
+// Reference: the monitor of solver/simulation/observation.cpp (health scan before
 // anything is handed to an observer; describe_divergence). The runaway set-up has an
 // exact stop step: in a periodic box from rest under a uniform force F (Guo forcing)
 // the velocity of the s-th collision is u_s = (s − ½)F at every node, so the first
@@ -23,9 +23,10 @@
 #include <regex>
 
 #include "common/case_support.hpp"
+#include "common/scene_case.hpp"
+#include "fluid_scenes.hpp"
 #include "lattice/d2q9.hpp"
 #include "simulation/simulation.hpp"
-#include "vv4_shear_layer.hpp"
 
 using namespace erythro;
 
@@ -57,8 +58,7 @@ struct Diagnosis {
   std::string quantity;
 };
 
-// "diverged at step S: Q = V at node (X, Y) ..." (sim::describe_divergence) or
-// "step S: Q = V at node (X, Y) ..." (vv::describe_health).
+// "diverged at step S: Q = V at node (X, Y) ..." (sim::describe_divergence).
 Diagnosis parse(const std::string& text) {
   static const std::regex re(R"(step (\d+): (\w+) = \S+ at node \((-?\d+), (-?\d+)\))");
   std::smatch m;
@@ -80,49 +80,51 @@ bool complete(const Diagnosis& d, long stop_step, const Grid& g) {
 
 struct UnstableSetup {
   std::string name;
-  scene::Scene scene;
-  scene::LatticeSetup lattice;
+  const vv::SceneFile* file = nullptr;
+  std::vector<std::string> overrides;
   long predicted_step = -1;  // -1: not predicted
 };
 
-// A scene in lattice units (h = 1 µm, Δt = 1 µs, so describe_divergence can print µm).
-UnstableSetup base(const std::string& name, int nx, int ny, fluid::CollisionModel model, double tau, long steps) {
+const vv::SceneFile& box_scene() {
+  static const vv::SceneFile f("verification/fluid/periodic_box.toml");
+  return f;
+}
+
+// The monitor every 10 steps, fields every 7 (not a multiple of it), diagnostics every 5.
+UnstableSetup base(const std::string& name, int n, fluid::CollisionModel model, double tau, long steps,
+                   double max_mach) {
   UnstableSetup s;
   s.name = name;
-  s.scene.name = name;
-  s.scene.monitor.interval_steps = 10;
-  s.scene.monitor.max_mach = 0.3;
-  s.scene.output.fields_interval_steps = 7;  // not a multiple of the monitor interval
-  s.scene.output.diagnostics_interval_steps = 5;
-  s.lattice.grid = Grid{nx, ny};
-  s.lattice.scales = scene::UnitScales{1e-6, 1e-6, 1000.0};
-  s.lattice.collision = {model, tau, 3.0 / 16.0};
-  s.lattice.total_steps = steps;
-  s.lattice.viscosity = (tau - 0.5) / 3.0;
+  s.file = &box_scene();
+  s.overrides = {vv::set_grid(n, n), vv::set_collision(model), vv::set("run.steps", steps),
+                 vv::set("monitor.interval_steps", 10L), vv::set("monitor.max_mach", max_mach),
+                 vv::set("output.fields_interval_steps", 7L), vv::set("output.diagnostics_interval_steps", 5L),
+                 vv::set("limits.min_tau_margin", 0.0), vv::set("limits.max_mach", 10.0)};  // built to diverge
+  s.overrides.push_back(vv::set_tau(*s.file, s.overrides, tau));
   return s;
 }
 
 // Taylor–Green vortex of amplitude U on 32 x 32 at τ = 0.5001 (TRT: Λ = 3/16).
 UnstableSetup taylor_green(const std::string& name, fluid::CollisionModel model, double U, double max_mach,
                            long steps) {
-  UnstableSetup s = base(name, 32, 32, model, 0.5001, steps);
-  s.scene.initial.type = "taylor_green";
-  s.lattice.initial_velocity = {U, 0.0};
-  s.lattice.mach = U / std::sqrt(d2q9::cs2);
-  s.scene.monitor.max_mach = max_mach;
+  UnstableSetup s = base(name, 32, model, 0.5001, steps, max_mach);
+  s.overrides.push_back(vv::set("initial.type", "\"taylor_green\""));
+  s.overrides.push_back(vv::set_initial_velocity(*s.file, s.overrides, {U, 0.0}));
   return s;
 }
 
 std::vector<UnstableSetup> unstable_setups() {
   std::vector<UnstableSetup> out;
   {  // Uniform force in a periodic box: unbounded acceleration, exact stop step.
-    UnstableSetup s = base("runaway_force", 32, 32, fluid::CollisionModel::bgk, 0.8, 2000);
-    const double F = 1e-3, limit = s.scene.monitor.max_mach * std::sqrt(d2q9::cs2);
-    s.lattice.body_force = {F, 0.0};
+    UnstableSetup s = base("runaway_force", 32, fluid::CollisionModel::bgk, 0.8, 2000, 0.3);
+    s.overrides.push_back(vv::set_body_force(*s.file, s.overrides, {1e-3, 0.0}));
+    const scene::Scene scene = s.file->scene(s.overrides);
+    const double F = s.file->setup(s.overrides).body_force[0];
+    const double limit = scene.monitor.max_mach * std::sqrt(d2q9::cs2);
     // The scan runs whenever anything is observed (monitor, fields or diagnostics due):
     // the first such step at or after the first s with (s − ½)F > limit.
-    const long K = s.scene.monitor.interval_steps, Kf = s.scene.output.fields_interval_steps,
-               Kd = s.scene.output.diagnostics_interval_steps;
+    const long K = scene.monitor.interval_steps, Kf = scene.output.fields_interval_steps,
+               Kd = scene.output.diagnostics_interval_steps;
     long step = static_cast<long>(std::floor(limit / F + 0.5)) + 1;
     while (step % K != 0 && step % Kf != 0 && step % Kd != 0) ++step;
     s.predicted_step = step;
@@ -137,6 +139,18 @@ std::vector<UnstableSetup> unstable_setups() {
   out.push_back(
       taylor_green("taylor_green_regularized_tau0.5001", fluid::CollisionModel::regularized, 0.4, 1.0, 4000));
   out.push_back(taylor_green("taylor_green_bgk_no_mach_limit", fluid::CollisionModel::bgk, 0.3, 1e300, 20000));
+  {  // The double shear layer of the stability map, BGK τ = 0.5001, U = 0.2 (unstable
+     // there), on 32 × 32 for 2 convective times, the map's monitor (every 16 steps).
+    static const vv::SceneFile layer("verification/fluid/double_shear_layer.toml");
+    UnstableSetup s;
+    s.name = "double_shear_layer_bgk_tau0.5001";
+    s.file = &layer;
+    s.overrides = {vv::set_grid(32, 32), vv::set_collision(fluid::CollisionModel::bgk),
+                   vv::set("run.steps", static_cast<long>(std::ceil(2.0 * 32 / 0.2)))};
+    s.overrides.push_back(vv::set_tau(layer, s.overrides, 0.5001));
+    s.overrides.push_back(vv::set_initial_velocity(layer, s.overrides, {0.2, 0.0}));
+    out.push_back(s);
+  }
   return out;
 }
 }  // namespace
@@ -149,8 +163,8 @@ TEST(DivergenceDiagnosis, EveryDivergedRunStopsWithDiagnosis) {
       "step, a node inside the grid and the quantity; no observer receives a non-finite field; the runaway-force "
       "run stops exactly at the predicted check.");
   record.set_reference(
-      "Health monitor of solver/simulation/simulation.cpp (scan before any observer call; describe_divergence) and "
-      "FluidLattice::check_health; runaway force: u_s = (s - 1/2) F under Guo forcing (docs/model.md sec. 1), stop at "
+      "Health monitor of solver/simulation/observation.cpp (scan before any observer call; describe_divergence); "
+      "runaway force: u_s = (s - 1/2) F under Guo forcing (docs/model.md sec. 1), stop at "
       "the first observed step (multiple of the monitor, fields or diagnostics interval) after u_s/c_s exceeds "
       "max_mach.");
   record.set_parameter("monitor_interval_steps", 10.0);
@@ -161,50 +175,32 @@ TEST(DivergenceDiagnosis, EveryDivergedRunStopsWithDiagnosis) {
   double step_error = std::numeric_limits<double>::quiet_NaN();
   for (UnstableSetup& s : unstable_setups()) {
     ++cases;
-    vv::Stopwatch clock;
-    sim::Simulation simulation(s.scene, s.lattice);
     FiniteObserver observer;
-    const sim::RunSummary summary = simulation.run(observer);
+    vv::CaseRunOptions options;
+    options.observers.push_back(&observer);
+    const vv::CaseRun run =
+        vv::run_case_scene(s.file->scene(s.overrides), "verification.divergence_diagnosis", s.name, options);
+    const sim::RunSummary& summary = run.summary;
     const Diagnosis d = parse(summary.diagnosis);
-    const bool ok = summary.status == sim::RunStatus::diverged && complete(d, summary.steps, s.lattice.grid) &&
-                    observer.finished.status == sim::RunStatus::diverged;
+    const bool ok = summary.status == sim::RunStatus::diverged && complete(d, summary.steps, run.setup.grid) &&
+                    observer.finished.status == sim::RunStatus::diverged && run.file.status() == "diverged";
     complete_count += ok ? 1 : 0;
     non_finite += observer.non_finite;
     if (s.predicted_step >= 0) step_error = double(summary.steps - s.predicted_step);
     std::cout << s.name << ": " << sim::to_string(summary.status) << " after " << summary.steps << " steps; "
               << summary.diagnosis << "\n";
-    record.add_run({{"setup", s.name}, {"path", std::string("sim::Simulation")},
-                    {"model", std::string(fluid::to_string(s.lattice.collision.model))},
-                    {"tau", s.lattice.collision.tau}, {"status", sim::to_string(summary.status)},
+    record.add_run({{"setup", s.name}, {"path", std::string("scene")},
+                    {"model", std::string(fluid::to_string(run.setup.collision.model))},
+                    {"tau", run.setup.collision.tau}, {"status", sim::to_string(summary.status)},
                     {"steps", double(summary.steps)},
                     {"predicted_step", s.predicted_step >= 0 ? double(s.predicted_step)
                                                              : std::numeric_limits<double>::quiet_NaN()},
                     {"quantity", d.quantity}, {"node_x", double(d.x)}, {"node_y", double(d.y)},
                     {"diagnosis_complete", ok ? 1.0 : 0.0}, {"fields_observed", double(observer.fields)},
                     {"non_finite_observed", double(observer.non_finite)}, {"diagnosis", summary.diagnosis},
-                    {"wall_time_s", clock.seconds()}});
+                    {"wall_time_s", run.wall_time_s}},
+                   run.file.scene_text());
     EXPECT_TRUE(ok) << s.name << ": " << summary.diagnosis;
-  }
-  {  // The lattice-level monitor: double shear layer, BGK τ = 0.5001 (unstable in the stability map).
-    ++cases;
-    vv::ShearLayerSpec spec;
-    spec.collision = {fluid::CollisionModel::bgk, 0.5001, 3.0 / 16.0};
-    spec.U = 0.2;
-    spec.L = 32;
-    const vv::ShearLayerRun r = vv::run_double_shear_layer(spec);
-    const Diagnosis d = parse(r.diagnosis);
-    const bool ok = !r.stable && complete(d, r.steps, Grid{spec.L, spec.L});
-    complete_count += ok ? 1 : 0;
-    std::cout << "double_shear_layer_bgk_tau0.5001: " << (r.stable ? "stable" : "diverged") << " after " << r.steps
-              << " steps; " << r.diagnosis << "\n";
-    record.add_run({{"setup", std::string("double_shear_layer_bgk_tau0.5001")},
-                    {"path", std::string("FluidLattice::check_health")}, {"model", std::string("bgk")},
-                    {"tau", 0.5001}, {"status", std::string(r.stable ? "completed" : "diverged")},
-                    {"steps", double(r.steps)}, {"predicted_step", std::numeric_limits<double>::quiet_NaN()},
-                    {"quantity", d.quantity}, {"node_x", double(d.x)}, {"node_y", double(d.y)},
-                    {"diagnosis_complete", ok ? 1.0 : 0.0}, {"fields_observed", 0.0}, {"non_finite_observed", 0.0},
-                    {"diagnosis", r.diagnosis}, {"wall_time_s", r.wall_time_s}});
-    EXPECT_TRUE(ok) << r.diagnosis;
   }
 
   EXPECT_TRUE(record.add_metric({"diagnosed runs", "unstable set-ups that stopped as diverged with step, node and "

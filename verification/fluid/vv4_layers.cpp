@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "channel_flows.hpp"
 #include "common/case_support.hpp"
+#include "fluid_scenes.hpp"
+#include "simulation/simulation.hpp"
 
 namespace erythro::vv {
 
@@ -59,32 +62,61 @@ double two_layer_exact(const TwoLayerProblem& p, double y) {
   return ua + (s0 * (y - a) - 0.5 * F * (y * y - a * a)) / n2;
 }
 
-TwoLayerRun run_two_layer(const TwoLayerProblem& p, fluid::CollisionModel model, double trt_magic,
-                          double residual) {
-  fluid::BoundaryConfig walls;
-  walls.bottom.type = fluid::SideType::wall;
-  walls.top.type = p.flow == LayerFlow::couette ? fluid::SideType::moving_wall : fluid::SideType::wall;
-  if (p.flow == LayerFlow::couette) walls.top.ux = p.drive;
+TwoLayerRun run_two_layer(const TwoLayerProblem& p, fluid::CollisionModel model, double residual) {
+  static const SceneFile file("verification/fluid/layered_channel.toml");
   const Grid g{1, p.N};  // x-invariant flow: one periodic column suffices
-  fluid::FluidLattice lattice(g, {model, 0.5 + 3.0 * p.nu_upper, trt_magic}, walls);
-  lattice.enable_tau_field();
   double nu_min = p.nu_upper;
-  for (int y = 0; y < g.ny; ++y) {
-    const double nu = p.row_viscosity(y);
-    nu_min = std::min(nu_min, nu);
-    for (int x = 0; x < g.nx; ++x) lattice.tau_field()[g.index(x, y)] = 0.5 + 3.0 * nu;  // ν = (τ − ½)/3
-  }
-  if (p.flow == LayerFlow::poiseuille) lattice.set_uniform_force(p.drive, 0.0);
-
+  for (int y = 0; y < g.ny; ++y) nu_min = std::min(nu_min, p.row_viscosity(y));
   // From rest, the slowest mode decays at least as fast as exp(−ν_min (π/N)² t)
   // (Rayleigh quotient ∫ν u'² / ∫u² ≥ ν_min π²/N²), so the single-viscosity estimate
   // of channel_flows.hpp with ν = ν_min is an upper bound.
-  const ChannelResult channel = run_channel(lattice, steps_to_steady_state(p.N, nu_min, residual));
+  std::vector<std::string> o = {set_grid(1, p.N), set_collision(model),
+                                set("run.steps", steps_to_steady_state(p.N, nu_min, residual))};
+  const double tau_upper = 0.5 + 3.0 * p.nu_upper;  // the fluid (ν = (τ − ½)/3)
+  o.push_back(set_tau(file, o, tau_upper));
+  // layers[0]: ν1 below the interface; layers[1]: ν2 above a midpoint interface, or the
+  // interface row J = (N − 1)/2 with its own viscosity (vv4_layers.hpp).
+  const bool row = p.placement != InterfacePlacement::midpoint;
+  const int J = p.N / 2;
+  const double lo = row ? J : 0.5 * p.N, hi = row ? J + 1.0 : double(p.N);
+  const double tau_row = 0.5 + 3.0 * (row ? p.row_viscosity(J) : p.nu_upper);
+  const double mu = file.scene(o).fluid.viscosity_cP;
+  for (const auto& [i, y0, y1, tau] : {std::tuple{0, 0.0, lo, 0.5 + 3.0 * p.nu_lower}, std::tuple{1, lo, hi, tau_row}}) {
+    const std::string key = "fluid.layers[" + std::to_string(i) + "].";
+    o.push_back(set(key + "y_um", y0, y1));
+    o.push_back(set_exact(file, o, key + "viscosity_cP", tau, mu * (tau - 0.5) / (tau_upper - 0.5),
+                          [i](const scene::LatticeSetup& s) { return s.viscosity_layers[i].tau; }));
+  }
+  if (p.flow == LayerFlow::couette) {
+    o.push_back(set_top_wall_velocity(file, o, p.drive));
+  } else {
+    o.push_back(set("boundaries.top.type", "\"wall\""));
+    o.push_back(set_body_force(file, o, {p.drive, 0.0}));
+  }
+  // The post-collision populations and τ of the final state, for the link relations.
+  std::vector<double> f, tau_field;
+  CaseRunOptions options;
+  const long steps = file.setup(o).total_steps;
+  options.configure = [&](sim::Simulation& simulation) {
+    const fluid::FluidLattice& lattice = *simulation.fluid();
+    simulation.add_stage(
+        sim::Phase::observe, "final_populations",
+        [&](long) {
+          const auto pop = lattice.populations();
+          f.assign(pop.begin(), pop.end());
+          tau_field.assign(lattice.tau_field().begin(), lattice.tau_field().end());
+        },
+        steps, steps - 1);
+  };
+  const std::string label = to_string(p.flow) + "_" + std::string(fluid::to_string(model)) + "_" +
+                            to_string(p.placement) + "_N" + std::to_string(p.N);
+  const ChannelResult channel = run_channel(file, o, "verification.layered_viscosity", label, options);
 
   TwoLayerRun run;
   run.steps = channel.steps;
   run.wall_time_s = channel.wall_time_s;
   run.ux = channel.ux;
+  run.scene_text = channel.scene_text;
   double far_e2 = 0, far_u2 = 0, near_max = 0, u_max = 0;
   for (int y = 0; y < g.ny; ++y) {
     const double u = run.ux[static_cast<std::size_t>(y)], ex = two_layer_exact(p, y + 0.5), e = u - ex;
@@ -98,13 +130,13 @@ TwoLayerRun run_two_layer(const TwoLayerProblem& p, fluid::CollisionModel model,
   }
   // Derived link relations (i), (ii); τ− = τ+ (BGK), ½ + Λ/(τ+ − ½) (TRT), 1 (regularized).
   const double F = p.flow == LayerFlow::poiseuille ? p.drive : 0.0;
-  const auto f = lattice.populations();
+  const double trt_magic = file.setup(o).collision.trt_magic;
   std::vector<double> sigma, tau_minus, nu;
   double sigma_max = 0.0;
   for (int y = 0; y < g.ny; ++y) {
     const std::size_t n = g.index(0, y), N = g.size();
     const double pxy = f[5 * N + n] - f[6 * N + n] + f[7 * N + n] - f[8 * N + n];
-    const double tau = lattice.tau_field()[n], om = 1.0 / tau;
+    const double tau = tau_field[n], om = 1.0 / tau;
     sigma.push_back(-(1.0 - 0.5 * om) / (1.0 - om) * pxy);
     sigma_max = std::max(sigma_max, std::abs(sigma.back()));
     nu.push_back((tau - 0.5) / 3.0);

@@ -2,11 +2,12 @@
 // Two-layer channel flows for verification.layered_viscosity: a periodic column of
 // 1 × N nodes between halfway bounce-back walls at y = 0 and y = N (lattice units),
 // kinematic viscosity ν1 below the interface y = a and ν2 above it (ρ = 1, so the
-// dynamic viscosities μ = ρν have the same ratio), per-node τ = ½ + 3ν.
+// dynamic viscosities μ = ρν have the same ratio), per-node τ = ½ + 3ν, run as the
+// scene verification/fluid/layered_channel.toml ([[fluid.layers]]).
 #include <string>
 #include <vector>
 
-#include "fluid/fluid_lattice.hpp"
+#include "fluid/collision.hpp"
 
 namespace erythro::vv {
 
@@ -55,9 +56,11 @@ struct TwoLayerRun {
   //  (ii) u_{j+1} − u_j − ½(σ_j/ν_j + σ_{j+1}/ν_{j+1}) − 2F(τ−_{j+1} − τ−_j) = 0,
   //       relative to max |u|.
   double link_residual = 0.0;  // max of the two
+  std::string scene_text;      // what ran
 };
 
-// Runs from rest to within `residual` of steady state and measures the errors.
-TwoLayerRun run_two_layer(const TwoLayerProblem& p, fluid::CollisionModel model, double trt_magic, double residual);
+// Runs from rest to within `residual` of steady state and measures the errors (TRT with
+// the scene's Λ = 3/16).
+TwoLayerRun run_two_layer(const TwoLayerProblem& p, fluid::CollisionModel model, double residual);
 
 }  // namespace erythro::vv

@@ -10,24 +10,32 @@
 // and y = N (halfway bounce-back), node j at y = j + ½. Womersley number
 // α = (H/2)√(ω/ν) ≈ 4. Diffusive scaling: τ fixed, period T = T16 (N/16)² steps
 // (T16 a multiple of 8, so the phase points mT/8 fall on steps), F0 = u_ref ω with
-// u_ref = 0.05·16/N. The force used in the collision of step n is F0 cos(ωn) and
-// moments() then gives u(t = n). Start: the exact profile at t = 0 (equilibrium +
-// non-equilibrium + half force, vv3_flow_init.hpp); 5 periods wash out what is left of
-// the start-up transient (slowest mode e^{−νπ²t/H²}: factor e^{−10π³/(4α²)} ≈ 8e-3),
+// u_ref = 0.05·16/N. The force used in the collision that ends at t = n is F0 cos(ωn)
+// and the velocity after it is u(t = n). Start: the exact profile at t = 0 (equilibrium +
+// non-equilibrium + half force, fluid/initial_state.hpp); 5 periods wash out what is left
+// of the start-up transient (slowest mode e^{−νπ²t/H²}: factor e^{−10π³/(4α²)} ≈ 8e-3),
 // then the 6th period is measured.
+// Runs: verification/fluid/channel.toml with nx = 1 and an oscillating [body_force]
+// (density_N_m3 = [F0, 0], frequency_Hz = 1/(TΔt)), the exact start set on the fluid
+// before the run, and a stage of the case reading the state after every step of the
+// measured period (profiles at the phases, centre line for the amplitude and phase fit).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <complex>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 #include <string>
 
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
-#include "vv3_flow_init.hpp"
+#include "common/scene_case.hpp"
+#include "fluid/initial_state.hpp"
+#include "fluid_scenes.hpp"
+#include "simulation/simulation.hpp"
 
 using namespace erythro;
 
@@ -86,6 +94,7 @@ struct WomersleyRun {
   double wall_time_s = 0;
   long steps = 0;
   double alpha = 0, max_mach = 0;
+  std::string scene_text;
 };
 
 // Least-squares fit u ≈ a cos ωt + b sin ωt + c over one full period of equally spaced
@@ -103,6 +112,7 @@ std::pair<double, double> fit_sinusoid(const std::vector<double>& t, const std::
 }
 
 WomersleyRun run_womersley(const Config& c, int N) {
+  static const vv::SceneFile channel("verification/fluid/channel.toml");
   const double nu = (c.tau - 0.5) / 3.0;
   const Oscillation osc = oscillation_for(nu);
   const long T = osc.period16 * (N / 16) * (N / 16);
@@ -112,63 +122,78 @@ WomersleyRun run_womersley(const Config& c, int N) {
   const double F0 = u_ref * omega;
   WomersleyRun run;
   run.alpha = osc.alpha;
+  const long measure_from = kWarmupPeriods * T;
+  run.steps = measure_from + T;
 
-  fluid::BoundaryConfig walls;
-  walls.bottom.type = walls.top.type = fluid::SideType::wall;
+  std::vector<std::string> o = {vv::set_grid(1, N), vv::set_collision(c.model), vv::set("run.steps", run.steps)};
+  o.push_back(vv::set_tau(channel, o, c.tau));
+  // F(t) = F0 cos(2π f t) with 2π f equal to ω = 2π/T bit for bit (the frequency first:
+  // it bounds the expected speed of the force, F0/ω, checked against limits.max_mach).
+  const double dt = channel.setup(o).scales.time_s;
+  o.push_back(vv::set_exact(channel, o, "body_force.frequency_Hz", omega, 1.0 / (double(T) * dt),
+                            [](const scene::LatticeSetup& s) { return 2.0 * std::numbers::pi * s.force_frequency; }));
+  o.push_back(vv::set_body_force(channel, o, {F0, 0.0}));
   const Grid g{1, N};
-  fluid::FluidLattice lattice(g, {c.model, c.tau, kMagic}, walls);
-  vv::FlowField start;
+  fluid::FlowField start;
   start.resize(g.size(), true);
   for (int j = 0; j < N; ++j) {
-    const double y = vv::node_position(j);
+    const double y = j + 0.5;
     start.ux[g.index(0, j)] = womersley_exact(y, 0.0, H, F0, omega, nu);
     start.dux_dy[g.index(0, j)] = womersley_gradient(y, 0.0, H, F0, omega, nu);
   }
-  const std::vector<double> fx0(g.size(), F0), fy0(g.size(), 0.0);
-  vv::initialize_post_collision(lattice, start, fx0, fy0);
-
+  std::vector<double> times, centre, centre_exact, profile_5T;
   auto profile_error = [&](const fluid::Moments& m, long s) {
     std::vector<double> num, exact;
     for (int j = 0; j < N; ++j) {
       num.push_back(m.ux[g.index(0, j)]);
-      exact.push_back(womersley_exact(vv::node_position(j), double(s), H, F0, omega, nu));
+      exact.push_back(womersley_exact(j + 0.5, double(s), H, F0, omega, nu));
     }
     return vv::relative_l2(num, exact);
   };
-
-  const long measure_from = kWarmupPeriods * T;
-  run.steps = measure_from + T;
-  std::vector<double> times, centre, centre_exact, profile_5T;
-  vv::Stopwatch clock;
-  for (long s = 1; s <= run.steps; ++s) {
-    lattice.set_uniform_force(F0 * std::cos(omega * double(s)), 0.0);
-    lattice.step();
-    if (s < measure_from) continue;
-    const fluid::Moments m = lattice.moments();
-    if (s == measure_from) {
-      for (int j = 0; j < N; ++j) profile_5T.push_back(m.ux[g.index(0, j)]);
-      continue;
-    }
-    // Centre line y = H/2 lies between nodes N/2 − 1 and N/2: average both (and the exact).
-    const double t = double(s);
-    times.push_back(t);
-    centre.push_back(0.5 * (m.ux[g.index(0, N / 2 - 1)] + m.ux[g.index(0, N / 2)]));
-    centre_exact.push_back(0.5 * (womersley_exact(N / 2 - 0.5, t, H, F0, omega, nu) +
-                                  womersley_exact(N / 2 + 0.5, t, H, F0, omega, nu)));
-    for (double u : m.ux) run.max_mach = std::max(run.max_mach, std::abs(u) * std::sqrt(3.0));
-    const long into = s - measure_from;
-    if (into % (T / kPhases) == 0) run.phase_error[(into / (T / kPhases)) % kPhases] = profile_error(m, s);
-    if (s == run.steps) {
-      double d2 = 0, u2 = 0;
-      for (int j = 0; j < N; ++j) {
-        const double u = m.ux[g.index(0, j)];
-        d2 += (u - profile_5T[j]) * (u - profile_5T[j]);
-        u2 += u * u;
-      }
-      run.periodicity = std::sqrt(d2 / u2);
-    }
-  }
-  run.wall_time_s = clock.seconds();
+  vv::CaseRunOptions options;
+  options.configure = [&](sim::Simulation& simulation) {
+    // The exact profile at t = 0 after a collision with F(0) = F0: f_eq + f_neq + F0/2.
+    const std::vector<double> fx0(g.size(), F0), fy0(g.size(), 0.0);
+    fluid::initialize_post_collision(*simulation.fluid(), start, fx0, fy0);
+    // The measured period, read after every step from t = 5T (the state's moments, lattice
+    // units): the profile at 5T, then the centre line y = H/2 (between nodes N/2 − 1 and
+    // N/2: both averaged, and the exact likewise), the largest Mach number, the profile
+    // error at the phases mT/8 and the periodicity at 6T.
+    const fluid::FluidLattice& lattice = *simulation.fluid();
+    simulation.add_stage(
+        sim::Phase::observe, "womersley_measured_period",
+        [&, N](long n) {
+          const long s = n + 1;
+          const fluid::Moments m = lattice.moments();
+          if (s == measure_from) {
+            for (int j = 0; j < N; ++j) profile_5T.push_back(m.ux[g.index(0, j)]);
+            return;
+          }
+          const double t = double(s);
+          times.push_back(t);
+          centre.push_back(0.5 * (m.ux[g.index(0, N / 2 - 1)] + m.ux[g.index(0, N / 2)]));
+          centre_exact.push_back(0.5 * (womersley_exact(N / 2 - 0.5, t, H, F0, omega, nu) +
+                                        womersley_exact(N / 2 + 0.5, t, H, F0, omega, nu)));
+          for (double u : m.ux) run.max_mach = std::max(run.max_mach, std::abs(u) * std::sqrt(3.0));
+          const long into = s - measure_from;
+          if (into % (T / kPhases) == 0) run.phase_error[(into / (T / kPhases)) % kPhases] = profile_error(m, s);
+          if (s == run.steps) {
+            double d2 = 0, u2 = 0;
+            for (int j = 0; j < N; ++j) {
+              const double u = m.ux[g.index(0, j)];
+              d2 += (u - profile_5T[j]) * (u - profile_5T[j]);
+              u2 += u * u;
+            }
+            run.periodicity = std::sqrt(d2 / u2);
+          }
+        },
+        1, measure_from - 1);
+  };
+  const std::string label = c.label + " N=" + std::to_string(N);
+  const vv::CaseRun r = vv::run_case_scene(channel.scene(o), "verification.womersley", label, options);
+  if (!r.ok()) throw std::runtime_error(label + ": " + r.summary.diagnosis);
+  run.scene_text = r.file.scene_text();
+  run.wall_time_s = r.summary.wall_time_s;
   const auto [A, phi] = fit_sinusoid(times, centre, omega);
   const auto [A_exact, phi_exact] = fit_sinusoid(times, centre_exact, omega);
   run.amplitude_error = A / A_exact - 1.0;
@@ -235,7 +260,7 @@ TEST(Womersley, SecondOrderAtEveryPhase) {
           {"phase_lag_rad", run.phase_lag}, {"periodicity_residual", run.periodicity},
           {"wall_time_s", run.wall_time_s}};
       for (int m = 0; m < kPhases; ++m) row["error_phase" + std::to_string(m)] = run.phase_error[m];
-      record.add_run(row);
+      record.add_run(row, run.scene_text);
       speed.wall_time_s.push_back(run.wall_time_s);
       speed.error.push_back(rms_phase_error);
       speed.label.push_back("N=" + std::to_string(N));

@@ -13,6 +13,9 @@
 // index-field domain with walls on every side (its other edges lie beyond the walls and
 // drop out), one periodic fluid column (x-invariant flow). Diffusive scaling, max u =
 // 0.32/N. Exact solution: verification/fluid/vv4_layers.cpp (two_layer_exact).
+// Runs: verification/fluid/channel.toml (nx = 1, plasma τ = 0.7, a moving top wall or a
+// [body_force]); the slab is a fixed shape, so its index field is computed once and its τ
+// written into the fluid's τ field before the run (CaseRunOptions::configure).
 //
 // Derivation (steady unidirectional flow; layered_viscosity_test.cpp, relation (ii)): a
 // link between rows j, j+1 sees the harmonic mean of the node viscosities, so for Couette
@@ -43,7 +46,9 @@
 #include "channel_flows.hpp"
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
+#include "fluid_scenes.hpp"
 #include "interior/index_field.hpp"
+#include "simulation/simulation.hpp"
 #include "vv4_layers.hpp"
 
 using namespace erythro;
@@ -53,7 +58,6 @@ using namespace erythro::geometry;
 namespace {
 constexpr double kNuEx = 0.2 / 3.0;        // plasma, τ = 0.7
 constexpr double kNuIn = 5.0 * kNuEx;      // cytoplasm, ratio 6.0/1.2 (docs/model.md §5), τ = 1.5
-constexpr double kMagic = 3.0 / 16.0;
 constexpr double kResidual = 1e-12;
 constexpr int kResolutions[] = {8, 16, 32, 64};
 
@@ -65,7 +69,10 @@ struct LayerRun {
   double interface_shift = 0; // δR / (1/ν_ex − 1/ν_in): the sharp interface's equivalent shift (h)
   long steps = 0, band_nodes = 0;
   std::vector<double> ux, exact;
+  std::string scene_text;
 };
+
+std::string label(vv::LayerFlow f, fluid::CollisionModel m, Blend b);
 
 LayerRun run(vv::LayerFlow flow, fluid::CollisionModel model, Blend blend, int N) {
   vv::TwoLayerProblem p{flow, vv::InterfacePlacement::midpoint, N, kNuEx, kNuIn, 1.0};
@@ -80,36 +87,51 @@ LayerRun run(vv::LayerFlow flow, fluid::CollisionModel model, Blend blend, int N
   for (double y = a; y < top; y += 0.5) { slab.x.push_back(9.0); slab.y.push_back(y); }
   for (double x = 9.0; x > -8.0; x -= 0.5) { slab.x.push_back(x); slab.y.push_back(top); }
   for (double y = top; y > a; y -= 0.5) { slab.x.push_back(-8.0); slab.y.push_back(y); }
+  // A static shape: its index field (eq 26) is computed once, here.
   IndexField field(geometry::Domain{Grid{1, N}, false, false}, {Method::flood_fill, 2.0});
   const FillReport& rep = field.update(std::vector<geometry::Polygon>{slab});
-
-  fluid::BoundaryConfig walls;
-  walls.bottom.type = fluid::SideType::wall;
-  walls.top.type = flow == vv::LayerFlow::couette ? fluid::SideType::moving_wall : fluid::SideType::wall;
-  if (flow == vv::LayerFlow::couette) walls.top.ux = p.drive;
-  fluid::FluidLattice lattice(Grid{1, N}, {model, 0.5 + 3.0 * kNuEx, kMagic}, walls);
-  lattice.enable_tau_field();
+  std::vector<double> tau(static_cast<std::size_t>(N));
   if (blend == Blend::arithmetic) {
-    field.write_relaxation_times(lattice.tau_field(), kNuIn, kNuEx);  // eq 27
+    field.write_relaxation_times(tau, kNuIn, kNuEx);  // eq 27
   } else {
     for (int j = 0; j < N; ++j) {
       const double I = field.values()[static_cast<std::size_t>(j)];
-      lattice.tau_field()[static_cast<std::size_t>(j)] = 0.5 + 3.0 / (1.0 / kNuIn + (1.0 / kNuEx - 1.0 / kNuIn) * I);
+      tau[static_cast<std::size_t>(j)] = 0.5 + 3.0 / (1.0 / kNuIn + (1.0 / kNuEx - 1.0 / kNuIn) * I);
     }
   }
-  if (flow == vv::LayerFlow::poiseuille) lattice.set_uniform_force(p.drive, 0.0);
-  const vv::ChannelResult ch = vv::run_channel(lattice, vv::steps_to_steady_state(N, kNuEx, kResidual));
+
+  // The channel scene (the plasma is the fluid), its τ field written before the run.
+  static const vv::SceneFile channel("verification/fluid/channel.toml");
+  std::vector<std::string> o = {vv::set_grid(1, N), vv::set_collision(model),
+                                vv::set("run.steps", vv::steps_to_steady_state(N, kNuEx, kResidual)),
+                                vv::set("limits.max_mach", 0.5)};  // the speed estimate assumes plasma everywhere
+  o.push_back(vv::set_tau(channel, o, 0.5 + 3.0 * kNuEx));
+  if (flow == vv::LayerFlow::couette) {
+    o.push_back(vv::set("boundaries.top.type", "\"moving_wall\""));
+    o.push_back(vv::set_top_wall_velocity(channel, o, p.drive));
+  } else {
+    o.push_back(vv::set_body_force(channel, o, {p.drive, 0.0}));
+  }
+  vv::CaseRunOptions options;
+  options.configure = [&](sim::Simulation& simulation) {
+    fluid::FluidLattice& lattice = *simulation.fluid();
+    lattice.enable_tau_field();
+    std::copy(tau.begin(), tau.end(), lattice.tau_field().begin());
+  };
+  const std::string tag = label(flow, model, blend) + " N=" + std::to_string(N);
+  const vv::ChannelResult ch = vv::run_channel(channel, o, "verification.interior_layered_flow", tag, options);
 
   LayerRun r;
   r.steps = ch.steps;
   r.wall_time_s = ch.wall_time_s;
   r.ux = ch.ux;
+  r.scene_text = ch.scene_text;
   r.band_nodes = rep.band_nodes;
   // Discrete Couette prediction from the node viscosities actually set.
   std::vector<double> nu(static_cast<std::size_t>(N));
   double R_d = 0.0, R = a / kNuEx + (N - a) / kNuIn;
   for (int j = 0; j < N; ++j) {
-    nu[static_cast<std::size_t>(j)] = (lattice.tau_field()[static_cast<std::size_t>(j)] - 0.5) / 3.0;
+    nu[static_cast<std::size_t>(j)] = (tau[static_cast<std::size_t>(j)] - 0.5) / 3.0;
     R_d += 1.0 / nu[static_cast<std::size_t>(j)];
   }
   double far_e2 = 0, far_u2 = 0, acc = 0, dev = 0, u_max = 0;
@@ -192,7 +214,8 @@ TEST(InteriorLayeredFlow, IndexFieldViscosityMatchesDerivedAccuracy) {
                       {"error_l2", r.error_l2}, {"error_far_l2", r.error_far},
                       {"predicted_lower_layer_error", r.predicted_far}, {"lower_layer_deviation", r.lower_dev},
                       {"interface_shift_h", r.interface_shift}, {"discrete_prediction_dev", r.discrete_dev},
-                      {"wall_time_s", r.wall_time_s}});
+                      {"wall_time_s", r.wall_time_s}},
+                     r.scene_text);
       s.h.push_back(1.0 / N);
       s.error.push_back(r.error_l2);
       worst_far = std::max(worst_far, r.error_far);

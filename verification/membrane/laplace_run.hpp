@@ -1,7 +1,12 @@
 #pragma once
 // One run of the inflated-circle (Laplace) set-up: a circular membrane of radius R
 // whose rest radius is R/1.05 (pre-stressed, λ = 1.05), in a periodic 4R × 4R box
-// of fluid at rest, until the pressure field is steady (50 R² steps).
+// of fluid at rest, until the pressure field is steady (50 R² steps): the scene
+// inflated_circle.toml set by overrides and run as `erythro run` does
+// (membrane_scene.hpp); the pressure from the final density field (lattice units,
+// sim::FieldsRecorder), R and T from the final markers.
+#include <string>
+
 #include "ib/kernel.hpp"
 
 namespace erythro::vv {
@@ -15,6 +20,7 @@ struct LaplaceConfig {
 };
 
 struct LaplaceResult {
+  std::string scene_text;  // the scene as run
   bool diverged = false;
   long steps = 0;
   double radius = 0;    // mean marker distance to the centroid at the end
@@ -29,6 +35,6 @@ struct LaplaceResult {
   double wall_time_s = 0;
 };
 
-LaplaceResult run_laplace(const LaplaceConfig& c);
+LaplaceResult run_laplace(const LaplaceConfig& c, const std::string& case_name);
 
 }  // namespace erythro::vv

@@ -4,8 +4,8 @@
 // Requirement: a pre-stressed circular membrane in fluid reaches the Laplace
 // pressure jump Δp = T/R between inside and far outside.
 // Reference: static equilibrium of a tensioned ring, Δp = T/R (Young–Laplace, 2D).
-// Set-up: laplace_run.hpp (λ = 1.05, neo-Hookean E_s = 0.02, τ = 1, box 4R, 8R
-// markers, 50R² steps). p = c_s² ρ averaged over r < R − 3 and r > 1.5R; R and T
+// Set-up: laplace_run.hpp (scene inflated_circle.toml: λ = 1.05 by cells.prestretch,
+// neo-Hookean E_s = 0.02, τ = 1, box 4R, 8R markers, 50R² steps). p = c_s² ρ averaged over r < R − 3 and r > 1.5R; R and T
 // from the final markers (mean radius; λ = perimeter / rest perimeter).
 // Tolerance: a regular n-gon with tension T carries the inward force 2T sin(π/n)
 // per marker, i.e. the jump T/R·sin(π/n)/(π/n) ≈ T/R(1 − π²/6n²) over its circle:
@@ -52,13 +52,14 @@ void laplace_case(const std::string& case_name, const std::vector<ib::KernelType
     io::SpeedErrorSeries speed{name, {}, {}, {}};
     bool all_stable = true;
     for (double R : radii) {
-      const vv::LaplaceResult r = vv::run_laplace({k, R});
+      const vv::LaplaceResult r = vv::run_laplace({k, R}, case_name);
       const double n = 8 * R;
       record.add_run({{"kernel", name}, {"R", R}, {"markers", n}, {"diverged", r.diverged ? 1.0 : 0.0},
                       {"steps", double(r.steps)}, {"radius_final", r.radius}, {"stretch_final", r.stretch},
                       {"dp", r.dp}, {"dp_exact", r.dp_exact}, {"error", r.error}, {"polygon_term", r.polygon_term},
                       {"area_loss", r.area_loss}, {"max_fluid_speed", r.max_fluid_speed},
-                      {"wall_time_s", r.wall_time_s}});
+                      {"wall_time_s", r.wall_time_s}},
+                     r.scene_text);
       if (r.diverged) {
         all_stable = false;
         continue;

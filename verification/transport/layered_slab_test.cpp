@@ -86,7 +86,7 @@ SlabRun run_slab(const std::string& case_name, Stencil stencil, int m, bool cont
         vv::set("species[0].diffusivity_um2_s", kDNO)})
     set_up.push_back(o);
   for (std::size_t j = 0; j < L.size(); ++j) {
-    const std::string p = "layers[" + std::to_string(j) + "].";
+    const std::string p = "transport.layers[" + std::to_string(j) + "].";
     set_up.push_back(vv::set(p + "y_um", exact.interfaces()[j], exact.interfaces()[j + 1]));
     set_up.push_back(vv::set(p + "diffusivity_um2_s", L[j].D));
     set_up.push_back(vv::set(p + "decay_per_s", L[j].k));

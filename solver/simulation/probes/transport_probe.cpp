@@ -15,7 +15,7 @@ TransportProbe::TransportProbe(const TransportPhysics& transport)
   const int ny = transport.species_count() ? transport.lattice(0).grid().ny : 0;
   for (std::size_t k = 0; k < T.layers.size(); ++k) {
     const long top = std::lround(T.layers[k].y_hi);  // nearest face (in h)
-    if (top >= 1 && top < ny)
+    if (T.layers[k].full_width && top >= 1 && top < ny)
       fluxes_.push_back({static_cast<std::size_t>(T.layers[k].species), static_cast<std::size_t>(top - 1),
                          static_cast<int>(k)});
   }
@@ -38,7 +38,7 @@ void TransportProbe::declare(std::vector<SeriesInfo>& series) const {
   }
   for (const LayerFlux& f : fluxes_)
     series.push_back({transport_.name(f.species) + "_layer_" + std::to_string(f.layer) + "_top_flux_uM_um_s",
-                      "uM*um/s", "flux across the top edge of [[layers]] entry " + std::to_string(f.layer) +
+                      "uM*um/s", "flux across the top edge of [[transport.layers]] entry " + std::to_string(f.layer) +
                                      " (+y, mean over x)"});
   for (std::size_t c = 0; c < transport_.saturation().size(); ++c) {
     series.push_back({"cell_" + std::to_string(c) + "_saturation", "", "cell-averaged HbO2 saturation"});

@@ -13,8 +13,8 @@
 //   <name>_steady_balance             |inflow + net source| / |net source| of the last step (0 at a
 //                                     steady state; 1 if nothing is produced or consumed but a net
 //                                     amount flows in; 0 at step 0)
-//   <name>_layer_<k>_top_flux_uM_um_s for each [[layers]] entry k of the species whose top edge lies
-//                                     inside the domain: the flux across the lattice face nearest to
+//   <name>_layer_<k>_top_flux_uM_um_s for each full-width [[transport.layers]] entry k of the species whose
+//                                     top edge lies inside the domain: the flux across the lattice face nearest to
 //                                     it (eq T6, +y), averaged over x, µM·µm/s
 // and with [hemoglobin], per cell c: cell_c_saturation (cell-averaged HbO2 saturation) and
 // cell_c_released_uM_um2 (O2 released since the start, C_heme (S0 − S) × heme area).

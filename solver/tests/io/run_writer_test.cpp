@@ -45,7 +45,8 @@ TEST(RunWriter, FinishedRunIsComplete) {
   std::vector<hsize_t> dims;
   auto frame = io::h5::open_group(file.id(), "fields/0000000000");
   const auto velocity = io::h5::read_dataset(frame.id(), "velocity", &dims);
-  EXPECT_EQ(dims, (std::vector<hsize_t>{3, 4, 2}));
+  EXPECT_EQ(dims, (std::vector<hsize_t>{3, 4, 3}));  // x, y and a zero z component
+  EXPECT_EQ(velocity[2], 0.0);
   EXPECT_DOUBLE_EQ(velocity[0], 0.1 * 10.0 * 1e6);  // lattice 0.1 × (h/Δt = 10 m/s) in µm/s
   EXPECT_TRUE(std::filesystem::exists(dir / "run.xdmf"));
   for (const auto& e : std::filesystem::directory_iterator(dir)) {

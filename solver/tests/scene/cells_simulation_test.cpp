@@ -13,6 +13,7 @@
 #include "geometry/shapes.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
+#include "simulation/fields_recorder.hpp"
 #include "simulation/series_recorder.hpp"
 #include "simulation/simulation.hpp"
 
@@ -72,6 +73,41 @@ TEST(CellSimulation, CapsuleDeformsInShear) {
   EXPECT_FALSE(c.has("cell_1_taylor_deformation"));
 }
 
+// A cell at its rest shape in still fluid: its forces vanish, nothing moves
+// (cells_max_marker_speed_um_s tracked after every step is 0). The same circle pre-stressed
+// by cells.prestretch = 1.05 starts with the area change 1.05² − 1 over its rest shape,
+// pulls inward (its markers move), and the FieldsRecorder keeps the initial and final
+// fields in lattice units: the pressure inside exceeds the pressure far outside (Laplace).
+TEST(CellSimulation, RestShapeStaysAndPrestretchPullsInward) {
+  const std::vector<std::string> still = {"boundaries.bottom.velocity_um_s=[0.0, 0.0]",
+                                          "boundaries.top.velocity_um_s=[0.0, 0.0]", "initial.type=\"rest\"",
+                                          "run.steps=400", "output.extremes_interval_steps=1"};
+  const std::string file = std::string(ERYTHRO_SCENES_DIR) + "/capsule_shear.toml";
+  {
+    const scene::Scene s = scene::load_scene(file, still);
+    Simulation sim(s, scene::derive_lattice(s));
+    SeriesRecorder c;
+    EXPECT_EQ(sim.run(c).status, RunStatus::completed);
+    EXPECT_EQ(c.series("cells_max_marker_speed_um_s").back(), 0.0);
+  }
+  std::vector<std::string> inflated = still;
+  inflated.push_back("cells[0].prestretch=1.05");
+  const scene::Scene s = scene::load_scene(file, inflated);
+  Simulation sim(s, scene::derive_lattice(s));
+  SeriesRecorder c;
+  FieldsRecorder f;
+  ObserverList both;
+  both.add(c);
+  both.add(f);
+  EXPECT_EQ(sim.run(both).status, RunStatus::completed);
+  EXPECT_NEAR(c.series("cell_0_area_change").front(), 1.05 * 1.05 - 1.0, 1e-12);
+  EXPECT_GT(c.series("cells_max_marker_speed_um_s").back(), 0.0);
+  ASSERT_EQ(f.snapshots().size(), 2u);  // steps 0 and 400
+  EXPECT_EQ(f.last().step, 400);
+  const Grid& g = sim.setup().grid;
+  const auto& rho = f.last().moments.rho;
+  EXPECT_GT(rho[g.index(g.nx / 2, g.ny / 2)], rho[g.index(0, 0)]);
+}
 
 // Interior viscosity 5× the plasma's by flood fill: the index field exists, the lattice's
 // τ field holds τ_ex far outside and τ_in at the centre (eq 27), and the run completes.
@@ -125,6 +161,72 @@ TEST(CellSimulation, AggregatingPairAttracts) {
   Collect c;
   EXPECT_EQ(sim.run(c).status, RunStatus::completed);
   EXPECT_LT(gap(), before);
+}
+
+// The pair probe (simulation/probes/pair_probe.hpp) of a doublet across the periodic x side:
+// cells centred at x = 2.3 and 17.7 µm are 4.6 µm apart through the side, so the line of
+// centres points from cell 0 to the LEFT (180°, continued there while the cells attract),
+// the gap is 4.6 − 2·2 = 0.6 µm (markers 0 and 32 of the 64-gons face each other), within
+// r_c = 1.79 µm (not dissociated); no contact before the first step, contact on both cells
+// after it; the pair's equivalent ellipse of two discs R apart 2d: √(1 + 4d²/R²).
+TEST(CellSimulation, PairProbeMeasuresADoubletAcrossThePeriodicSide) {
+  const std::string text =
+      "[domain]\nsize_um = [20, 10]\nspacing_um = 0.25\n[time]\ntau = 1.0\n"
+      "[fluid]\ndensity_kg_m3 = 1000\nviscosity_cP = 1.0\n"
+      "[boundaries.bottom]\ntype = \"wall\"\n[boundaries.top]\ntype = \"wall\"\n[run]\nsteps = 400\n"
+      "[output]\nfields_interval_steps = 0\ndiagnostics_interval_steps = 100\n"
+      "[membrane]\nshear_modulus_dyn_cm = 6e-3\n"
+      "[aggregation]\npair_density_Pa = 500\n"
+      "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [2.3, 5]\nmarkers = 64\n"
+      "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [17.7, 5]\nmarkers = 64\n";
+  const scene::Scene s = scene::parse_scene(text, "pair.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  Collect c;
+  EXPECT_EQ(sim.run(c).status, RunStatus::completed);
+  ASSERT_EQ(c.samples(), 5u);
+  const auto& angle = c.series("pair_angle_deg");
+  EXPECT_NEAR(std::abs(angle[0]), 180.0, 1e-9);
+  for (double a : angle) EXPECT_NEAR(a, angle[0], 1.0);  // continued, never wrapped to the other side
+  EXPECT_NEAR(c.series("pair_separation_um")[0], 4.6, 1e-9);
+  EXPECT_NEAR(c.series("pair_gap_um")[0], 0.6, 1e-9);
+  EXPECT_EQ(c.series("pair_dissociated")[0], 0.0);
+  EXPECT_EQ(c.series("cell_0_contact_area")[0], 0.0);
+  EXPECT_GT(c.series("cell_0_contact_area").back(), 0.0);
+  EXPECT_GT(c.series("cell_1_contact_area").back(), 0.0);
+  EXPECT_LT(c.series("pair_separation_um").back(), 4.6);  // they attract
+  EXPECT_NEAR(c.series("pair_aspect_ratio")[0], std::sqrt(1.0 + 4.0 * 2.3 * 2.3 / 4.0), 1e-2);
+  EXPECT_TRUE(c.has("pair_contact_sigmoid_um"));
+  EXPECT_TRUE(c.has("pair_contact_bow_um"));
+}
+
+// Cells farther apart than r_c: dissociated from the start; a stop rule on the series ends
+// the run after_steps later; a scene with one cell (or without [aggregation]) has no pair series.
+TEST(CellSimulation, PairProbeDissociationEndsARunByStopRule) {
+  const std::string text =
+      "[domain]\nsize_um = [20, 10]\nspacing_um = 0.25\n[time]\ntau = 1.0\n"
+      "[fluid]\ndensity_kg_m3 = 1000\nviscosity_cP = 1.0\n"
+      "[boundaries.bottom]\ntype = \"wall\"\n[boundaries.top]\ntype = \"wall\"\n[run]\nsteps = 400\n"
+      "[output]\nfields_interval_steps = 0\ndiagnostics_interval_steps = 50\n"
+      "[membrane]\nshear_modulus_dyn_cm = 6e-3\n"
+      "[aggregation]\nde_star = 0.0\n"
+      "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [5, 5]\nmarkers = 64\n"
+      "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [12, 5]\nmarkers = 64\n"
+      "[[stop_when]]\nseries = \"pair_dissociated\"\nabove = 0.5\nafter_steps = 100\n";
+  const scene::Scene s = scene::parse_scene(text, "pair.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  Collect c;
+  const RunSummary r = sim.run(c);
+  EXPECT_EQ(r.status, RunStatus::stopped);
+  EXPECT_EQ(r.steps, 100);
+  EXPECT_EQ(c.series("pair_dissociated")[0], 1.0);
+  EXPECT_NEAR(c.series("pair_gap_um")[0], 3.0, 1e-9);
+
+  const scene::Scene one = scene::load_scene(std::string(ERYTHRO_SCENES_DIR) + "/capsule_shear.toml",
+                                             {"run.steps=10"});
+  Simulation single(one, scene::derive_lattice(one));
+  Collect d;
+  single.run(d);
+  EXPECT_FALSE(d.has("pair_angle_deg"));
 }
 
 }  // namespace

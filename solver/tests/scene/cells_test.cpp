@@ -9,6 +9,7 @@
 
 #include "common/error.hpp"
 #include "geometry/polygon.hpp"
+#include "geometry/shapes.hpp"
 #include "input_error_matchers.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
@@ -108,6 +109,31 @@ TEST(SceneCells, ShapesArePlacedRotatedAndScaled) {
   EXPECT_GT(geometry::signed_area(b), 0.0);  // counter-clockwise
 }
 
+// cells.prestretch λ: the rest shape is the unplaced shape scaled by 1/λ (a pre-stressed
+// membrane); without it the rest shape is the placed shape itself (CellSetup::rest empty).
+TEST(SceneCells, PrestretchGivesASmallerRestShape) {
+  const LatticeSetup L = derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\n"
+                                               "angle_deg = 30\nmarkers = 32\nprestretch = 1.05"));
+  const CellSetup& c = L.membrane->cells[0];
+  ASSERT_EQ(c.rest.size(), c.shape.size());
+  // Rest circle of radius 4 h / 1.05, centred at the origin, marker 0 on +x.
+  const geometry::Polygon rest = geometry::circle(32, 2.0 / 0.5 / 1.05);
+  EXPECT_EQ(c.rest.x, rest.x);
+  EXPECT_EQ(c.rest.y, rest.y);
+  EXPECT_NEAR(geometry::perimeter(c.shape) / geometry::perimeter(c.rest), 1.05, 1e-12);
+  EXPECT_TRUE(derive(channel + circle_at_centre).membrane->cells[0].rest.x.empty());
+  // The stability estimate takes the largest stiffness dT/dλ up to the largest prestretch
+  // (Skalak's grows with λ; the neo-Hookean's is largest at λ = 1).
+  const std::string skalak = "[membrane]\nlaw = \"skalak\"\n";
+  const LatticeSetup stiff = derive(channel + skalak + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\n"
+                                                            "markers = 32\nprestretch = 1.5"));
+  EXPECT_GT(stiff.membrane->stability.tension_number,
+            derive(channel + skalak + circle_at_centre).membrane->stability.tension_number);
+  EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2\ncenter_um = [10, 5]\n"
+                                                      "markers = 32\nprestretch = 0.9")); }),
+                  "key 'cells[0].prestretch' = 0.9 is out of range: must be in [1, 2]");
+}
+
 // Without `markers`: perimeter / 0.7 h. Circle of radius 4 h: ⌈2π·4 / 0.7⌉ = ⌈35.9⌉ = 36;
 // radius 2 µm with scale 1.5 (6 h): ⌈2π·6 / 0.7⌉ = ⌈53.9⌉ = 54.
 TEST(SceneCells, MarkerCountIsAutomaticWhenAbsent) {
@@ -193,6 +219,11 @@ TEST(SceneCells, RejectsOverlappingCells) {
   // 2 h of clearance is accepted.
   EXPECT_NO_THROW(derive(channel + circle_at_centre +
                          cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [15.5, 5]\nmarkers = 32")));
+  // Rims 0.3 µm = 0.6 h apart: rejected by default, accepted with limits.min_cell_gap = 0.5
+  // (an aggregated pair at its contact gap on a coarse lattice).
+  const std::string close = cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [14.3, 5]\nmarkers = 32");
+  EXPECT_CONTAINS(error_of([&] { derive(channel + circle_at_centre + close); }), "(limits.min_cell_gap)");
+  EXPECT_NO_THROW(derive(channel + "[limits]\nmin_cell_gap = 0.5\n" + circle_at_centre + close));
 }
 
 TEST(SceneCells, RejectsCellsOnAWallOrOutside) {
@@ -212,6 +243,8 @@ TEST(SceneCells, RejectsCoarseCellsAndBadMarkerSpacing) {
   const std::string few = error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 16")); });
   EXPECT_CONTAINS(few, "key 'cells[0].markers' = 16 is too few");
   EXPECT_CONTAINS(few, "use markers >= 25");
+  EXPECT_NO_THROW(derive(channel + "[limits]\nmax_marker_spacing = 1.6\n" +
+                         cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 16")));
   // 128 markers: spacing 0.196 h < 0.3 h.
   EXPECT_CONTAINS(error_of([] { derive(channel + cell("shape = \"circle\"\nradius_um = 2.0\ncenter_um = [10, 5]\nmarkers = 128")); }),
                   "key 'cells[0].markers' = 128 is too many");
@@ -236,6 +269,20 @@ TEST(SceneCells, RejectsAMembraneBeyondTheStabilityLimit) {
   EXPECT_CONTAINS(area, "key 'membrane.area_modulus_Pa'");
   // The same membrane with nothing to carry it is not checked (no cells: nothing allocated).
   EXPECT_NO_THROW(derive(channel + "[membrane]\nshear_modulus_dyn_cm = 1e3\n"));
+}
+
+// limits.membrane_stability = "warn": the set-up runs, the reason is a warning `check` shows.
+TEST(SceneCells, StabilityWarnRunsBeyondTheLimit) {
+  const std::string text = channel + "[limits]\nmembrane_stability = \"warn\"\n[membrane]\nshear_modulus_dyn_cm = 1e3\n" +
+                           circle_at_centre;
+  const LatticeSetup L = derive(text);
+  EXPECT_FALSE(L.membrane->stability.acceptable());
+  EXPECT_CONTAINS(L.membrane->stability.warning, "key 'membrane.shear_modulus_dyn_cm' = 1000 dyn/cm");
+  EXPECT_CONTAINS(L.membrane->stability.warning, "limits.membrane_stability = \"warn\"");
+  const Scene s = parse_scene(text, "c.toml");
+  EXPECT_CONTAINS(format_lattice_report(s, L), "warning: key 'membrane.shear_modulus_dyn_cm'");
+  EXPECT_CONTAINS(error_of([] { derive(channel + "[limits]\nmembrane_stability = \"ignore\"\n"); }),
+                  "key 'limits.membrane_stability' = \"ignore\" is out of range: must be one of \"reject\", \"warn\"");
 }
 
 }  // namespace
@@ -322,6 +369,15 @@ TEST(SceneAggregation, ConvertsTheSurfaceEnergy) {
   EXPECT_NEAR(G.membrane->aggregation->De, a.De, 1e-12 * a.De);
   const LatticeSetup P = derive(pair_channel + "[aggregation]\npair_density_Pa = 2.0\n" + two_cells);
   EXPECT_GT(P.membrane->aggregation->De, 0.0);
+}
+
+// De* = 0: no adhesion (D_e = 0), but the Morse range stays (the pair probe's contact and
+// dissociation of a non-adhering control pair).
+TEST(SceneAggregation, ZeroSurfaceEnergyKeepsTheRange) {
+  const LatticeSetup L = derive(pair_channel + "[aggregation]\nde_star = 0.0\n" + two_cells);
+  ASSERT_TRUE(L.membrane && L.membrane->aggregation);
+  EXPECT_EQ(L.membrane->aggregation->De, 0.0);
+  EXPECT_NEAR(L.membrane->aggregation->cutoff, 1.96 + 5.0 / 0.96, 1e-9);
 }
 
 TEST(SceneAggregation, RejectsBadInput) {

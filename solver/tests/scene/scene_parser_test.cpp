@@ -207,6 +207,8 @@ TEST(SceneParser, OutOfRangeValuesNameKeyValueAndRange) {
   EXPECT_CONTAINS(parse_error(minimal + "[monitor]\ninterval_steps = 0\n"), "must be >= 1 (steps)");
   EXPECT_CONTAINS(parse_error(minimal + "[limits]\nmax_mach = 0\n"), "key 'limits.max_mach' = 0 is out of range: must be > 0");
   EXPECT_CONTAINS(parse_error(minimal + "[limits]\nmin_nodes_across_channel = 0\n"), "must be in [1, 1e+06] (nodes)");
+  EXPECT_CONTAINS(parse_error(minimal + "[limits]\nmembrane_stability = \"off\"\n"),
+                  "key 'limits.membrane_stability' = \"off\" is out of range: must be one of \"reject\", \"warn\"");
   EXPECT_CONTAINS(parse_error(minimal + "[fluid]\ndensity_kg_m3 = nan\n"), "must be > 0 (kg/m³)");
   EXPECT_CONTAINS(parse_error("[domain]\nsize_um = [2, -4]\nspacing_um = 0.25\n[time]\ntau = 1\n[run]\nsteps = 1\n"),
                   "scenes/x.toml:2: key 'domain.size_um' = [2, -4] is out of range: each component must be > 0 (µm)");
@@ -215,6 +217,12 @@ TEST(SceneParser, OutOfRangeValuesNameKeyValueAndRange) {
   EXPECT_CONTAINS(parse_error("[domain]\nsize_um = [2, 4]\nspacing_um = 0.25\n[time]\ntau = 1\n[run]\nsteps = 0\n"),
                   "key 'run.steps' = 0 is out of range: must be >= 1");
   EXPECT_CONTAINS(parse_error(minimal + "[run.steady_state]\ntolerance = 0\n"), "must be > 0");
+  EXPECT_CONTAINS(parse_error(minimal + "[aggregation]\nde_star = -0.5\n"),
+                  "key 'aggregation.de_star' = -0.5 is out of range: must be >= 0");
+  EXPECT_CONTAINS(parse_error(minimal + "[limits]\nmax_marker_spacing = 0\n"),
+                  "key 'limits.max_marker_spacing' = 0 is out of range: must be > 0 (h)");
+  EXPECT_CONTAINS(parse_error(minimal + "[limits]\nmin_cell_gap = -1\n"),
+                  "key 'limits.min_cell_gap' = -1 is out of range: must be >= 0 (h)");
 }
 
 TEST(SceneParser, VelocityOnlyWhereItMeansSomething) {

@@ -1,6 +1,6 @@
-// The transport options of a scene (docs/scenes.md "[transport]", "[[layers]]"): collision,
+// The transport options of a scene (docs/scenes.md "[transport]", "[[transport.layers]]"): collision,
 // cell representation and membrane rule, Hb coupling, uniform velocity of a still medium,
-// zero-order sources and first-order sinks, [[layers]] bands, the monitor's concentration range,
+// zero-order sources and first-order sinks, [[transport.layers]] bands, the monitor's concentration range,
 // dense diagnostics and the steady-state series: parsing, refusals with the key and its range,
 // conversion, and what they do in a run.
 #include <gtest/gtest.h>
@@ -69,13 +69,13 @@ TEST(TransportOptions, BadValuesNameTheKeyAndItsRange) {
                   }),
                   "output.dense_diagnostics_steps");
   EXPECT_CONTAINS(error_of([] { derive(slab_scene("", "decay_per_s = -1\n")); }), "species[0].decay_per_s");
-  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[layers]]\nspecies = \"NO\"\ny_um = [10, 5]\n")); }),
+  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[transport.layers]]\nspecies = \"NO\"\ny_um = [10, 5]\n")); }),
                   "layers[0].y_um");
-  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[layers]]\nspecies = \"O2\"\ny_um = [0, 5]\n")); }),
+  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[transport.layers]]\nspecies = \"O2\"\ny_um = [0, 5]\n")); }),
                   "layers[0].species");
-  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[layers]]\nspecies = \"NO\"\ny_um = [0, 5]\ndecay_per_s = -2\n")); }),
+  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[transport.layers]]\nspecies = \"NO\"\ny_um = [0, 5]\ndecay_per_s = -2\n")); }),
                   "layers[0].decay_per_s");
-  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[layers]]\nspecies = \"NO\"\ny_um = [0, 5]\ndiffusivity_um2_s = 0\n")); }),
+  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[transport.layers]]\nspecies = \"NO\"\ny_um = [0, 5]\ndiffusivity_um2_s = 0\n")); }),
                   "layers[0].diffusivity_um2_s");
 }
 
@@ -96,11 +96,11 @@ TEST(TransportOptions, CombinationsThatCannotWorkAreRefused) {
   EXPECT_CONTAINS(error_of([] { derive(cell_scene("", "heme_weights = \"first_moment\"\n")); }),
                   "cell_representation = \"area_fraction\"");
   EXPECT_CONTAINS(error_of([] {
-                    derive(slab_scene("[[layers]]\nspecies = \"NO\"\ny_um = [0, 20]\n[[layers]]\nspecies = \"NO\"\n"
+                    derive(slab_scene("[[transport.layers]]\nspecies = \"NO\"\ny_um = [0, 20]\n[[transport.layers]]\nspecies = \"NO\"\n"
                                       "y_um = [10, 30]\n"));
                   }),
                   "overlaps");
-  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[layers]]\nspecies = \"NO\"\ny_um = [0, 50]\n")); }),
+  EXPECT_CONTAINS(error_of([] { derive(slab_scene("[[transport.layers]]\nspecies = \"NO\"\ny_um = [0, 50]\n")); }),
                   "outside the domain");
 }
 
@@ -164,8 +164,8 @@ TEST(TransportOptions, ConcentrationRangeStopsTheRun) {
 // an edge half of each (harmonic D), and the flux across the top edge is reported.
 TEST(TransportOptions, LayersSetTheirBandAndMixAtACutNode) {
   const std::string layers =
-      "[[layers]]\nspecies = \"NO\"\ny_um = [0, 10.5]\ndiffusivity_um2_s = 500\ndecay_per_s = 20\n"
-      "[[layers]]\nspecies = \"NO\"\ny_um = [10.5, 20]\nsource_uM_per_s = 10\n";
+      "[[transport.layers]]\nspecies = \"NO\"\ny_um = [0, 10.5]\ndiffusivity_um2_s = 500\ndecay_per_s = 20\n"
+      "[[transport.layers]]\nspecies = \"NO\"\ny_um = [10.5, 20]\nsource_uM_per_s = 10\n";
   const scene::Scene s = scene::parse_scene(slab_scene(layers), "t.toml");
   const scene::LatticeSetup L = scene::derive_lattice(s);
   Simulation sim(s, L);
@@ -184,6 +184,25 @@ TEST(TransportOptions, LayersSetTheirBandAndMixAtACutNode) {
   ASSERT_EQ(sim.run(rec).status, RunStatus::completed);
   ASSERT_TRUE(rec.has("NO_layer_1_top_flux_uM_um_s"));
   EXPECT_GT(rec.series("NO_layer_1_top_flux_uM_um_s").back(), 0.0);  // the source band feeds the rest
+}
+
+// A rectangle (x_um given): a node's fraction is that of its square inside the rectangle.
+TEST(TransportOptions, LayerRectangleMixesByAreaFraction) {
+  const std::string text =
+      "[domain]\nsize_um = [4, 4]\nspacing_um = 1\n[transport]\ncoupling = \"none\"\ntime_step_s = 1e-4\n"
+      "[[species]]\nname = \"c\"\ndiffusivity_um2_s = 1000\n[run]\nsteps = 1\n"
+      "[[transport.layers]]\nspecies = \"c\"\ny_um = [1, 2]\nx_um = [1, 2.5]\nsource_uM_per_s = 10\n";
+  const scene::Scene s = scene::parse_scene(text, "t.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  auto q = sim.transport()->lattice(0).source();
+  const Grid g{4, 4};
+  EXPECT_DOUBLE_EQ(q[g.index(1, 1)], 10 * 1e-4);
+  EXPECT_DOUBLE_EQ(q[g.index(2, 1)], 5 * 1e-4);
+  EXPECT_DOUBLE_EQ(q[g.index(3, 1)], 0.0);
+  EXPECT_DOUBLE_EQ(q[g.index(1, 2)], 0.0);
+  EXPECT_CONTAINS(error_of([&] { derive(text + "[[transport.layers]]\nspecies = \"c\"\ny_um = [0, 4]\n"
+                                                "x_um = [2, 3]\n"); }),
+                  "overlaps");
 }
 
 // Uniform advection of a still medium; [[stop_when]] on the change series ends a steady run;

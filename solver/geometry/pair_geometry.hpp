@@ -1,15 +1,17 @@
 #pragma once
-// Geometry of a doublet (lattice units): the smallest membrane gap, the equivalent
-// ellipse of the two cells together, and the shape of the contact line. Cell 1 is
-// expected next to cell 0 (the caller applies the minimum image on a periodic x axis).
+// Geometry of a pair of cells (a doublet, thesis ch. III; docs/model.md §6), in the
+// polygons' length unit: the smallest membrane gap, the equivalent ellipse of the cells
+// together, and the shape of a contact line. The second cell is expected next to the
+// first (the caller applies the minimum image on periodic axes). Used by the pair probe
+// (simulation/probes/pair_probe.hpp).
 #include <span>
 
 #include "geometry/polygon.hpp"
 
-namespace erythro::vv {
+namespace erythro::geometry {
 
 // Smallest marker-to-marker distance between two polygons.
-double min_marker_gap(const geometry::Polygon& a, const geometry::Polygon& b);
+double min_marker_gap(const Polygon& a, const Polygon& b);
 
 // Equivalent ellipse of the union of the cells (second area moments about the joint
 // centroid, shoelace formulas): axis ratio sqrt(μ_max/μ_min), which is a/b for an
@@ -17,7 +19,7 @@ double min_marker_gap(const geometry::Polygon& a, const geometry::Polygon& b);
 struct EquivalentEllipse {
   double axis_ratio = 1.0, angle_deg = 0.0, cx = 0.0, cy = 0.0, area = 0.0;
 };
-EquivalentEllipse equivalent_ellipse(std::span<const geometry::Polygon> cells);
+EquivalentEllipse equivalent_ellipse(std::span<const Polygon> cells);
 
 // Contact line of cell `a` (thesis §III.2 contact: markers whose aggregation force
 // exceeds 1.2 % of the largest, `in_contact`), in the frame of the line of centres
@@ -30,7 +32,7 @@ struct ContactShape {
   int points = 0;
   double sigmoid = 0.0, bow = 0.0, length = 0.0;
 };
-ContactShape contact_shape(const geometry::Polygon& a, std::span<const char> in_contact, double cx, double cy,
+ContactShape contact_shape(const Polygon& a, std::span<const char> in_contact, double cx, double cy,
                            double ex, double ey);
 
-}  // namespace erythro::vv
+}  // namespace erythro::geometry

@@ -1,4 +1,4 @@
-#include "doublet_geometry.hpp"
+#include "geometry/pair_geometry.hpp"
 
 #include <algorithm>
 #include <array>
@@ -7,20 +7,20 @@
 #include <numbers>
 #include <vector>
 
-namespace erythro::vv {
+namespace erythro::geometry {
 
-double min_marker_gap(const geometry::Polygon& a, const geometry::Polygon& b) {
+double min_marker_gap(const Polygon& a, const Polygon& b) {
   double best = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < a.size(); ++i)
     for (std::size_t j = 0; j < b.size(); ++j) best = std::min(best, std::hypot(a.x[i] - b.x[j], a.y[i] - b.y[j]));
   return best;
 }
 
-EquivalentEllipse equivalent_ellipse(std::span<const geometry::Polygon> cells) {
-  // Area moments of the pair (each polygon counter-clockwise), geometry::area_moments.
+EquivalentEllipse equivalent_ellipse(std::span<const Polygon> cells) {
+  // Area moments of the pair (each polygon counter-clockwise), area_moments.
   double A = 0, Sx = 0, Sy = 0, Sxx = 0, Syy = 0, Sxy = 0;
-  for (const geometry::Polygon& p : cells) {
-    const geometry::AreaMoments m = geometry::area_moments(p);
+  for (const Polygon& p : cells) {
+    const AreaMoments m = area_moments(p);
     A += m.A, Sx += m.Sx, Sy += m.Sy, Sxx += m.Sxx, Syy += m.Syy, Sxy += m.Sxy;
   }
   EquivalentEllipse e;
@@ -35,7 +35,7 @@ EquivalentEllipse equivalent_ellipse(std::span<const geometry::Polygon> cells) {
   return e;
 }
 
-ContactShape contact_shape(const geometry::Polygon& a, std::span<const char> in_contact, double cx, double cy,
+ContactShape contact_shape(const Polygon& a, std::span<const char> in_contact, double cx, double cy,
                            double ex, double ey) {
   ContactShape r;
   std::vector<double> s, n;
@@ -77,4 +77,4 @@ ContactShape contact_shape(const geometry::Polygon& a, std::span<const char> in_
   return r;
 }
 
-}  // namespace erythro::vv
+}  // namespace erythro::geometry

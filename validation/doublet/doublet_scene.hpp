@@ -1,0 +1,27 @@
+#pragma once
+// The scene of one doublet (or single-cell) run: validation/doublet/doublet.toml or
+// single_cell.toml with the overrides that set a DoubletShearConfig's physical inputs,
+// the cells' placement and the run control, exactly as `erythro run FILE --set ...`
+// would read them.
+#include <string>
+#include <vector>
+
+#include "doublet_shear_run.hpp"
+#include "scene/scene.hpp"
+
+namespace erythro::vv {
+
+struct DoubletScene {
+  std::string path;                     // the TOML beside the case (from the source tree)
+  std::vector<std::string> overrides;   // --set overrides
+  scene::Scene scene;                   // parsed and checked
+  double gamma = 0.0;                   // lattice shear rate γ̇Δt (strain per step)
+  long sample_every = 1;                // steps between samples (output.diagnostics_interval_steps)
+};
+
+DoubletScene doublet_scene(const DoubletShearConfig& c);
+
+// The series of the run's angle θ: the pair's line of centres, or the single cell's long axis.
+const char* theta_series(const DoubletShearConfig& c);
+
+}  // namespace erythro::vv
