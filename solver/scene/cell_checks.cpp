@@ -119,13 +119,15 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                     " (× scale " + num(c.scale) + "), an equivalent radius √(A/π) of " + num(cell.equivalent_radius) +
                     " h, below " + num(kMinCellRadius) + " h: enlarge the cell or make domain.spacing_um <= " +
                     num(h_um * cell.equivalent_radius / kMinCellRadius) + " µm");
+    // Marker spacing matters for a membrane in a fluid (leaks, stiffness); a fixed shape in a
+    // still medium is only a polygon (e.g. 800 markers for exact area fractions).
     const double max_spacing = s.limits.max_marker_spacing;
-    if (cell.max_edge > max_spacing)
+    if (mechanics && cell.max_edge > max_spacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too few: markers are up to " +
                     num(cell.max_edge) + " h apart, more than " + num(max_spacing) +
                     " h (limits.max_marker_spacing; fluid leaks between markers): use markers >= " +
                     std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / max_spacing))));
-    if (cell.min_edge < kMinMarkerSpacing)
+    if (mechanics && cell.min_edge < kMinMarkerSpacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too many: markers are as close as " +
                     num(cell.min_edge) + " h, less than " + num(kMinMarkerSpacing) +
                     " h (over-resolved membrane, stiff and noisy): use markers <= " +

@@ -87,6 +87,9 @@ struct MonitorSpec {
   // strain |ℓ/ℓ0 − 1| exceeds these stops the run (a torn or leaking membrane).
   double max_area_change = 0.2;
   double max_edge_strain = 1.0;
+  // Transport: a run whose concentration (any species, any node) leaves [lo, hi] µM stops
+  // (a growing oscillation caught long before it is a NaN); absent: finite values only.
+  std::optional<std::array<double, 2>> concentration_range_uM;
 };
 
 struct OutputSpec {
@@ -96,6 +99,9 @@ struct OutputSpec {
   // Steps between updates of the running extremes of the cells (cells_max_area_change,
   // cells_max_edge_strain); 0: only at the diagnostics samples.
   long extremes_interval_steps = 0;
+  // Also sample the diagnostics at every one of the first this many steps (the start of a
+  // transient); 0: only every diagnostics_interval_steps.
+  long dense_diagnostics_steps = 0;
 };
 
 // [[stop_when]]: ends a run (status "stopped") when a diagnostics series (any name written
@@ -169,6 +175,22 @@ struct TransportSpec {
   std::optional<double> time_step_s;  // Δt_T [s]: required with "none", derived with "subcycle"
   long fluid_steps_per_step = 0;      // "subcycle" only (required there)
   std::string stencil = "d2q5";       // "d2q5" | "d2q9"
+  std::string collision = "bgk";      // "bgk" | "trt" (docs/transport.md eqs T3, T3')
+  double trt_magic = 0.25;            // Λ of "trt"
+  // Uniform advecting velocity [µm/s] of a still-medium scene (coupling "none"; no fluid).
+  std::optional<std::array<double, 2>> velocity_um_s;
+  // How cells enter the transport lattice: "ray_cast" (nodes whose centre is inside, weight 1)
+  // or "area_fraction" (each node's fraction φ of its square inside: D by the series rule, C0
+  // and heme weighted by φ; docs/transport.md eq T9).
+  std::string cell_representation = "ray_cast";
+  // Diffusivity at the membrane with "area_fraction": "series" (node rule T9), "node_tensor"
+  // (T10 on each node, TRT only), "face_tensor" (T10 on each face, correction T11; TRT Λ = 1/4).
+  std::string interface = "series";
+  // D of a node shared by two [[transport.layers]]: "harmonic" (series across them) or "arithmetic".
+  std::string layer_mean = "harmonic";
+  // Concentration handed to the observers (fields): "concentration" (C, eq T4) or
+  // "source_corrected" (Ĉ = C + c q/D, eq T7: the steady finite-volume value in a source region).
+  std::string readout = "concentration";
 };
 
 // [[species]]: one transported species (NO, O2, ...). Side kinds: "periodic",
@@ -182,6 +204,19 @@ struct SpeciesSpec {
   std::optional<double> cell_initial_uM;          // inside cells (default: initial_uM)
   std::array<std::string, 4> side{"", "", "", ""};  // left, right, bottom, top ("" = default)
   std::array<double, 4> side_value{0.0, 0.0, 0.0, 0.0};
+  double source_uM_per_s = 0.0;  // zero-order source everywhere (< 0: consumption), µM/s
+  double decay_per_s = 0.0;      // first-order sink rate everywhere (implicit, eq T4), 1/s
+};
+
+// [[transport.layers]]: a band y_um[0] <= y < y_um[1] (within x_um, if given; like
+// [[fluid.layers]]) where one species has its own diffusivity, first-order sink and zero-order
+// source (absent: the species' values); a node cut by an edge mixes by the fraction of its
+// square inside (transport.layer_mean for D).
+struct TransportLayerSpec {
+  std::string species;
+  std::array<double, 2> y_um{0.0, 0.0};
+  std::optional<std::array<double, 2>> x_um;  // absent: the whole width
+  std::optional<double> diffusivity_um2_s, decay_per_s, source_uM_per_s;
 };
 
 // [hemoglobin]: Hb–O2 kinetics inside every cell, cell-averaged saturation
@@ -195,6 +230,17 @@ struct HemoglobinSpec {
   double hill_n = 2.7;
   double rate_modifier = 1.0;         // M > 0 in the rate's denominator (calibrated; M < 1 is faster)
   std::optional<double> initial_saturation;  // default: Hill at the cells' initial PO2
+  // Update of S and the cell's mean P over a step (docs/transport.md §4.2): "explicit" (P of the
+  // step's start, H2), "cell_implicit" (H3), "cell_implicit_outflow" (H3 with the outflow of
+  // the last step predicted).
+  std::string coupling = "cell_implicit";
+  // Mean P from the concentration C, or "source_corrected" (the offset of eq T7 taken into the
+  // implicit update; cell_implicit_outflow only).
+  std::string mean_pressure = "concentration";
+  // Heme weights with transport.cell_representation = "area_fraction": "area_fraction" (φ),
+  // "first_moment" (φ spread from the centroid of each cut node's inside part, release and
+  // mean P), "first_moment_sampling" (mean P only).
+  std::string heme_weights = "area_fraction";
 };
 
 struct LimitsSpec {
@@ -233,6 +279,7 @@ struct Scene {
   std::optional<AggregationSpec> aggregation;  // [aggregation] (needs cells and a fluid)
   std::optional<TransportSpec> transport;  // [transport]; absent: no transport
   std::vector<SpeciesSpec> species;        // [[species]] (needs [transport])
+  std::vector<TransportLayerSpec> transport_layers;  // [[transport.layers]] (needs [[species]])
   std::optional<HemoglobinSpec> hemoglobin;  // [hemoglobin] (needs cells and an O2 species)
   std::vector<StopWhenSpec> stop_when;       // [[stop_when]]
 };

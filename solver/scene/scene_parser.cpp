@@ -24,9 +24,11 @@
 namespace erythro::scene {
 namespace {
 
-// The scene's arrays of tables: [[cells]], [[species]], [[stop_when]] and [[fluid.layers]].
+// The scene's arrays of tables: [[cells]], [[species]], [[stop_when]], [[fluid.layers]] and
+// [[transport.layers]].
 bool is_array_of_tables(std::string_view name) {
-  return name == "cells" || name == "species" || name == "stop_when" || name == "fluid.layers";
+  return name == "cells" || name == "species" || name == "stop_when" || name == "fluid.layers" ||
+         name == "transport.layers";
 }
 
 using namespace detail;  // the schema: Kind, KeySpec, find_key, range_text, ...
@@ -421,12 +423,20 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.monitor.max_mach = r.number("monitor.max_mach", s.monitor.max_mach);
   s.monitor.max_area_change = r.number("monitor.max_area_change", s.monitor.max_area_change);
   s.monitor.max_edge_strain = r.number("monitor.max_edge_strain", s.monitor.max_edge_strain);
+  if (r.has("monitor.concentration_range_uM")) {
+    const auto range = r.vec2("monitor.concentration_range_uM", {});
+    if (!(range[0] < range[1]))
+      r.fail(*r.find("monitor.concentration_range_uM"), "monitor.concentration_range_uM",
+             "is out of range: it must be [lo, hi] with lo < hi (µM)");
+    s.monitor.concentration_range_uM = range;
+  }
 
   s.output.fields_interval_steps = r.integer("output.fields_interval_steps", s.output.fields_interval_steps);
   s.output.diagnostics_interval_steps =
       r.integer("output.diagnostics_interval_steps", s.output.diagnostics_interval_steps);
   s.output.fields = r.string_list("output.fields", s.output.fields);
   s.output.extremes_interval_steps = r.integer("output.extremes_interval_steps", s.output.extremes_interval_steps);
+  s.output.dense_diagnostics_steps = r.integer("output.dense_diagnostics_steps", s.output.dense_diagnostics_steps);
   read_stop_when(r, s);
 
   s.limits.min_tau_margin = r.number("limits.min_tau_margin", s.limits.min_tau_margin);
@@ -570,6 +580,13 @@ void read_transport(const Reader& r, Scene& s) {
     if (r.has("transport.time_step_s")) t.time_step_s = r.number("transport.time_step_s", 0.0);
     t.fluid_steps_per_step = r.integer("transport.fluid_steps_per_step", t.fluid_steps_per_step);
     t.stencil = r.text("transport.stencil", t.stencil);
+    t.collision = r.text("transport.collision", t.collision);
+    t.trt_magic = r.number("transport.trt_magic", t.trt_magic);
+    if (r.has("transport.velocity_um_s")) t.velocity_um_s = r.vec2("transport.velocity_um_s", {});
+    t.cell_representation = r.text("transport.cell_representation", t.cell_representation);
+    t.interface = r.text("transport.interface", t.interface);
+    t.layer_mean = r.text("transport.layer_mean", t.layer_mean);
+    t.readout = r.text("transport.readout", t.readout);
     s.transport = t;
   }
   if (const toml::node* species = r.find("species")) {
@@ -590,6 +607,8 @@ void read_transport(const Reader& r, Scene& s) {
       if (r.has(p + "cell_diffusivity_um2_s")) sp.cell_diffusivity_um2_s = r.number(p + "cell_diffusivity_um2_s", 0.0);
       sp.initial_uM = r.number(p + "initial_uM", sp.initial_uM);
       if (r.has(p + "cell_initial_uM")) sp.cell_initial_uM = r.number(p + "cell_initial_uM", 0.0);
+      sp.source_uM_per_s = r.number(p + "source_uM_per_s", sp.source_uM_per_s);
+      sp.decay_per_s = r.number(p + "decay_per_s", sp.decay_per_s);
       const char* sides[] = {"left", "right", "bottom", "top"};
       for (int k = 0; k < 4; ++k) {
         sp.side[k] = r.text(p + sides[k], "");
@@ -607,6 +626,33 @@ void read_transport(const Reader& r, Scene& s) {
   }
   if (s.transport && s.species.empty())
     throw InputError(r.where_table("transport") + ": [transport] needs at least one [[species]] entry");
+  if (const toml::node* layers = r.find("transport.layers")) {  // [[transport.layers]] (scene.hpp)
+    const std::size_t count = layers->as_array()->size();
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::string p = "transport.layers[" + std::to_string(i) + "].";
+      const toml::node* entry = layers->as_array()->get(i);
+      for (const char* required : {"species", "y_um"})
+        if (!r.has(p + required))
+          throw InputError(r.where(entry) + ": missing key '" + p + required + "' (required; " +
+                           range_text(*find_key(std::string("transport.layers.") + required)) + ")");
+      TransportLayerSpec l;
+      l.species = r.text(p + "species", "");
+      if (std::none_of(s.species.begin(), s.species.end(), [&](const SpeciesSpec& sp) { return sp.name == l.species; }))
+        r.fail(*r.find(p + "species"), p + "species", "names no [[species]] entry");
+      l.y_um = r.vec2(p + "y_um", {});
+      if (!(l.y_um[0] < l.y_um[1]))
+        r.fail(*r.find(p + "y_um"), p + "y_um", "is out of range: it must be [from, to] with from < to (µm)");
+      if (r.has(p + "x_um")) {
+        l.x_um = r.vec2(p + "x_um", {});
+        if (!((*l.x_um)[0] < (*l.x_um)[1]))
+          r.fail(*r.find(p + "x_um"), p + "x_um", "is out of range: it must be [from, to] with from < to (µm)");
+      }
+      if (r.has(p + "diffusivity_um2_s")) l.diffusivity_um2_s = r.number(p + "diffusivity_um2_s", 0.0);
+      if (r.has(p + "decay_per_s")) l.decay_per_s = r.number(p + "decay_per_s", 0.0);
+      if (r.has(p + "source_uM_per_s")) l.source_uM_per_s = r.number(p + "source_uM_per_s", 0.0);
+      s.transport_layers.push_back(l);
+    }
+  }
   if (r.has("hemoglobin")) {
     if (!s.transport)
       throw InputError(r.where_table("hemoglobin") + ": [hemoglobin] needs [transport] and an O2 [[species]] entry");
@@ -620,6 +666,9 @@ void read_transport(const Reader& r, Scene& s) {
     hb.rate_modifier = r.number("hemoglobin.rate_modifier", hb.rate_modifier);
     if (r.has("hemoglobin.initial_saturation"))
       hb.initial_saturation = r.number("hemoglobin.initial_saturation", 0.0);
+    hb.coupling = r.text("hemoglobin.coupling", hb.coupling);
+    hb.mean_pressure = r.text("hemoglobin.mean_pressure", hb.mean_pressure);
+    hb.heme_weights = r.text("hemoglobin.heme_weights", hb.heme_weights);
     const bool known = std::any_of(s.species.begin(), s.species.end(),
                                    [&](const SpeciesSpec& sp) { return sp.name == hb.species; });
     if (!known)

@@ -65,8 +65,13 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
     reject(s, "transport.coupling = \"" + spec.coupling + "\" is not one of \"none\", \"subcycle\"");
   }
 
-  const transport::TransportUnits units{L.scales.length_m * 1e6, T.time_step_s};
-  const double u_max_um_s = L.has_fluid ? L.expected_max_speed * L.scales.velocity_m_s() * 1e6 : 0.0;
+  // h from the scene's spacing itself (not from the length scale in m): conversions are then
+  // bitwise those of a transport::TransportUnits{spacing_um, Δt_T} built by hand.
+  const transport::TransportUnits units{s.domain.spacing_um, T.time_step_s};
+  T.units = units;
+  const double u_max_um_s = L.has_fluid ? L.expected_max_speed * L.scales.velocity_m_s() * 1e6
+                            : spec.velocity_um_s ? std::hypot((*spec.velocity_um_s)[0], (*spec.velocity_um_s)[1])
+                                                 : 0.0;
   const bool periodic_side[4] = {L.boundaries.left.type == fluid::SideType::periodic,
                                  L.boundaries.right.type == fluid::SideType::periodic,
                                  L.boundaries.bottom.type == fluid::SideType::periodic,
@@ -78,7 +83,7 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
     const double D_cell = sp.cell_diffusivity_um2_s.value_or(sp.diffusivity_um2_s);
     for (const auto& [key, D] : {std::pair{std::string("diffusivity_um2_s"), sp.diffusivity_um2_s},
                                  std::pair{std::string("cell_diffusivity_um2_s"), D_cell}}) {
-      const auto problems = transport::check_transport_units(units, D, 0.0, u_max_um_s);
+      const auto problems = transport::check_transport_units(units, D, 0.0, u_max_um_s);  // k: implicit
       if (!problems.empty()) {
         std::string all;
         for (const auto& p : problems) all += (all.empty() ? "" : "; ") + p;
@@ -90,6 +95,12 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
     out.cell_diffusivity = units.diffusivity(D_cell);
     out.initial = sp.initial_uM;
     out.cell_initial = sp.cell_initial_uM.value_or(sp.initial_uM);
+    out.diffusivity_um2_s = sp.diffusivity_um2_s;
+    out.cell_diffusivity_um2_s = D_cell;
+    out.source_uM_per_s = sp.source_uM_per_s;
+    out.decay_per_s = sp.decay_per_s;
+    out.source = units.source(sp.source_uM_per_s);
+    out.decay = units.rate(sp.decay_per_s);
     out.boundaries.left = make_transport_side(s, i, 0, periodic_side[0], units);
     out.boundaries.right = make_transport_side(s, i, 1, periodic_side[1], units);
     out.boundaries.bottom = make_transport_side(s, i, 2, periodic_side[2], units);
@@ -112,6 +123,7 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
       if (T.species[i].name == hb->species) T.hemoglobin_species = static_cast<int>(i);
     T.initial_saturation = hb->initial_saturation;
   }
+  derive_transport_options(s, L, T);  // transport_options.cpp
   return T;
 }
 

@@ -455,6 +455,7 @@ void append_transport_rows(const Scene& s, const LatticeSetup& L, std::vector<st
     rows.push_back({"hemoglobin", T->species[static_cast<std::size_t>(T->hemoglobin_species)].name,
                     "k_off " + num(T->hemoglobin->k_off) + " 1/s, M = " + num(T->hemoglobin->M) + ", heme " +
                         num(T->hemoglobin->C_heme) + " µM"});
+  append_transport_option_rows(*T, rows);  // transport_options.cpp
 }
 
 std::string format_rows(const Scene& s, const LatticeSetup& L, const std::vector<std::array<std::string, 3>>& rows) {

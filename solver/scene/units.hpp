@@ -18,6 +18,7 @@
 #include "scene/scene.hpp"
 #include "transport/hb_kinetics.hpp"
 #include "transport/transport_lattice.hpp"
+#include "transport/transport_units.hpp"
 
 namespace erythro::scene {
 
@@ -73,6 +74,23 @@ struct SpeciesSetup {
   double diffusivity = 0.0, cell_diffusivity = 0.0;  // D Δt_T / h², outside / inside cells
   double initial = 0.0, cell_initial = 0.0;          // µM
   transport::TransportBoundaries boundaries;
+  // The same diffusivities in µm²/s (the series rule of nodes cut by a membrane or a layer
+  // edge mixes physical values, then converts), and the sources everywhere (lattice units:
+  // q = q_phys Δt_T, k = k_phys Δt_T).
+  double diffusivity_um2_s = 0.0, cell_diffusivity_um2_s = 0.0;
+  double source = 0.0, decay = 0.0;
+  double source_uM_per_s = 0.0, decay_per_s = 0.0;
+};
+
+// [[transport.layers]]: a band (rectangle) of one species' own D, k, q; x, y in lattice units
+// (node (i, j) spans [i, i+1] × [j, j+1]), values physical (mixed by the fractions of a cut
+// node's square, then converted).
+struct TransportLayerSetup {
+  int species = 0;
+  double y_lo = 0.0, y_hi = 0.0;
+  bool full_width = true;  // no x_um: x_lo = 0, x_hi = nx
+  double x_lo = 0.0, x_hi = 0.0;
+  double diffusivity_um2_s = 0.0, decay_per_s = 0.0, source_uM_per_s = 0.0;
 };
 
 // [transport]: the transport's own time step and its coupling to the flow
@@ -89,6 +107,17 @@ struct TransportSetup {
   std::optional<transport::HbParameters> hemoglobin;
   int hemoglobin_species = -1;
   std::optional<double> initial_saturation;
+  // The options of transport_physics.hpp (scene.hpp TransportSpec, HemoglobinSpec; strings
+  // as in the scene, checked), the unit conversion, the uniform velocity of a still medium
+  // (lattice units), the layers and the monitor's concentration range (µM).
+  transport::TransportUnits units;
+  transport::CollisionModel collision;
+  std::optional<std::array<double, 2>> velocity;
+  std::string cell_representation = "ray_cast", interface = "series", layer_mean = "harmonic";
+  std::string readout = "concentration";
+  std::string hb_coupling = "cell_implicit", mean_pressure = "concentration", heme_weights = "area_fraction";
+  std::vector<TransportLayerSetup> layers;
+  std::optional<std::array<double, 2>> concentration_range;
 };
 
 // Everything the simulation needs, in lattice units, plus derived numbers to show.

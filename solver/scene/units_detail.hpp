@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "common/error.hpp"
 #include "scene/scene.hpp"
@@ -40,6 +41,12 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
 // [transport], [[species]], [hemoglobin] → TransportSetup (transport_setup.cpp). L has its
 // grid, scales (the fluid's, or the transport's own without fluid) and boundaries set.
 TransportSetup derive_transport(const Scene& s, const LatticeSetup& L);
+// The options of [transport] and [hemoglobin] beyond species and coupling (collision, cell
+// representation, interface rule, uniform velocity, [[transport.layers]], the monitor's concentration
+// range), checked and converted into T (transport_options.cpp; T.units already set).
+void derive_transport_options(const Scene& s, const LatticeSetup& L, TransportSetup& T);
+// Rows of `erythro check` for those options (collision, cells, coupling, velocity, layers).
+void append_transport_option_rows(const TransportSetup& T, std::vector<std::array<std::string, 3>>& rows);
 
 // [[fluid.layers]] → lattice rectangles and relaxation times (layer_setup.cpp). L has its
 // grid and collision set.

@@ -42,7 +42,8 @@ std::string describe_divergence(long step, const HealthReport& r, const scene::L
 
 std::string describe_transport_divergence(long step, const HealthReport& r, const scene::LatticeSetup& setup) {
   std::ostringstream out;
-  describe_where(out, step, r, setup);
+  if (r.node_x >= 0) describe_where(out, step, r, setup);
+  else out << "diverged at step " << step << ": " << r.quantity << " = " << r.value;  // a cell's saturation
   out << (std::isnan(r.limit) ? " is not finite" : " is outside its limit " + std::to_string(r.limit))
       << ". Lower transport.time_step_s or the diffusivity (docs/transport.md).";
   return out.str();
@@ -127,7 +128,7 @@ void Observation::output_fields(long step, const fluid::Moments* moments) {
   TransportFields f;
   for (std::size_t i = 0; i < transport_->species_count(); ++i) {
     f.names.push_back(transport_->name(i));
-    f.concentration.push_back(transport_->lattice(i).concentration());
+    f.concentration.push_back(transport_->readout(i));  // C, or Ĉ (transport.readout)
   }
   observer_.on_transport_fields(step, f);
 }
@@ -136,7 +137,8 @@ void Observation::observe(long step, bool final_state) {
   const auto& out = scene_.output;
   const auto& steady = scene_.run.steady_state;
   const bool fields = final_state || due(step, out.fields_interval_steps) || step == 0;
-  const bool diagnostics = final_state || due(step, out.diagnostics_interval_steps) || step == 0;
+  const bool diagnostics =
+      final_state || due(step, out.diagnostics_interval_steps) || step == 0 || step <= out.dense_diagnostics_steps;
   const bool monitor = due(step, scene_.monitor.interval_steps);
   const bool steady_check = steady && due(step, steady->check_interval_steps) && step > 0;
   if (!(fields || diagnostics || monitor || steady_check)) return;

@@ -27,6 +27,19 @@ void SeriesRecorder::on_cells(long step, const membrane::ImmersedCells& cells) {
   snapshots_.push_back(std::move(s));
 }
 
+void SeriesRecorder::on_transport_fields(long step, const TransportFields& fields) {
+  if (!keep_transport_) return;
+  transport_step_ = step;
+  for (std::size_t i = 0; i < fields.names.size(); ++i)
+    transport_[fields.names[i]].assign(fields.concentration[i].begin(), fields.concentration[i].end());
+}
+
+const std::vector<double>& SeriesRecorder::transport_field(const std::string& name) const {
+  const auto it = transport_.find(name);
+  if (it == transport_.end()) throw std::out_of_range("SeriesRecorder: no transport field '" + name + "' kept");
+  return it->second;
+}
+
 const std::vector<double>& SeriesRecorder::series(const std::string& name) const {
   const auto it = column_.find(name);
   if (it == column_.end()) throw std::out_of_range("SeriesRecorder: no diagnostics series '" + name + "'");

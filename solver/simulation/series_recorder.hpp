@@ -19,13 +19,16 @@ class SeriesRecorder : public RunObserver {
     std::vector<geometry::Polygon> cells;  // lattice units
   };
 
-  // keep_cells: copy the cells' markers at every field output (output.fields_interval_steps).
-  explicit SeriesRecorder(bool keep_cells = false) : keep_cells_(keep_cells) {}
+  // keep_cells: copy the cells' markers at every field output (output.fields_interval_steps);
+  // keep_transport: copy the species' fields of the latest field output (µM, the values run.h5 gets).
+  explicit SeriesRecorder(bool keep_cells = false, bool keep_transport = false)
+      : keep_cells_(keep_cells), keep_transport_(keep_transport) {}
 
   void on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) override;
   void on_series_declared(std::span<const SeriesInfo> series) override;
   void on_sample(long step, std::span<const double> values) override;
   void on_cells(long step, const membrane::ImmersedCells& cells) override;
+  void on_transport_fields(long step, const TransportFields& fields) override;
   void on_finish(const RunSummary& summary) override { summary_ = summary; }
 
   bool has(const std::string& name) const { return column_.count(name) > 0; }
@@ -34,12 +37,17 @@ class SeriesRecorder : public RunObserver {
   std::size_t samples() const { return values_.empty() ? 0 : values_[0].size(); }
   const std::vector<SeriesInfo>& declared() const { return declared_; }
   const std::vector<CellsSnapshot>& cell_snapshots() const { return snapshots_; }
+  // The species field `name` at the latest field output (keep_transport); throws std::out_of_range.
+  const std::vector<double>& transport_field(const std::string& name) const;
+  long transport_field_step() const { return transport_step_; }
   const RunSummary& summary() const { return summary_; }
   const std::string& scene_text() const { return scene_text_; }
   const scene::LatticeSetup& setup() const { return setup_; }
 
  private:
-  bool keep_cells_ = false;
+  bool keep_cells_ = false, keep_transport_ = false;
+  std::map<std::string, std::vector<double>> transport_;
+  long transport_step_ = -1;
   std::vector<SeriesInfo> declared_;
   std::map<std::string, std::size_t> column_;
   std::vector<std::vector<double>> values_;  // per series

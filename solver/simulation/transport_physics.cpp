@@ -2,77 +2,179 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <stdexcept>
 
-#include "geometry/grid_polygon.hpp"
-#include "interior/index_field.hpp"
+#include "common/error.hpp"
+#include "simulation/transport_layers.hpp"
 #include "transport/hb_kinetics.hpp"
+#include "transport/subpixel_diffusivity.hpp"
 
 namespace erythro::sim {
 
 TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geometry::Domain& domain,
                                    std::span<const geometry::Polygon> cells)
     : setup_(setup), domain_(domain) {
-  lattices_.reserve(setup_.species.size());
-  for (const scene::SpeciesSetup& sp : setup_.species) {
+  if (setup_.hemoglobin) coupling_ = hb_coupling_from(setup_.hb_coupling);
+  const std::size_t S = setup_.species.size();
+  lattices_.reserve(S);
+  base_D_.resize(S);
+  base_source_.resize(S);
+  corrections_.resize(S);
+  for (std::size_t i = 0; i < S; ++i) {
+    const scene::SpeciesSetup& sp = setup_.species[i];
     lattices_.emplace_back(domain_.grid, setup_.stencil, sp.boundaries);
+    lattices_.back().set_collision(setup_.collision);
     lattices_.back().set_uniform_diffusivity(sp.diffusivity);
+    if (setup_.velocity) lattices_.back().set_uniform_velocity((*setup_.velocity)[0], (*setup_.velocity)[1]);
+    apply_species_fields(i);
   }
   place_cells(cells);
-  // Initial state: the medium's concentration outside, the cells' inside.
+  // Initial state: the medium's concentration outside, the cells' inside (by their area
+  // fraction on a cut node: φ C_cell + (1 − φ) C_out).
   const std::size_t N = domain_.grid.size();
-  for (std::size_t i = 0; i < lattices_.size(); ++i) {
-    std::vector<double> c(N, setup_.species[i].initial);
-    for (const auto& nodes : interior_)
-      for (std::size_t n : nodes) c[n] = setup_.species[i].cell_initial;
-    lattices_[i].initialize(c);
+  initial_amount_.assign(S, 0.0);
+  inflow_.assign(S, 0.0);
+  for (std::size_t i = 0; i < S; ++i) {
+    const scene::SpeciesSetup& sp = setup_.species[i];
+    std::vector<double> c(N, sp.initial);
+    for (const CellNodes& cell : nodes_)
+      for (const auto& m : cell.mask) c[m.node] = cell.fractional ? m.phi * sp.cell_initial + (1.0 - m.phi) * sp.initial
+                                                                  : sp.cell_initial;
+    initialize(i, c);
   }
   if (setup_.hemoglobin) {
     // Each cell starts at the given saturation, or in equilibrium with its initial PO2.
     const transport::HbParameters& hb = *setup_.hemoglobin;
-    const double P0 = setup_.species[setup_.hemoglobin_species].cell_initial / hb.alpha;
-    saturation_.assign(interior_.size(), setup_.initial_saturation.value_or(transport::hill_saturation(P0, hb.P50, hb.n)));
+    const double P0 = setup_.species[static_cast<std::size_t>(setup_.hemoglobin_species)].cell_initial / hb.alpha;
+    const double S0 = setup_.initial_saturation.value_or(transport::hill_saturation(P0, hb.P50, hb.n));
+    hb_.assign(nodes_.size(), HbCell(S0));
+    saturation_.assign(nodes_.size(), S0);
+    if (setup_.mean_pressure == "source_corrected")
+      for (std::size_t c = 0; c < nodes_.size(); ++c)
+        hb_[c].set_offset_response(lattices_[static_cast<std::size_t>(setup_.hemoglobin_species)], nodes_[c]);
   }
+}
+
+// The species' own fields: D, k and q from the species' values and its [[transport.layers]]
+// (transport_layers.hpp); fields are allocated only where something is set.
+void TransportPhysics::apply_species_fields(std::size_t i) {
+  const LayerFields f = layer_fields(setup_, static_cast<int>(i), domain_.grid);
+  transport::TransportLattice& lat = lattices_[i];
+  base_D_[i] = f.D;
+  if (!f.D.empty()) std::copy(f.D.begin(), f.D.end(), lat.diffusivity().begin());
+  const bool hb_species = setup_.hemoglobin && static_cast<int>(i) == setup_.hemoglobin_species;
+  if (!f.source.empty() || !f.decay.empty() || hb_species) {
+    auto q = lat.source();
+    base_source_[i] = f.source.empty() ? std::vector<double>(q.size(), 0.0) : f.source;
+    std::copy(base_source_[i].begin(), base_source_[i].end(), q.begin());
+    if (!f.decay.empty()) std::copy(f.decay.begin(), f.decay.end(), lat.decay_rate().begin());
+  }
+}
+
+std::span<double> TransportPhysics::base_source(std::size_t i) {
+  if (base_source_[i].empty()) base_source_[i].assign(domain_.grid.size(), 0.0);
+  return base_source_[i];
+}
+
+void TransportPhysics::initialize(std::size_t i, std::span<const double> C) {
+  if (!base_source_[i].empty()) {  // the base source (possibly set by the caller) reaches the lattice first
+    auto q = lattices_[i].source();
+    std::copy(base_source_[i].begin(), base_source_[i].end(), q.begin());
+  }
+  lattices_[i].initialize(C);
+  initial_amount_[i] = lattices_[i].stored_amount();
+  inflow_[i] = 0.0;
 }
 
 void TransportPhysics::place_cells(std::span<const geometry::Polygon> cells) {
-  interior_.resize(cells.size());  // the lists keep their capacity from one call to the next
+  cells_.assign(cells.begin(), cells.end());
+  nodes_.resize(cells.size());
   for (std::size_t c = 0; c < cells.size(); ++c)
-    // Interior = nodes whose centre lies inside the membrane polygon (even–odd rule).
-    geometry::ray_cast_inside_nodes(cells[c], domain_, interior_[c]);
+    nodes_[c] = cell_nodes(cells[c], domain_, setup_.cell_representation, setup_.heme_weights);
   apply_compartments();
+  if (setup_.mean_pressure == "source_corrected" && hb_.size() == nodes_.size())
+    for (std::size_t c = 0; c < nodes_.size(); ++c)
+      hb_[c].set_offset_response(lattices_[static_cast<std::size_t>(setup_.hemoglobin_species)], nodes_[c]);
 }
 
+// The cells' interior diffusivity (docs/transport.md §1): ray-cast nodes take the cell's D;
+// area-fraction nodes the series rule 1/D = φ/D_in + (1 − φ)/D_out (T9), with the membrane
+// rule on top: the node subpixel tensor (T10 on each node, T8) or the face subpixel tensor
+// imposed by the face-flux correction (T10 on each face, T11).
 void TransportPhysics::apply_compartments() {
+  const bool fractional = setup_.cell_representation == "area_fraction";
+  const Grid& g = domain_.grid;
   for (std::size_t i = 0; i < lattices_.size(); ++i) {
     const scene::SpeciesSetup& sp = setup_.species[i];
-    if (sp.cell_diffusivity == sp.diffusivity) continue;  // one diffusivity: no field needed
-    std::span<double> D = lattices_[i].diffusivity();
-    std::fill(D.begin(), D.end(), sp.diffusivity);
-    for (const auto& nodes : interior_)
-      for (std::size_t n : nodes) D[n] = sp.cell_diffusivity;
+    transport::TransportLattice& lat = lattices_[i];
+    corrections_[i].reset();
+    if (cells_.empty()) continue;
+    if (!fractional && sp.cell_diffusivity == sp.diffusivity && base_D_[i].empty()) continue;  // one D: no field
+    std::span<double> D = lat.diffusivity();
+    if (base_D_[i].empty()) std::fill(D.begin(), D.end(), sp.diffusivity);
+    else std::copy(base_D_[i].begin(), base_D_[i].end(), D.begin());
+    for (const CellNodes& cell : nodes_)
+      for (const auto& m : cell.mask)
+        D[m.node] = fractional ? setup_.units.diffusivity(
+                                     transport::series_diffusivity(m.phi, sp.cell_diffusivity_um2_s, sp.diffusivity_um2_s))
+                               : sp.cell_diffusivity;
+    if (setup_.interface == "node_tensor") {
+      const auto T = lat.diffusivity_tensor();  // isotropic from D first (cells may have moved)
+      std::copy(D.begin(), D.end(), T.xx.begin());
+      std::copy(D.begin(), D.end(), T.yy.begin());
+      std::fill(T.xy.begin(), T.xy.end(), 0.0);
+      for (const auto& cell : cells_)
+        transport::set_node_subpixel_tensor(lat, transport::cut_cells(cell, g.nx, g.ny), sp.cell_diffusivity,
+                                            sp.diffusivity);
+    } else if (setup_.interface == "face_tensor") {
+      std::vector<transport::FaceTarget> targets;
+      for (const auto& cell : cells_) {
+        const auto t = transport::subpixel_face_targets(cell, g.nx, g.ny, sp.cell_diffusivity, sp.diffusivity);
+        targets.insert(targets.end(), t.begin(), t.end());
+      }
+      corrections_[i] = std::make_unique<transport::FaceFluxCorrection>(g, D, targets);
+      try {
+        corrections_[i]->require_stable(lat);  // before running: a clear error, not a diverged run
+      } catch (const std::invalid_argument& e) {
+        throw InputError("species \"" + sp.name + "\", transport.interface = \"face_tensor\": " + e.what());
+      }
+    }
   }
 }
 
-// Hb–O2 release (docs/transport.md §4.2, eqs H1–H3): per cell, the cell-implicit update
-// of the cell-averaged saturation over Δt_T from the mean PO2 over its interior (stable
-// for any Δt_T: the release's own feedback on P is implicit); the O2 released,
-// C_heme (S_old − S_new), is the source of this step on every interior node.
+// Hb–O2 release (docs/transport.md §4.2, eqs H1–H3): per cell, S over Δt_T from the mean PO2
+// over its sample weights (hemoglobin.coupling); the O2 released, C_heme (S_old − S_new) per
+// unit heme weight, is this step's source on the cell's heme nodes, on top of the base source.
 void TransportPhysics::release_oxygen() {
-  transport::TransportLattice& o2 = lattices_[static_cast<std::size_t>(setup_.hemoglobin_species)];
-  std::span<double> q = o2.source();
-  std::fill(q.begin(), q.end(), 0.0);
-  const transport::HbParameters& hb = *setup_.hemoglobin;
-  for (std::size_t c = 0; c < interior_.size(); ++c) {
-    if (interior_[c].empty()) continue;
-    const double P = transport::mean_partial_pressure(interior_[c], o2.concentration(), hb.alpha);
-    const transport::HbStep r = transport::advance_saturation_cell_implicit(hb, saturation_[c], P, setup_.time_step_s);
-    saturation_[c] = r.saturation;
-    transport::distribute_release(interior_[c], r.released, q);
+  const std::size_t o = static_cast<std::size_t>(setup_.hemoglobin_species);
+  transport::TransportLattice& o2 = lattices_[o];
+  std::vector<double> released(nodes_.size(), 0.0);
+  for (std::size_t c = 0; c < nodes_.size(); ++c) {
+    if (nodes_[c].heme.empty()) continue;
+    released[c] = hb_[c].advance(*setup_.hemoglobin, coupling_, o2.concentration(), nodes_[c], setup_.time_step_s);
+    saturation_[c] = hb_[c].saturation();
   }
+  std::span<double> q = o2.source();
+  std::copy(base_source_[o].begin(), base_source_[o].end(), q.begin());
+  for (std::size_t c = 0; c < nodes_.size(); ++c)
+    for (const auto& w : nodes_[c].heme) q[w.node] += w.phi * released[c];  // w = 1: transport::distribute_release
 }
 
 void TransportPhysics::step(std::span<const double> fluid_ux, std::span<const double> fluid_uy) {
+  // face-flux corrections from this step's Ĉ, before the sources are rewritten (eq T11)
+  for (std::size_t i = 0; i < lattices_.size(); ++i)
+    if (corrections_[i]) corrections_[i]->evaluate(lattices_[i]);
   if (setup_.hemoglobin) release_oxygen();
+  for (std::size_t i = 0; i < lattices_.size(); ++i) {
+    if (!corrections_[i]) continue;
+    std::span<double> q = lattices_[i].source();
+    if (!(setup_.hemoglobin && static_cast<int>(i) == setup_.hemoglobin_species)) {
+      if (base_source_[i].empty()) std::fill(q.begin(), q.end(), 0.0);
+      else std::copy(base_source_[i].begin(), base_source_[i].end(), q.begin());
+    }
+    corrections_[i]->add_to(q);
+  }
   const bool flow = !fluid_ux.empty();
   if (flow) {
     // u_T = u_F Δt_T/Δt_F (both in their own lattice units, same h).
@@ -83,10 +185,28 @@ void TransportPhysics::step(std::span<const double> fluid_ux, std::span<const do
       uy_[n] = fluid_uy[n] * setup_.velocity_scale;
     }
   }
-  for (transport::TransportLattice& lat : lattices_) {
+  for (std::size_t i = 0; i < lattices_.size(); ++i) {
+    transport::TransportLattice& lat = lattices_[i];
     if (flow) lat.set_velocity(ux_, uy_);
     lat.step();
+    inflow_[i] += lat.mass_balance().boundary_in;
   }
+}
+
+std::span<const double> TransportPhysics::readout(std::size_t i) const {
+  const transport::TransportLattice& lat = lattices_[i];
+  if (setup_.readout != "source_corrected") return lat.concentration();
+  readout_.resize(lat.grid().size());
+  for (std::size_t n = 0; n < readout_.size(); ++n) readout_[n] = lat.source_corrected_concentration(n);
+  return readout_;
+}
+
+double TransportPhysics::released(std::size_t c) const {
+  return setup_.hemoglobin->C_heme * (hb_[c].initial_saturation() - hb_[c].saturation()) * nodes_[c].heme_sum;
+}
+
+double TransportPhysics::face_correction_gain(std::size_t i) const {
+  return corrections_[i] ? corrections_[i]->lagged_gain(lattices_[i]) : 0.0;
 }
 
 double TransportPhysics::max_relative_residual() const {
@@ -96,13 +216,32 @@ double TransportPhysics::max_relative_residual() const {
 }
 
 HealthReport TransportPhysics::check_health() const {
+  const Grid& g = domain_.grid;
   for (std::size_t i = 0; i < lattices_.size(); ++i) {
     HealthReport h = lattices_[i].check_health();
+    if (h.healthy && setup_.concentration_range) {
+      const auto [lo, hi] = *setup_.concentration_range;
+      const auto C = lattices_[i].concentration();
+      for (int y = 0; y < g.ny && h.healthy; ++y)
+        for (int x = 0; x < g.nx; ++x) {
+          const double c = C[g.index(x, y)];
+          if (!(c >= lo && c <= hi)) {
+            h = {false, "concentration", x, y, c, c < lo ? lo : hi, 0.0};
+            break;
+          }
+        }
+    }
     if (!h.healthy) {
       h.quantity = setup_.species[i].name + " " + h.quantity;
       return h;
     }
   }
+  for (std::size_t c = 0; c < saturation_.size(); ++c)
+    if (!(saturation_[c] >= 0.0 && saturation_[c] <= 1.0)) {
+      const double limit = std::isfinite(saturation_[c]) ? (saturation_[c] < 0.0 ? 0.0 : 1.0)
+                                                          : std::numeric_limits<double>::quiet_NaN();
+      return {false, "cell " + std::to_string(c) + " saturation", -1, -1, saturation_[c], limit, 0.0};
+    }
   return {};
 }
 

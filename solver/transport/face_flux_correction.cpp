@@ -38,14 +38,29 @@ FaceFluxCorrection::FaceFluxCorrection(const Grid& grid, std::span<const double>
     faces_.push_back(f);
   }
   node_correction_.assign(nodes_.size(), 0.0);
+  std::vector<std::size_t> read_slot(N, N);
+  auto read = [&](std::size_t n) {
+    if (read_slot[n] == N) {
+      read_slot[n] = read_nodes_.size();
+      read_nodes_.push_back(n);
+    }
+    return read_slot[n];
+  };
+  for (const auto& f : faces_)
+    face_refs_.push_back({read(f.a), read(f.b), read(f.a_plus), read(f.a_minus), read(f.b_plus), read(f.b_minus)});
+  read_C_.assign(read_nodes_.size(), 0.0);
 }
 
 void FaceFluxCorrection::evaluate(const TransportLattice& lattice) {
   std::fill(node_correction_.begin(), node_correction_.end(), 0.0);
-  for (const auto& f : faces_) {
-    auto C = [&](std::size_t n) { return lattice.source_corrected_concentration(n); };  // Ĉ (T7)
-    double dF = f.dK * (C(f.a) - C(f.b));
-    if (f.X != 0.0) dF -= f.X * 0.25 * (C(f.a_plus) - C(f.a_minus) + C(f.b_plus) - C(f.b_minus));  // eq T11
+  for (std::size_t k = 0; k < read_nodes_.size(); ++k)
+    read_C_[k] = lattice.source_corrected_concentration(read_nodes_[k]);  // Ĉ (T7), once per node
+  for (std::size_t i = 0; i < faces_.size(); ++i) {
+    const Face& f = faces_[i];
+    const FaceRefs& r = face_refs_[i];
+    double dF = f.dK * (read_C_[r.a] - read_C_[r.b]);
+    if (f.X != 0.0)
+      dF -= f.X * 0.25 * (read_C_[r.a_plus] - read_C_[r.a_minus] + read_C_[r.b_plus] - read_C_[r.b_minus]);  // eq T11
     node_correction_[slot_[f.a]] -= dF;
     node_correction_[slot_[f.b]] += dF;
   }

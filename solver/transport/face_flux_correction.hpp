@@ -63,7 +63,15 @@ class FaceFluxCorrection {
     std::size_t a, b, a_plus, a_minus, b_plus, b_minus;
     double dK, X;
   };
+  // The nodes whose Ĉ a face reads, each once (evaluate computes Ĉ there once per step), and per
+  // face the positions of a, b, a±, b± in that list.
+  struct FaceRefs {
+    std::size_t a, b, a_plus, a_minus, b_plus, b_minus;
+  };
   std::vector<Face> faces_;
+  std::vector<FaceRefs> face_refs_;
+  std::vector<std::size_t> read_nodes_;
+  std::vector<double> read_C_;
   std::vector<std::size_t> nodes_;       // nodes touched by a face (each once)
   std::vector<double> node_correction_;  // per entry of nodes_
   std::vector<std::size_t> slot_;        // node → entry of nodes_ (grid-sized; N = none)

@@ -1,8 +1,10 @@
 // Exploration driver for the deoxygenation calibration (not a V&V case; docs/validation-
-// deoxygenation.md, "Findings"): one 2D run at (h, Δt, M, representation), its misfit to
-// the planar reference, and (optionally) its curve sampled at the reference times, for
-// off-line analysis of the M-drift between lattice levels (fixed-M curve changes projected
-// on ∂S/∂ln M).
+// deoxygenation.md, "Findings"): one 2D run at (h, Δt, M, representation) — the scene
+// validation/deoxygenation/deoxygenation.toml with overrides, run as `erythro run` runs it
+// (deoxy_run.hpp; run.h5 kept in <results>/runs/deoxy_probe/) — its misfit to the planar
+// reference, and (optionally) its curve sampled at the reference times, for off-line analysis
+// of the M-drift between lattice levels (fixed-M curve changes projected on ∂S/∂ln M). Run it
+// with ERYTHRO_SOURCE_DIR set to the source tree (and ERYTHRO_RESULTS_DIR where to write).
 //   deoxy_probe h_um dt_at_0p2_us M {ray|frac|moment|msample} [out.csv|-] [key=value ...]
 // keys (controlled probes; defaults are the case's Setup):
 //   din=D, dout=D   O2 diffusivity inside / outside the cell (µm²/s): din=2800 removes the contrast
@@ -11,7 +13,6 @@
 //   trt=Λ           TRT collision with magic parameter Λ (default BGK)
 //   shift=dx,dy     cell centre offset from the box centre, in units of h
 //   corr=1          mean P from the source-offset-corrected C (transport eq T7)
-//   linkd=1         node D by link-wise least squares (deoxy_mask.hpp)
 //   interface=series|node_tensor|face_tensor   diffusivity at the membrane (deoxy::InterfaceRule;
 //                   transport eqs T9–T11; the tensor rules need trt=)
 //   markers=N       polygon resolution of the cell
@@ -39,7 +40,6 @@ bool apply(deoxy::Setup& s, const std::string& kv) {
   else if (k == "trt") s.collision = {transport::Collision::trt, std::atof(v.c_str())};
   else if (k == "shift") std::sscanf(v.c_str(), "%lf,%lf", &s.offset_x_h, &s.offset_y_h);
   else if (k == "corr") s.source_corrected_P = v != "0";
-  else if (k == "linkd") s.link_diffusivity = v != "0";
   else if (k == "interface")
     s.interface = v == "node_tensor"   ? deoxy::InterfaceRule::node_tensor
                   : v == "face_tensor" ? deoxy::InterfaceRule::face_tensor
@@ -82,15 +82,14 @@ int main(int argc, char** argv) {
   const auto ref = deoxy::read_reference(
       std::string(ERYTHRO_DEOXY_REFERENCE_DIR) + (cell_3d ? "/reference_S.csv" : "/reference_S_planar.csv"), 1);
   s.t_end_s = ref.t.back();
-  const auto r = deoxy::run(s);
+  const auto r = deoxy::run(s, "deoxy_probe", "probe", true);
   const auto m = vv::curve_misfit(r.S, ref);
   std::printf("h %.4f dt_us %.4f M %.5f rep %s coll %s din %g dout %g box %g nodes %d heme_nodes %ld area %.5f polygon %.5f "
-              "steps %ld max %.6f rms %.6f balance %.2e gain %.3f wall %.1f\n",
+              "steps %ld max %.6f rms %.6f balance %.2e wall %.1f\n",
               s.h_um, s.dt_s * 1e6, s.hb.M, argv[4],
               s.collision.kind == transport::Collision::trt ? ("trt" + std::to_string(s.collision.magic)).c_str() : "bgk",
               s.D_in, s.D_out, s.box_half_um, r.nodes, r.interior_nodes,
-              r.interior_area_um2, r.polygon_area_um2, r.steps, m.max_abs, m.rms, r.balance_residual,
-              r.face_correction_gain, r.wall_s);
+              r.interior_area_um2, r.polygon_area_um2, r.steps, m.max_abs, m.rms, r.balance_residual, r.wall_s);
   if (argc > 5 && std::strcmp(argv[5], "-") != 0) {
     FILE* f = std::fopen(argv[5], "w");
     if (!f) return 1;

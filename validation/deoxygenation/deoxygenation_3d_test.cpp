@@ -22,6 +22,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <future>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,10 +66,6 @@ constexpr double kFdLnBeta = 0.01;
 constexpr double kFineTolerance = 1e-3;
 
 
-struct Bracket {
-  double lo, hi;
-};
-
 struct Level {
   double h = 0.0, dt = 0.0, wall_s = 0.0;
   deoxy::Fit planar;          // stage 1: x = ln M against the planar section (RMS)
@@ -81,35 +80,30 @@ bool at_minimum(const deoxy::Fit& f) {
   return !f.r.at_bound[0] && std::min(f.norm_minus, f.norm_plus) >= f.r.objective - 1e-6;
 }
 
-Level calibrate_level(double h, const vv::Curve& planar, const vv::Curve& cell, Bracket lnM, double tol_M,
-                      Bracket lnB, double tol_beta) {
+const deoxy::PointOf kPointM = [](double x) { return std::make_pair(std::exp(x), 1.0); };
+
+// Stage 2 at the stage-1 M of the level, and the calibrated run; `closure` fits x = ln β.
+Level closure_level(const deoxy::StageOneLevel& stage, deoxy::Runner& cell_run, const vv::Curve& cell,
+                    const std::function<deoxy::Fit(const deoxy::PointOf&)>& closure) {
   vv::Stopwatch clock;
   Level L;
-  L.h = h;
-  L.dt = deoxy::diffusive_dt(h, deoxy::kDtAt0p2);
-  // the planar reference runs longer (2.4 s against 1.8 s)
-  deoxy::Runner planar_run(deoxy::case_setup(h, planar.t.back())), cell_run(deoxy::case_setup(h, cell.t.back()));
-  L.planar = deoxy::fit_log(planar_run, planar, "lnM", [](double x) { return std::make_pair(std::exp(x), 1.0); },
-                            lnM.lo, lnM.hi, tol_M, vv::MisfitNorm::rms, kFdLnM);
+  L.h = stage.h;
+  L.dt = stage.dt;
+  L.planar = stage.planar;
   const double M = L.planar.value;
-  L.closure = deoxy::fit_log(cell_run, cell, "lnBeta", [M](double x) { return std::make_pair(M, std::exp(x)); },
-                             lnB.lo, lnB.hi, tol_beta, vv::MisfitNorm::max_abs, kFdLnBeta);
+  L.closure = closure([M](double x) { return std::make_pair(M, std::exp(x)); });
   L.calibrated = cell_run.at(M, L.closure.value);
   L.cell_misfit = vv::curve_misfit(L.calibrated.S, cell);
-  L.runs = planar_run.runs + cell_run.runs;
+  L.runs = cell_run.runs();
   L.wall_s = clock.seconds();
   std::printf("h = %.2f um: M = %.4f (planar rms %.5f), beta = %.4f (D_eff %.0f um^2/s, bound %d): 3D max %.5f rms "
               "%.5f; %d runs, %.0f s\n",
-              h, M, L.planar.r.misfit.rms, L.closure.value, L.closure.value * cell_run.base.D_out,
+              L.h, M, L.planar.r.misfit.rms, L.closure.value, L.closure.value * cell_run.base().D_out,
               static_cast<int>(L.closure.r.at_bound[0]), L.cell_misfit.max_abs, L.cell_misfit.rms, L.runs, L.wall_s);
   std::fflush(stdout);
   return L;
 }
 
-Bracket warm(const deoxy::Fit& previous) {
-  const double x = previous.r.params[0];
-  return {x - kWarmHalfBracket, x + kWarmHalfBracket};
-}
 
 // The joint fit of (ln M, ln β) on the max norm (Nelder–Mead from the two-stage point, steps of
 // 10 % of the box): how far does freeing M lower the closure's floor?
@@ -133,10 +127,12 @@ double parameter_correlation(const vv::CalibrationResult& f) {
   return -a01 / std::sqrt(a00 * a11);
 }
 
-JointFit joint_fit(double h, const vv::Curve& cell, const Level& start) {
+JointFit joint_fit(deoxy::Runner& run, const vv::Curve& cell, const Level& start) {
   vv::Stopwatch clock;
-  deoxy::Runner run(deoxy::case_setup(h, cell.t.back()));
-  const vv::CurveModel model = [&](const std::vector<double>& p) { return run.at(std::exp(p[0]), std::exp(p[1])).S; };
+  const int runs0 = run.runs();
+  const vv::CurveModel model = [&](const std::vector<double>& p) {
+    return run.at(std::exp(p[0]), std::exp(p[1]), 0).S;
+  };
   const std::vector<vv::ParameterBound> box{{"lnM", kLnMLower, kLnMUpper, start.planar.r.params[0]},
                                             {"lnBeta", kLnBetaLower, kLnBetaUpper, start.closure.r.params[0]}};
   vv::CalibrationOptions opt;
@@ -145,14 +141,19 @@ JointFit joint_fit(double h, const vv::Curve& cell, const Level& start) {
   // relative to each range: ± 0.01 in ln β and ± 0.04 in ln M (only the correlation uses it)
   opt.fd_relative_step = kFdLnBeta / (kLnBetaUpper - kLnBetaLower);
   opt.max_evaluations = 150;
+  opt.prefetch = [&run](const std::vector<std::vector<double>>& ps) {
+    std::vector<std::pair<double, double>> points;
+    for (const auto& p : ps) points.emplace_back(std::exp(p[0]), std::exp(p[1]));
+    run.prefetch(points, 0);
+  };
   JointFit j;
   j.r = vv::calibrate(model, cell, box, opt);
   j.correlation = parameter_correlation(j.r);
-  j.runs = run.runs;
+  j.runs = run.runs() - runs0;
   j.wall_s = clock.seconds();
   std::printf("h = %.2f um joint (M, beta): M = %.4f beta = %.4f, max %.5f rms %.5f, correlation %.3f, %d runs, %.0f s\n",
-              h, std::exp(j.r.params[0]), std::exp(j.r.params[1]), j.r.misfit.max_abs, j.r.misfit.rms, j.correlation,
-              j.runs, j.wall_s);
+              start.h, std::exp(j.r.params[0]), std::exp(j.r.params[1]), j.r.misfit.max_abs, j.r.misfit.rms,
+              j.correlation, j.runs, j.wall_s);
   return j;
 }
 
@@ -171,12 +172,14 @@ void describe(io::ResultRecord& rec, double t_end) {
       "reference_S_planar.csv (--planar, stage 1), each converged to < 2e-4 in S. Thesis ch. V, Figs V-2, V-3.");
   rec.set_parameter("geometry", "2D: square box of half-width 6 um held at 20 uM; the Evans-Fung section (a = 3.91 "
                                 "um) as an area-fraction mask");
-  rec.set_parameter("stage_1", "Brent on ln M against the planar section, RMS (the bracket, norm and sensitivity step of "
-                               "validation.deoxygenation): M in [0.05, 4] on the coarsest level (tolerance 0.01 in ln "
-                               "M; CI 0.02), M(previous) * e^(+-0.25) after it (tolerance 2e-3; 1e-3 where the change "
-                               "is asserted)");
-  rec.set_parameter("stage_2", "at that M, Brent on ln beta against the 3D cell, max |dS| (the issue's norm): beta "
-                               "in [1, 3] on the coarsest level, beta(previous) * e^(+-0.25) after it; D_out,eff = "
+  rec.set_parameter("stage_1", "the fits of validation.deoxygenation (shared, deoxy_case.hpp): ln M against the planar "
+                               "section, RMS; Brent on M in [0.05, 4] at 0.4 um (tolerance 0.01 in ln M; CI 0.02) and 0.3 "
+                               "um (1e-3), continuation from the previous level (Gauss-Newton, vv::refine_1d) within "
+                               "M(previous) * e^(+-0.25) at 0.2 and 0.15 um (1e-3)");
+  rec.set_parameter("stage_2", "at that M, ln beta against the 3D cell, max |dS| (the issue's norm): Brent on beta in "
+                               "[1, 3] at the coarsest level (tolerance 2e-3; CI 5e-3), continuation from the previous "
+                               "level within beta(previous) * e^(+-0.25) after it (the exact minimum of the linearised "
+                               "max norm; tolerance 2e-3 at 0.3 um, 1e-3 where the change is asserted); D_out,eff = "
                                "beta * 2800 um^2/s in the medium and in the membrane's face tensor");
   rec.set_parameter("lattice", "TRT Lambda = 1/4, outflow coupling, mean P by eq T7, face subpixel tensor at the "
                                "membrane, dt = 2.5 us (h/0.2 um)^2 (the set-up of validation.deoxygenation)");
@@ -203,12 +206,13 @@ void add_level(io::ResultRecord& rec, const Level& L) {
                {"balance_residual", L.calibrated.balance_residual},
                {"run_wall_time_s", L.calibrated.wall_s},
                {"wall_time_s", L.wall_s},
-               {"error", L.cell_misfit.max_abs}});
+               {"error", L.cell_misfit.max_abs}},
+              L.calibrated.scene_text);
 }
 
 void add_level_metrics(io::ResultRecord& rec, const Level& L) {
   const std::string tag = fmt("h%.2f", L.h);
-  rec.add_metric({"fits_are_minima_" + tag, "1 if both Brent fits end off their brackets' edges at a minimum", "",
+  rec.add_metric({"fits_are_minima_" + tag, "1 if both fits end off their brackets' edges at a minimum", "",
                   at_minimum(L.planar) && at_minimum(L.closure) ? 1.0 : 0.0, 1.0, 0.0, io::Comparison::at_least,
                   "an edge is not a minimum of the misfit (on a warm level it means a change > 22 %)"});
   rec.add_metric({"o2_balance_" + tag, "|released - (change in lattice O2 - boundary inflow)| / released", "",
@@ -229,7 +233,18 @@ io::Series closure_series(const vv::Curve& cell, const Level& L) {
 TEST(Deoxygenation3d, CiSubset) {
   vv::Stopwatch clock;
   const auto planar = deoxy::planar_reference(), cell = deoxy::cell_reference();
-  const Level L = calibrate_level(0.4, planar, cell, {kLnMLower, kLnMUpper}, 0.02, {kLnBetaLower, kLnBetaUpper}, 5e-3);
+  // the planar reference runs longer (2.4 s against 1.8 s)
+  deoxy::Runner planar_run(deoxy::case_setup(0.4, planar.t.back()), "validation.deoxygenation_3d_ci"),
+      cell_run(deoxy::case_setup(0.4, cell.t.back()), "validation.deoxygenation_3d_ci");
+  deoxy::StageOneLevel stage;
+  stage.h = 0.4;
+  stage.dt = deoxy::diffusive_dt(0.4, deoxy::kDtAt0p2);
+  stage.planar = deoxy::fit_log(planar_run, planar, "lnM", kPointM, kLnMLower, kLnMUpper, 0.02, vv::MisfitNorm::rms,
+                                kFdLnM);
+  const Level L = closure_level(stage, cell_run, cell, [&](const deoxy::PointOf& point) {
+    return deoxy::fit_log(cell_run, cell, "lnBeta", point, kLnBetaLower, kLnBetaUpper, 5e-3, vv::MisfitNorm::max_abs,
+                          kFdLnBeta);
+  });
   io::ResultRecord rec("validation.deoxygenation_3d_ci", "deoxygenation");
   describe(rec, cell.t.back());
   rec.set_parameter("levels", "h = 0.4 um only (CI subset of validation.deoxygenation_3d), tolerances 0.02 (ln M), "
@@ -246,26 +261,57 @@ TEST(Deoxygenation3d, CiSubset) {
   for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
 }
 
-// The levels of validation.deoxygenation (Δt = 2.5 µs (h/0.2 µm)², τ_out = 1.025 at β = 1).
-const std::vector<double> kLevels{0.4, 0.3, 0.2, 0.15};
-
 TEST(Deoxygenation3d, FullStudy) {
   vv::Stopwatch clock;
   const auto planar = deoxy::planar_reference(), cell = deoxy::cell_reference();
-  std::vector<Level> levels;
-  for (std::size_t i = 0; i < kLevels.size(); ++i) {
-    const bool first = i == 0, asserted = i + 2 >= kLevels.size();
-    const Bracket lnM = first ? Bracket{kLnMLower, kLnMUpper} : warm(levels.back().planar);
-    const Bracket lnB = first ? Bracket{kLnBetaLower, kLnBetaUpper} : warm(levels.back().closure);
-    levels.push_back(calibrate_level(kLevels[i], planar, cell, lnM, first ? 0.01 : asserted ? kFineTolerance : 2e-3,
-                                     lnB, asserted ? kFineTolerance : 2e-3));
+  // Stage 1 is validation.deoxygenation's (its fixture, deoxy_case.hpp: the same fits, shared
+  // through <results>/deoxygenation_stage1.tsv); computed here only when that file is absent.
+  double stage1_wall = 0.0;
+  auto stage = deoxy::read_stage1(&stage1_wall);
+  const bool shared = !stage.empty();
+  if (!shared) {
+    auto runners = deoxy::stage1_runners(planar, "validation.deoxygenation_3d");
+    stage = deoxy::stage1_fits(runners, planar);
+    stage1_wall = clock.seconds();
   }
-  const JointFit joint = joint_fit(levels.front().h, cell, levels.front());
+  ASSERT_EQ(stage.size(), deoxy::kLevels.size()) << deoxy::stage1_path();
+  // Stage 2, level by level (each warm from the previous level's β); the joint fit at the
+  // coarsest level runs beside the finer levels (lowest priority).
+  std::vector<std::unique_ptr<deoxy::Runner>> runs;
+  for (std::size_t i = 0; i < stage.size(); ++i)
+    runs.push_back(std::make_unique<deoxy::Runner>(deoxy::case_setup(stage[i].h, cell.t.back()),
+                                                   "validation.deoxygenation_3d", deoxy::level_priority(i)));
+  std::vector<Level> levels;
+  levels.push_back(closure_level(stage[0], *runs[0], cell, [&](const deoxy::PointOf& point) {
+    return deoxy::fit_log(*runs[0], cell, "lnBeta", point, kLnBetaLower, kLnBetaUpper, 2e-3, vv::MisfitNorm::max_abs,
+                          kFdLnBeta);
+  }));
+  auto joint_future = std::async(std::launch::async, [&, start = levels.front()] { return joint_fit(*runs[0], cell, start); });
+  for (std::size_t i = 1; i < stage.size(); ++i) {
+    const bool asserted = i + 2 >= stage.size();
+    const double x0 = levels.back().closure.r.params[0];
+    // on an iterate (almost always the fit): the next level's pair starts, below this level's runs
+    const auto on_iterate = [&, i](double x) {
+      if (i + 1 >= stage.size()) return;
+      const auto [a, b] = deoxy::warm_pair(x, kFdLnBeta);
+      const double M_next = stage[i + 1].planar.value;
+      runs[i + 1]->prefetch({{M_next, std::exp(a)}, {M_next, std::exp(b)}}, deoxy::level_priority(i) - 5);
+    };
+    levels.push_back(closure_level(stage[i], *runs[i], cell, [&](const deoxy::PointOf& point) {
+      return deoxy::fit_log_warm(*runs[i], cell, "lnBeta", point, x0, asserted ? kFineTolerance : 2e-3,
+                                 vv::MisfitNorm::max_abs, kFdLnBeta, -1, on_iterate);
+    }));
+  }
+  const JointFit joint = joint_future.get();
   const Level &L2 = levels[levels.size() - 2], &L1 = levels.back();
 
   io::ResultRecord rec("validation.deoxygenation_3d", "deoxygenation");
   describe(rec, cell.t.back());
   rec.set_parameter("levels", "h = 0.4, 0.3, 0.2, 0.15 um (dt = 10, 5.625, 2.5, 1.406 us)");
+  rec.set_parameter("stage_1_source", shared ? "validation.deoxygenation (" + deoxy::stage1_path() + ")"
+                                             : std::string("computed here (no stage-1 file)"));
+  rec.set_parameter("stage_1_wall_time_s", stage1_wall);
+  rec.set_parameter("workers", static_cast<double>(deoxy::Slots::instance().workers()));
   rec.set_parameter("joint_fit_h0.40", "Nelder-Mead on (ln M, ln beta), max norm, from the two-stage point: M = " +
                                            fmt("%.4f", std::exp(joint.r.params[0])) +
                                            ", beta = " + fmt("%.4f", std::exp(joint.r.params[1])) +

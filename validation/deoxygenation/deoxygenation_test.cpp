@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <map>
 #include <utility>
 #include <string>
@@ -44,10 +45,11 @@ using deoxy::Fit;
 using deoxy::fmt;
 using deoxy::Runner;
 
+const deoxy::PointOf kPointM = [](double x) { return std::make_pair(std::exp(x), 1.0); };
+
 // Brent on x = ln M ∈ [lo, hi] (β = 1) to |Δ ln M| ≤ tol_lnM (≈ relative tolerance in M), RMS.
-Fit fit_lnM(Runner& run, const vv::Curve& ref, double lo, double hi, double tol_lnM) {
-  return deoxy::fit_log(run, ref, "lnM", [](double x) { return std::make_pair(std::exp(x), 1.0); }, lo, hi, tol_lnM,
-                        vv::MisfitNorm::rms, deoxy::kFdLnM);
+Fit fit_lnM(Runner& run, const vv::Curve& ref, double lo, double hi, double tol_lnM, int priority = -1) {
+  return deoxy::fit_log(run, ref, "lnM", kPointM, lo, hi, tol_lnM, vv::MisfitNorm::rms, deoxy::kFdLnM, priority);
 }
 
 struct Level {
@@ -62,35 +64,11 @@ struct Level {
   int runs = 0;
 };
 
-// One level: planar fit on [lo, hi] (ln M), optionally the 3D fit on the full bracket and M = 1.
-Level calibrate_level(double h, const vv::Curve& ref, const vv::Curve& cell, double lo, double hi, double tol_lnM,
-                      bool fit_cell, bool run_plain) {
-  vv::Stopwatch clock;
-  Level L;
-  L.h = h;
-  L.dt = deoxy::diffusive_dt(h, deoxy::kDtAt0p2);
-  Runner run(deoxy::case_setup(h, ref.t.back()));
-  L.planar = fit_lnM(run, ref, lo, hi, tol_lnM);
+// The rest of a level once its planar fit is known: the calibrated run and its 3D misfit.
+void complete_level(Level& L, Runner& run, const vv::Curve& cell) {
   L.calibrated = run.at(L.planar.value);
   L.cell_at_planar_fit = vv::curve_misfit(L.calibrated.S, cell);
-  std::printf("h = %.2f um planar: M = %.4f (bound %d, %d evals + %d), max %.5f rms %.5f, 3D at it %.4f; %.0f s\n", h,
-              L.planar.value, static_cast<int>(L.planar.r.at_bound[0]), L.planar.r.evaluations,
-              L.planar.r.sensitivity_evaluations, L.planar.r.misfit.max_abs, L.planar.r.misfit.rms,
-              L.cell_at_planar_fit.max_abs, L.planar.wall_s);
-  std::fflush(stdout);
-  if (fit_cell) {
-    L.cell = fit_lnM(run, cell, deoxy::kLnMLower, deoxy::kLnMUpper, 0.01);
-    std::printf("h = %.2f um 3D cell: M = %.4f (bound %d), max %.5f rms %.5f; %.0f s\n", h, L.cell.value,
-                static_cast<int>(L.cell.r.at_bound[0]), L.cell.r.misfit.max_abs, L.cell.r.misfit.rms, L.cell.wall_s);
-  }
-  if (run_plain) {
-    L.plain_misfit = vv::curve_misfit(run.at(1.0).S, ref);
-    L.has_plain = true;
-  }
-  L.runs = run.runs;
-  L.wall_s = clock.seconds();
-  std::fflush(stdout);
-  return L;
+  L.runs = run.runs();
 }
 
 void describe(io::ResultRecord& rec, double t_end) {
@@ -168,7 +146,7 @@ void add_level(io::ResultRecord& rec, const Level& L) {
     row["max_misfit_3d_cell_fit"] = L.cell.r.misfit.max_abs;
     row["rms_misfit_3d_cell_fit"] = L.cell.r.misfit.rms;
   }
-  rec.add_run(row);
+  rec.add_run(row, L.calibrated.scene_text);
 }
 
 void add_level_metrics(io::ResultRecord& rec, const Level& L, double curve_tolerance, const std::string& reason) {
@@ -201,7 +179,13 @@ void add_curves(io::ResultRecord& rec, const vv::Curve& ref, const vv::Curve& ce
 TEST(Deoxygenation, CiSubset) {
   vv::Stopwatch clock;
   const auto ref = planar_reference(), cell = cell_reference();
-  const Level L = calibrate_level(0.4, ref, cell, deoxy::kLnMLower, deoxy::kLnMUpper, 0.02, false, false);
+  Runner run(deoxy::case_setup(0.4, ref.t.back()), "validation.deoxygenation_ci");
+  Level L;
+  L.h = 0.4;
+  L.dt = deoxy::diffusive_dt(L.h, deoxy::kDtAt0p2);
+  L.planar = fit_lnM(run, ref, deoxy::kLnMLower, deoxy::kLnMUpper, 0.02);
+  complete_level(L, run, cell);
+  L.wall_s = clock.seconds();
   io::ResultRecord rec("validation.deoxygenation_ci", "deoxygenation");
   describe(rec, ref.t.back());
   rec.set_parameter("levels", "h = 0.4 um only (CI subset of validation.deoxygenation), dt = 10 us, tolerance 0.02 in ln M");
@@ -215,11 +199,6 @@ TEST(Deoxygenation, CiSubset) {
   for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
 }
 
-// Levels of the full study (Δt = deoxy::kDtAt0p2 (h/0.2 µm)², τ_out = 1.025 at each): the issue's
-// resolution check is between the two finest. h = 0.1 µm at τ_out ≈ 1 costs ≈ 5 min per run
-// (≈ 45 min per Brent fit); 0.15 µm (80 nodes per side, ≈ 1–1.5 min per run) is the finest
-// level a full-tier case affords.
-const std::vector<double> kLevels{0.4, 0.3, 0.2, 0.15};
 // The calibrated RMS misfit is the model-form floor (one lumped S against local kinetics)
 // once lattice error is below it; measured with this set-up at every level (0.4–0.15 µm).
 // Lattice error under control = the calibrated RMS misfit at each level within 5 % of that
@@ -229,21 +208,45 @@ constexpr double kFloorSpread = 0.05;
 TEST(Deoxygenation, FullStudy) {
   vv::Stopwatch clock;
   const auto ref = planar_reference(), cell = cell_reference();
-  std::vector<Level> levels;
-  for (std::size_t i = 0; i < kLevels.size(); ++i) {
-    double lo = deoxy::kLnMLower, hi = deoxy::kLnMUpper;
-    if (i >= 2) {
-      const double x = std::log(levels.back().planar.value);
-      lo = x - deoxy::kWarmHalfBracket;
-      hi = x + deoxy::kWarmHalfBracket;
+  // Stage 1 (deoxy_case.hpp: Brent at 0.4 and 0.3 um, continuation at 0.2 and 0.15 um) and, on
+  // the same runners and concurrently, the free-M fits to the 3D cell and the M = 1 runs of the
+  // two coarse levels (priority below the stage-1 chain, which is the critical path).
+  auto runners = deoxy::stage1_runners(ref, "validation.deoxygenation");
+  std::vector<Level> levels(deoxy::kLevels.size());
+  std::vector<std::future<void>> extras;
+  for (std::size_t i = 0; i < 2; ++i) {
+    runners[i]->prefetch({{1.0, 1.0}}, 10);
+    extras.push_back(std::async(std::launch::async, [&, i] {
+      levels[i].cell = fit_lnM(*runners[i], cell, deoxy::kLnMLower, deoxy::kLnMUpper, 0.01, 10);
+      std::printf("h = %.2f um 3D cell: M = %.4f (bound %d), max %.5f rms %.5f; %.0f s\n", deoxy::kLevels[i],
+                  levels[i].cell.value, static_cast<int>(levels[i].cell.r.at_bound[0]), levels[i].cell.r.misfit.max_abs,
+                  levels[i].cell.r.misfit.rms, levels[i].cell.wall_s);
+    }));
+  }
+  // The fixed-M run on the second-finest level (below) is at the finest fit's M: started as soon
+  // as the finest level's iterate is known (almost always the fit itself), beside its run.
+  Runner& second = *runners[levels.size() - 2];
+  const auto stage = deoxy::stage1_fits(runners, ref, [&second](double M) {
+    second.prefetch({{M, 1.0}}, deoxy::level_priority(deoxy::kLevels.size() - 1) - 5);
+  });
+  for (auto& e : extras) e.get();
+  const double stage1_wall = clock.seconds();
+  for (std::size_t i = 0; i < levels.size(); ++i) {
+    Level& L = levels[i];
+    L.h = stage[i].h;
+    L.dt = stage[i].dt;
+    L.planar = stage[i].planar;
+    L.wall_s = stage[i].wall_s;
+    if (i < 2) {
+      L.plain_misfit = vv::curve_misfit(runners[i]->at(1.0).S, ref);
+      L.has_plain = true;
     }
-    levels.push_back(calibrate_level(kLevels[i], ref, cell, lo, hi, i == 0 ? 0.01 : 1e-3, i < 2, i < 2));
   }
   const Level &L2 = levels[levels.size() - 2], &L1 = levels.back();
 
   // Curve change between the two finest levels at FIXED M = M(finest): what moves the fit.
   // Linearised shift of ln M it implies: −J·Δr / J·J (J of the finest fit).
-  Runner second(deoxy::case_setup(L2.h, ref.t.back()));
+  for (std::size_t i = 0; i < levels.size(); ++i) complete_level(levels[i], *runners[i], cell);
   const auto r_fine = vv::residuals(L1.calibrated.S, ref), r_second = vv::residuals(second.at(L1.planar.value).S, ref);
   double dd = 0.0, jd = 0.0, jj = 0.0;
   for (std::size_t k = 0; k < r_fine.size(); ++k) {
@@ -257,11 +260,17 @@ TEST(Deoxygenation, FullStudy) {
   std::printf("fixed-M curve change %.2f -> %.2f um: RMS %.2e, linearised ln M shift %.4f\n", L2.h, L1.h,
               curve_change_rms, predicted_dlnM);
 
+  // Stage 1 for validation.deoxygenation_3d (its fixture: ctest runs this case first).
+  deoxy::write_stage1(stage, stage1_wall);
+
   io::ResultRecord rec("validation.deoxygenation", "deoxygenation");
   describe(rec, ref.t.back());
   rec.set_parameter("levels", "h = 0.4, 0.3, 0.2, 0.15 um (dt = 10, 5.625, 2.5, 1.406 us); 0.4, 0.3 um: Brent on ln M "
                               "over [ln 0.05, ln 4] (tolerance 0.01, 1e-3), 3D-cell fits (tolerance 0.01); 0.2, "
-                              "0.15 um: Brent on ln M(previous level) +- 0.25 (tolerance 1e-3)");
+                              "0.15 um: continuation from the previous level's fit, Gauss-Newton with the central-"
+                              "difference Jacobian at it (vv::refine_1d) within ln M(previous level) +- 0.25 "
+                              "(tolerance 1e-3)");
+  rec.set_parameter("workers", static_cast<double>(deoxy::Slots::instance().workers()));
   rec.set_parameter("curve_change_fixed_M_rms", curve_change_rms);
   rec.set_parameter("curve_change_fixed_M_predicted_dlnM", predicted_dlnM);
   io::Series mh;
@@ -283,7 +292,7 @@ TEST(Deoxygenation, FullStudy) {
                   "issue 7 validation tolerance 0.01 in S: 1.3 % of the drop S0 - S_f = 0.79, fifty times the "
                   "reference's numerical error (Richardson < 2e-4); asserted at the finest lattice (coarser: /runs)"});
   const double dM = std::abs(L1.planar.value - L2.planar.value) / L1.planar.value;
-  rec.add_metric({"M_change_" + t2 + "_" + t1, "|M(finest) - M(second finest)| / M(finest), both Brent fits", "", dM,
+  rec.add_metric({"M_change_" + t2 + "_" + t1, "|M(finest) - M(second finest)| / M(finest), both fitted to 1e-3 in ln M", "", dM,
                   deoxy::kChangeTolerance, 0.0, io::Comparison::at_most,
                   "issue 7: the fitted M is resolution-independent, change < 2 % between the two finest levels (fit "
                   "tolerance 1e-3 in ln M, i.e. 0.1 % in M)"});

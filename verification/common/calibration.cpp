@@ -121,9 +121,35 @@ void check_bounds(const std::vector<ParameterBound>& bounds) {
 double objective_of(const Misfit& m, MisfitNorm norm) { return norm == MisfitNorm::max_abs ? m.max_abs : m.rms; }
 
 // Fills misfit, objective, at_bound and the central-difference Jacobian at the optimum.
+// The Jacobian's points: central differences, one-sided into the box at a bound.
+void jacobian_points(const CalibrationResult& res, const std::vector<ParameterBound>& bounds,
+                     const CalibrationOptions& opt, std::vector<std::vector<double>>& lo,
+                     std::vector<std::vector<double>>& hi) {
+  for (std::size_t i = 0; i < bounds.size(); ++i) {
+    const double step = opt.fd_relative_step * (bounds[i].upper - bounds[i].lower);
+    lo.push_back(res.params);
+    hi.push_back(res.params);
+    hi.back()[i] = std::min(res.params[i] + step, bounds[i].upper);
+    lo.back()[i] = std::max(res.params[i] - step, bounds[i].lower);
+  }
+}
+
+// Sensitivities and the Gauss–Newton standard error from res.jacobian and the residuals r0.
+void statistics(CalibrationResult& res, const std::vector<double>& r0, std::size_t n);
+
 void finish(CalibrationResult& res, const CurveModel& model, const Curve& reference,
             const std::vector<ParameterBound>& bounds, const CalibrationOptions& opt) {
   const std::size_t n = bounds.size(), K = reference.t.size();
+  std::vector<std::vector<double>> los, his;
+  jacobian_points(res, bounds, opt, los, his);
+  if (opt.prefetch) {
+    std::vector<std::vector<double>> points{res.params};
+    for (std::size_t i = 0; i < n; ++i) {
+      points.push_back(his[i]);
+      points.push_back(los[i]);
+    }
+    opt.prefetch(points);
+  }
   const auto r0 = residuals(model(res.params), reference);
   res.sensitivity_evaluations = 1;
   res.misfit = misfit_of(r0);
@@ -136,14 +162,17 @@ void finish(CalibrationResult& res, const CurveModel& model, const Curve& refere
     res.names.push_back(bounds[i].name);
     res.at_bound[i] = res.params[i] - bounds[i].lower <= 2.0 * tol || bounds[i].upper - res.params[i] <= 2.0 * tol;
     // central difference, one-sided into the box at a bound
-    const double step = opt.fd_relative_step * range;
-    std::vector<double> lo = res.params, hi = res.params;
-    hi[i] = std::min(res.params[i] + step, bounds[i].upper);
-    lo[i] = std::max(res.params[i] - step, bounds[i].lower);
+    const std::vector<double>& lo = los[i];
+    const std::vector<double>& hi = his[i];
     const auto rh = residuals(model(hi), reference), rl = residuals(model(lo), reference);
     res.sensitivity_evaluations += 2;
     for (std::size_t k = 0; k < K; ++k) res.jacobian[k][i] = (rh[k] - rl[k]) / (hi[i] - lo[i]);
   }
+  statistics(res, r0, n);
+}
+
+void statistics(CalibrationResult& res, const std::vector<double>& r0, std::size_t n) {
+  const std::size_t K = r0.size();
   res.sensitivity_rms.assign(n, 0.0);
   res.sensitivity_max.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -198,6 +227,100 @@ CalibrationResult calibrate_1d(const CurveModel& model, const Curve& reference, 
   return res;
 }
 
+namespace {
+
+// argmin over d ∈ [lo, hi] of the linearised norm of r + J d.
+double linearised_step(const std::vector<double>& r, const std::vector<double>& J, MisfitNorm norm, double lo,
+                       double hi) {
+  if (norm == MisfitNorm::rms) {
+    double jr = 0.0, jj = 0.0;
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      jr += J[k] * r[k];
+      jj += J[k] * J[k];
+    }
+    return jj > 0.0 ? std::clamp(-jr / jj, lo, hi) : 0.0;
+  }
+  // max_k |r_k + J_k d| is convex and piecewise linear: golden section to round-off
+  const auto f = [&](double d) {
+    double m = 0.0;
+    for (std::size_t k = 0; k < r.size(); ++k) m = std::max(m, std::abs(r[k] + J[k] * d));
+    return m;
+  };
+  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+  double a = lo, b = hi, c = b - g * (b - a), e = a + g * (b - a), fc = f(c), fe = f(e);
+  for (int it = 0; it < 200 && b - a > 1e-15 * std::max(1.0, std::abs(a) + std::abs(b)); ++it) {
+    if (fc <= fe) {
+      b = e;
+      e = c;
+      fe = fc;
+      c = b - g * (b - a);
+      fc = f(c);
+    } else {
+      a = c;
+      c = e;
+      fc = fe;
+      e = a + g * (b - a);
+      fe = f(e);
+    }
+  }
+  return 0.5 * (a + b);
+}
+
+}  // namespace
+
+CalibrationResult refine_1d(const CurveModel& model, const Curve& reference, const ParameterBound& bound, double x0,
+                            const CalibrationOptions& options) {
+  check_bounds({bound});
+  const double range = bound.upper - bound.lower, tol = options.x_tolerance * range;
+  const double delta = options.fd_relative_step * range;
+  const std::size_t K = reference.t.size();
+  CalibrationResult res;
+  res.names = {bound.name};
+  auto run = [&](double x) {
+    ++res.evaluations;
+    return residuals(model({x}), reference);
+  };
+  double x = std::clamp(x0, bound.lower, bound.upper);
+  std::vector<double> J(K), r;  // J at the centre xc; r at x once x has been run
+  double xc = 0.0;
+  bool have_r = false;
+  // J by central differences around c (one-sided into the bracket at an edge); without a
+  // run at c, r(c) is taken as the mean of the pair (O(δ²)) for the first step only.
+  auto differences = [&](double c) {
+    const double lo = std::max(c - delta, bound.lower), hi = std::min(c + delta, bound.upper);
+    if (options.prefetch) options.prefetch({{lo}, {hi}});
+    const auto rl = run(lo), rh = run(hi);
+    for (std::size_t k = 0; k < K; ++k) J[k] = (rh[k] - rl[k]) / (hi - lo);
+    xc = c;
+    if (!have_r) {
+      r.resize(K);
+      for (std::size_t k = 0; k < K; ++k) r[k] = rl[k] + (c - lo) * J[k];  // linear through the pair at c
+    }
+  };
+  differences(x);
+  while (res.evaluations < options.max_evaluations) {
+    const double step = linearised_step(r, J, options.norm, bound.lower - x, bound.upper - x);
+    if (have_r && std::abs(step) <= tol) {
+      res.converged = true;
+      break;
+    }
+    x += step;
+    if (options.prefetch) options.prefetch({{x}});  // (one point: lets a caller start work that follows it)
+    r = run(x);
+    have_r = true;
+    if (std::abs(x - xc) > 0.5 * delta) differences(x);  // the Jacobian follows a larger move
+  }
+  res.params = {x};
+  res.sensitivity_evaluations = 0;
+  res.misfit = misfit_of(r);
+  res.objective = objective_of(res.misfit, options.norm);
+  res.at_bound = {x - bound.lower <= 2.0 * tol || bound.upper - x <= 2.0 * tol};
+  res.jacobian.assign(K, std::vector<double>(1, 0.0));
+  for (std::size_t k = 0; k < K; ++k) res.jacobian[k][0] = J[k];
+  statistics(res, r, 1);
+  return res;
+}
+
 CalibrationResult calibrate(const CurveModel& model, const Curve& reference, const std::vector<ParameterBound>& bounds,
                             const CalibrationOptions& options) {
   check_bounds(bounds);
@@ -222,6 +345,7 @@ CalibrationResult calibrate(const CurveModel& model, const Curve& reference, con
     const double step = 0.1 * (bounds[i].upper - bounds[i].lower);
     x[i + 1][i] = x[0][i] + step <= bounds[i].upper ? x[0][i] + step : x[0][i] - step;
   }
+  if (options.prefetch) options.prefetch(x);
   for (std::size_t j = 0; j <= n; ++j) fx[j] = f(x[j]);
   while (res.evaluations < options.max_evaluations) {
     std::vector<std::size_t> order(n + 1);
@@ -267,10 +391,10 @@ CalibrationResult calibrate(const CurveModel& model, const Curve& reference, con
       if (fc < (outside ? fr : fx[n])) {
         x[n] = xc; fx[n] = fc;
       } else {  // shrink towards the best
-        for (std::size_t j = 1; j <= n; ++j) {
+        for (std::size_t j = 1; j <= n; ++j)
           for (std::size_t i = 0; i < n; ++i) x[j][i] = x[0][i] + 0.5 * (x[j][i] - x[0][i]);
-          fx[j] = f(x[j]);
-        }
+        if (options.prefetch) options.prefetch({x.begin() + 1, x.end()});
+        for (std::size_t j = 1; j <= n; ++j) fx[j] = f(x[j]);
       }
     }
   }

@@ -51,6 +51,11 @@ struct CalibrationOptions {
   double x_tolerance = 1e-5;   // relative to each parameter's range (upper − lower)
   int max_evaluations = 200;
   double fd_relative_step = 1e-3;  // central-difference step for J, relative to the range
+  // Optional: called with points the harness is about to evaluate and whose choice does not
+  // depend on each other's results (the Jacobian's, Nelder–Mead's first simplex and shrinks,
+  // refine_1d's difference pair), so that a model can run them concurrently. The results must
+  // not depend on whether or how it is used.
+  std::function<void(const std::vector<std::vector<double>>&)> prefetch;
 };
 
 struct CalibrationResult {
@@ -73,6 +78,21 @@ using CurveModel = std::function<Curve(const std::vector<double>& params)>;
 // One parameter, Brent on [bound.lower, bound.upper].
 CalibrationResult calibrate_1d(const CurveModel& model, const Curve& reference, const ParameterBound& bound,
                                const CalibrationOptions& options = {});
+
+// One parameter by continuation from a good start x0 (e.g. the fit of a coarser lattice level):
+// Gauss–Newton on the linearised misfit r(x) ≈ r(x_k) + J (x − x_k) (RMS: x − x_k = −J·r/J·J;
+// max norm: the exact minimum of the convex piecewise-linear max_k |r_k + J_k d|), J by central
+// differences at x0 (± fd_relative_step × range; again around the iterate if it moves further
+// than half that step), each iterate run once, until the predicted step is within x_tolerance
+// of the range; the iterate stays in [lower, upper]. For a misfit that is nearly linear in x
+// over the distance from x0 (a lattice level's shift of a calibrated parameter) this takes 3
+// model runs (the pair and one iterate), 2 of them concurrent with options.prefetch, where
+// Brent on the same bracket takes 8 + 3 sequential ones; the result is within the tolerance of
+// the minimum, as Brent's is (the first step uses r(x0) interpolated from the pair, off by
+// O(δ²): the next predicted step then measures how far the iterate is from the minimum).
+// options.prefetch also receives each iterate, alone, just before it is run.
+CalibrationResult refine_1d(const CurveModel& model, const Curve& reference, const ParameterBound& bound, double x0,
+                            const CalibrationOptions& options = {});
 
 // Any number of parameters, Nelder–Mead from the bounds' initial values (initial step
 // 10 % of each range). One parameter also works (use calibrate_1d for a bracket).

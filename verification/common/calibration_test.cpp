@@ -152,3 +152,37 @@ TEST(Calibration, RejectsBadInput) {
   EXPECT_THROW(calibrate_1d(model, ref, {"x", 0.0, 1.0, 0.0}), std::invalid_argument);
   EXPECT_THROW(calibrate(model, ref, {}), std::invalid_argument);
 }
+
+// Continuation (refine_1d) from a start near the optimum finds the same optimum as Brent, for
+// both norms, in a few model runs; prefetching points changes nothing.
+TEST(Calibration, RefineFromAGoodStartMatchesBrent) {
+  const Curve ref = sample(0.05, 9.95, 50, [](double t) { return std::exp(-t / 2.5) + 0.01 * std::sin(3.0 * t); });
+  int calls = 0;
+  const CurveModel model = [&](const std::vector<double>& p) {
+    ++calls;
+    return sample(0.0, 10.0, 2001, [&](double t) { return std::exp(-t / p[0]); });
+  };
+  for (MisfitNorm norm : {MisfitNorm::rms, MisfitNorm::max_abs}) {
+    CalibrationOptions opt;
+    opt.norm = norm;
+    opt.x_tolerance = 1e-6;
+    opt.fd_relative_step = 1e-3;
+    const auto brent = calibrate_1d(model, ref, {"tau", 0.5, 10.0, 0.0}, opt);
+    calls = 0;
+    std::vector<double> prefetched;
+    opt.prefetch = [&](const std::vector<std::vector<double>>& ps) {
+      for (const auto& p : ps) prefetched.push_back(p[0]);
+    };
+    const auto refined = refine_1d(model, ref, {"tau", 0.5, 10.0, 0.0}, brent.params[0] * 1.01, opt);
+    EXPECT_NEAR(refined.params[0], brent.params[0], 2e-4 * brent.params[0]) << (norm == MisfitNorm::rms ? "rms" : "max");
+    EXPECT_LE(refined.objective, brent.objective * (1.0 + 1e-6));
+    EXPECT_TRUE(refined.converged);
+    EXPECT_FALSE(refined.at_bound[0]);
+    EXPECT_EQ(refined.evaluations, calls);
+    // a start 1 % off is further than half the difference step: the pair is taken again there
+    EXPECT_LE(calls, 8);
+    EXPECT_EQ(prefetched.size(), 4u + static_cast<std::size_t>(refined.evaluations - 4));  // pairs + iterates
+    ASSERT_EQ(refined.jacobian.size(), ref.t.size());
+    EXPECT_GT(refined.sensitivity_rms[0], 0.0);
+  }
+}

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "common/case_support.hpp"
-#include "geometry/shapes.hpp"
-#include "transport/face_flux_correction.hpp"
+#include "simulation/simulation.hpp"
 #include "transport/subpixel_diffusivity.hpp"
 #include "transport_run.hpp"
 
@@ -14,6 +17,12 @@ namespace erythro::vv {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+
+std::string fmt_h(double h) {
+  char b[32];
+  std::snprintf(b, sizeof b, "h%.3f", h);
+  return b;
+}
 
 // C⁴ smoothstep S(t) = t⁵(126 − 420 t + 540 t² − 315 t³ + 70 t⁴) on [0, 1] and its derivatives.
 double step(double t) {
@@ -107,66 +116,53 @@ double Inclusion::radial_flux(double theta, bool inside) const {
 
 namespace {
 
-// Series node D on the cut nodes; the node tensor or the face correction per treatment.
-std::unique_ptr<transport::FaceFluxCorrection> apply_treatment(transport::TransportLattice& lat,
-                                                               const geometry::Polygon& shape,
-                                                               const std::vector<transport::CutCell>& cells,
-                                                               InterfaceTreatment t, double Din, double Dout) {
-  using namespace transport;
-  const int n = lat.grid().nx;
-  if (t == InterfaceTreatment::node_tensor) {
-    set_node_subpixel_tensor(lat, cells, Din, Dout);
-    return nullptr;
-  }
-  auto D = lat.diffusivity();
-  for (const auto& c : cells) D[c.node] = series_diffusivity(c.phi, Din, Dout);
-  if (t == InterfaceTreatment::series) return nullptr;
-  auto correction =
-      std::make_unique<FaceFluxCorrection>(lat.grid(), D, subpixel_face_targets(shape, n, lat.grid().ny, Din, Dout));
-  correction->require_stable(lat);
-  return correction;
+const char* interface_name(InterfaceTreatment t) {
+  return t == InterfaceTreatment::series ? "\"series\"" : t == InterfaceTreatment::node_tensor ? "\"node_tensor\""
+                                                                                            : "\"face_tensor\"";
 }
 
-// Steps with a constant base source plus the face correction (if any), rewritten every step.
-void step_with_correction(transport::TransportLattice& lat, transport::FaceFluxCorrection* correction,
-                          const std::vector<double>& q_base, long steps, MassBalanceMonitor& monitor) {
-  auto q = lat.source();
-  for (long s = 0; s < steps; ++s) {
-    if (correction) {
-      correction->evaluate(lat);
-      std::copy(q_base.begin(), q_base.end(), q.begin());
-      correction->add_to(q);
-    }
-    lat.step();
-    monitor.observe(lat);
-  }
+// All four sides held at `value` (the dipole's scene holds left and right only).
+void hold_all_sides(std::vector<std::string>& set_up, double value) {
+  for (const char* side : {"bottom", "top"}) set_up.push_back(set(std::string("species[0].") + side, std::string("\"fixed_concentration\"")));
+  for (const char* side : {"left", "right", "bottom", "top"}) set_up.push_back(set(std::string("species[0].") + side + "_value", value));
+}
+
+// The overrides of curved_interface.toml for an n × n lattice with the treatment t; the
+// inclusion's (or cell's) D in lattice units, D_out = Dout.
+std::vector<std::string> scene_overrides(int n, InterfaceTreatment t, double Din, double Dout, long steps) {
+  return {set("domain.size_um", double(n), double(n)), set("run.steps", steps),
+          set("transport.interface", std::string(interface_name(t))), set("species[0].diffusivity_um2_s", Dout),
+          set("species[0].cell_diffusivity_um2_s", Din)};
 }
 
 }  // namespace
 
 double biconcave_steady_mean(double h_um, InterfaceTreatment t) {
-  using namespace transport;
   const int n = static_cast<int>(std::lround(12.0 / h_um));
-  const Side held{SideKind::fixed_concentration, 0.0};
-  TransportLattice lat({n, n}, Stencil::d2q5, {held, held, held, held});
-  lat.set_collision({Collision::trt, 0.25});
   const double Dout = 0.5, Din = Dout * 950.0 / 2800.0;
-  lat.set_uniform_diffusivity(Dout);
-  const auto cell = geometry::transformed(geometry::biconcave(800, 3.91), 1.0 / h_um, 0.0, 0.5 * n, 0.5 * n);
-  const auto cells = cut_cells(cell, n, n);
-  auto correction = apply_treatment(lat, cell, cells, t, Din, Dout);
   // q L²/D_out fixed (L = n nodes): the steady C is the same at every h
   const double q0 = Dout / (static_cast<double>(n) * n);
-  auto q = lat.source();
-  for (const auto& c : cells) q[c.node] = c.phi * q0;
-  const std::vector<double> q_base(q.begin(), q.end());
-  lat.initialize_uniform(0.0);
-  MassBalanceMonitor monitor;
   // 25 e-foldings of the box's slowest mode (n²/(2π² D_out) steps) from C = 0
-  step_with_correction(lat, correction.get(), q_base, std::lround(25.0 * n * n / (2.0 * kPi * kPi * Dout)), monitor);
+  auto set_up = scene_overrides(n, t, Din, Dout, std::lround(25.0 * n * n / (2.0 * kPi * kPi * Dout)));
+  // the cell in lattice units: biconcave(800, 3.91 µm / h) at the box centre, held at 0 all round
+  set_up.push_back(set("cells[0].shape", std::string("\"biconcave\"")));
+  set_up.push_back(set("cells[0].radius_um", 3.91 / h_um));
+  set_up.push_back(set("cells[0].center_um", 0.5 * n, 0.5 * n));
+  set_up.push_back(set("cells[0].markers", 800L));
+  hold_all_sides(set_up, 0.0);
+  std::vector<transport::AreaFraction> phi;
+  const auto configure = [&](sim::Simulation& s) {  // a uniform source over the cell (φ q0 at cut nodes)
+    phi = transport::area_fractions(s.setup().membrane->cells.at(0).shape, n, n);
+    auto q = s.transport()->base_source(0);
+    for (const auto& c : phi) q[c.node] = c.phi * q0;
+    s.transport()->initialize(0, std::vector<double>(static_cast<std::size_t>(n) * n, 0.0));
+  };
+  const auto run = run_transport(case_scene("verification/transport/curved_interface.toml", set_up),
+                                 "verification.transport_curved_interface",
+                                 "biconcave_" + fmt_h(h_um) + "_" + std::to_string(static_cast<int>(t)), "C", configure);
   double m = 0.0, w = 0.0;
-  for (const auto& c : cells) {
-    m += c.phi * lat.source_corrected_concentration(c.node);
+  for (const auto& c : phi) {
+    m += c.phi * run.C[c.node];  // the readout is Ĉ (eq T7)
     w += c.phi;
   }
   return m / w;
@@ -174,66 +170,71 @@ double biconcave_steady_mean(double h_um, InterfaceTreatment t) {
 
 InclusionRun run_inclusion(const Inclusion& p, int n, InterfaceTreatment t, double D_out_lattice) {
   Stopwatch clock;
-  using namespace transport;
   const double h = 2.0 / n;
   const double scale_D = D_out_lattice / p.D_out;  // physical → lattice D
-  TransportBoundaries b;
-  if (p.problem == InclusionProblem::radial) {
-    const Side held{SideKind::fixed_concentration, p.C_b};
-    b = {held, held, held, held};
-  } else {
-    b = {{SideKind::fixed_concentration, -p.G}, {SideKind::fixed_concentration, p.G}, {SideKind::zero_flux, 0.0},
-         {SideKind::zero_flux, 0.0}};
-  }
   const Grid grid{n, n};
-  TransportLattice lat(grid, Stencil::d2q5, b);
-  lat.set_collision({Collision::trt, 0.25});
-  lat.set_uniform_diffusivity(D_out_lattice);
-  // The inclusion as a fine polygon in lattice units (node (i, j) owns [i, i+1] × [j, j+1]).
-  const int markers = 4096;
-  const auto circle = geometry::transformed(geometry::circle(markers, p.a / h), 1.0, 0.0, 0.5 * n, 0.5 * n);
-  const auto cells = cut_cells(circle, n, n);
   const double Din = p.D_in * scale_D, Dout = D_out_lattice;
-  auto correction = apply_treatment(lat, circle, cells, t, Din, Dout);
+  // Slowest modes: the box's, e-folding ≤ n²/(π² D_out) steps (one pair of sides held), and the
+  // inclusion's, (a/h)²/(2.405² D_in) (first zero of J0): 14 e-foldings of the slower, from the
+  // exact field (only the discretisation error has to settle: e^−14 ≈ 1e−6 of it is left).
+  const double box = n * n / (kPi * kPi * Dout), inner = (p.a / h) * (p.a / h) / (2.405 * 2.405 * Din);
+  const long steps = std::lround(14.0 * std::max(box, inner));
+  auto set_up = scene_overrides(n, t, Din, Dout, steps);
+  // The inclusion as a fine polygon in lattice units (node (i, j) owns [i, i+1] × [j, j+1]).
+  set_up.push_back(set("cells[0].radius_um", p.a / h));
+  set_up.push_back(set("cells[0].center_um", 0.5 * n, 0.5 * n));
+  // The dipole's sides ∓G, shifted by +G (held values >= 0); the problem is linear, so the field
+  // is the exact one + G (subtracted below).
+  const double shift = p.problem == InclusionProblem::dipole ? p.G : 0.0;
+  if (p.problem == InclusionProblem::dipole) {
+    for (const auto& [side, value] : {std::pair{"left", -p.G + shift}, std::pair{"right", p.G + shift}})
+      set_up.push_back(set(std::string("species[0].") + side + "_value", value));
+  } else {
+    hold_all_sides(set_up, p.C_b);
+  }
   // Lattice source: amount per node per step = (physical source × lattice time / physical time);
   // with lattice D = scale_D × D, one lattice time unit is scale_D physical units per h².
   // Node sources: q0 over the inside part (φ q0 at cut nodes), the blend ring's pointwise.
-  std::vector<double> phi(grid.size(), 0.0);
-  for (const auto& c : cells) phi[c.node] = c.phi;
-  auto q = lat.source();
-  std::vector<double> exact(grid.size());
+  std::vector<double> phi(grid.size(), 0.0), exact(grid.size()), start(grid.size());
   const double q_scale = scale_D * h * h;  // lattice q = physical q × Δt, Δt = scale_D h² (C keeps its unit)
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const std::size_t k = grid.index(i, j);
       const double x = -1.0 + (i + 0.5) * h, y = -1.0 + (j + 0.5) * h;
       exact[k] = p.concentration(x, y);
-      const double r = std::hypot(x, y);
-      double s = 0.0;
-      if (p.problem == InclusionProblem::radial && r < p.R1) {
-        s = phi[k] * p.q0;  // exact cell average: q0 on the inside part, 0 outside (r < R1)
-      } else {
-        s = p.source(x, y);
-      }
-      q[k] = s * q_scale;
+      start[k] = exact[k] + shift;
     }
-  const std::vector<double> q_base(q.begin(), q.end());
-  lat.initialize(exact);
-  // Slowest modes: the box's, e-folding ≤ n²/(π² D_out) steps (one pair of sides held), and the
-  // inclusion's, (a/h)²/(2.405² D_in) (first zero of J0): 14 e-foldings of the slower, from the
-  // exact field (only the discretisation error has to settle: e^−14 ≈ 1e−6 of it is left).
-  const double box = n * n / (kPi * kPi * Dout), inner = (p.a / h) * (p.a / h) / (2.405 * 2.405 * Din);
-  const long steps = std::lround(14.0 * std::max(box, inner));
-  MassBalanceMonitor monitor;
-  step_with_correction(lat, correction.get(), q_base, steps, monitor);
+  const auto configure = [&](sim::Simulation& s) {
+    for (const auto& c : transport::area_fractions(s.setup().membrane->cells.at(0).shape, n, n)) phi[c.node] = c.phi;
+    auto q = s.transport()->base_source(0);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t k = grid.index(i, j);
+        const double x = -1.0 + (i + 0.5) * h, y = -1.0 + (j + 0.5) * h;
+        const double r = std::hypot(x, y);
+        double src = 0.0;
+        if (p.problem == InclusionProblem::radial && r < p.R1) {
+          src = phi[k] * p.q0;  // exact cell average: q0 on the inside part, 0 outside (r < R1)
+        } else {
+          src = p.source(x, y);
+        }
+        q[k] = src * q_scale;
+      }
+    s.transport()->initialize(0, start);
+  };
+  const std::string label = std::string(p.problem == InclusionProblem::radial ? "radial_" : "dipole_") +
+                            std::to_string(static_cast<int>(t)) + "_n" + std::to_string(n);
+  const auto run = run_transport(case_scene("verification/transport/curved_interface.toml", set_up),
+                                 "verification.transport_curved_interface", label, "C", configure);
   InclusionRun r;
   r.n = n;
-  r.steps = steps;
-  r.worst_mass_residual = monitor.worst;
+  r.steps = run.steps;
+  r.worst_mass_residual = run.worst_mass_residual;
+  r.scene_text = run.scene_text;
   double s2 = 0.0, cut2 = 0.0, mean = 0.0, wsum = 0.0;
   long ncut = 0;
   for (std::size_t k = 0; k < grid.size(); ++k) {
-    const double e = (lat.source_corrected_concentration(k) - exact[k]) / p.scale();
+    const double e = (run.C[k] - shift - exact[k]) / p.scale();  // the readout is Ĉ (eq T7)
     const double x = -1.0 + (static_cast<double>(k % n) + 0.5) * h, y = -1.0 + (static_cast<double>(k / n) + 0.5) * h;
     const double d = std::hypot(x, y) - p.a;  // signed distance to the interface
     if (std::fabs(d) > 0.1) r.error_bulk = std::max(r.error_bulk, std::fabs(e));

@@ -15,6 +15,7 @@
 //    left/right sides fixed at ∓G, bottom/top zero flux; blend source
 //    −D_out G B a² (χ'' − χ'/r) x/r².
 // In both, C and D ∂C/∂r are continuous at r = a (checked by the unit of the case).
+#include <string>
 #include <vector>
 
 #include "transport/subpixel_diffusivity.hpp"
@@ -49,10 +50,12 @@ struct InclusionRun {
   long steps = 0;
   double worst_mass_residual = 0.0;
   double wall_s = 0.0;
+  std::string scene_text;  // the scene as run (curved_interface.toml with the case's overrides)
 };
 
-// Steady TRT (Λ = 1/4) D2Q5 run on n × n nodes from the exact field; D_out in lattice units
-// `D_out_lattice` (τ only changes how fast it settles: the steady TRT state depends on D and Λ).
+// Steady TRT (Λ = 1/4) D2Q5 run on n × n nodes from the exact field (the scene
+// curved_interface.toml); D_out in lattice units `D_out_lattice` (τ only changes how fast it
+// settles: the steady TRT state depends on D and Λ).
 InclusionRun run_inclusion(const Inclusion& p, int n, InterfaceTreatment t, double D_out_lattice = 0.5);
 
 // The deoxygenation cell's steady analogue (no exact solution; docs/validation-deoxygenation.md):

@@ -63,7 +63,8 @@ Study study(io::ResultRecord& rec, const Inclusion& p, InterfaceTreatment t, dou
                  {"treatment", std::string(name(t))}, {"n", double(n)}, {"steps", double(r.steps)},
                  {"error_l2", r.error_l2}, {"error_max", r.error_max}, {"error_far", r.error_bulk},
                  {"error_cut_rms", r.error_cut}, {"error_inclusion_mean", r.error_mean},
-                 {"mass_residual", r.worst_mass_residual}, {"wall_time_s", r.wall_s}});
+                 {"mass_residual", r.worst_mass_residual}, {"wall_time_s", r.wall_s}},
+                r.scene_text);
     s.far.h.push_back(2.0 / n);
     s.far.error.push_back(r.error_bulk);
     s.l2.h.push_back(2.0 / n);

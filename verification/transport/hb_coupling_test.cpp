@@ -17,7 +17,6 @@
 
 #include <array>
 #include <cmath>
-#include <numeric>
 
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
@@ -52,32 +51,30 @@ std::array<double, 2> reference(const HbParameters& p, double t, int n) {
 
 struct CouplingRun {
   double error, closure, wall_time_s, worst_mass_residual;
+  std::string scene_text;
 };
 
+// hb_coupling.toml at Δt = t_end/K: D with τ = 1 (the fields stay uniform: D plays no part).
 CouplingRun run_coupled(const HbParameters& p, int K, bool implicit, double t_end = kTEnd) {
-  const Grid g{4, 4};
-  TransportLattice o2(g, Stencil::d2q5, {});
-  o2.set_uniform_diffusivity(1.0 / 6.0);
-  o2.initialize_uniform(kP0 * p.alpha);
-  std::vector<std::size_t> cell(g.size());
-  std::iota(cell.begin(), cell.end(), std::size_t{0});
   const double dt = t_end / K;
-  double S = kS0;
-  const double cells = double(cell.size());
-  const double total0 = o2.stored_amount() + p.C_heme * S * cells;
-  auto before = [&](TransportLattice& lat) {
-    auto q = lat.source();
-    std::fill(q.begin(), q.end(), 0.0);
-    const double P = mean_partial_pressure(cell, lat.concentration(), p.alpha);
-    const HbStep r = implicit ? advance_saturation_cell_implicit(p, S, P, dt) : advance_saturation(p, S, P, dt);
-    S = r.saturation;
-    distribute_release(cell, r.released, q);
-  };
-  const auto run = vv::run_steps(o2, K, before);
-  const double closure = std::fabs(o2.stored_amount() + p.C_heme * S * cells - total0) / total0;
+  const std::vector<std::string> set_up = {
+      vv::set("transport.time_step_s", dt), vv::set("run.steps", static_cast<long>(K)),
+      vv::set("species[0].diffusivity_um2_s", 1.0 / (6.0 * dt)), vv::set("species[0].initial_uM", kP0 * p.alpha),
+      vv::set("species[0].cell_initial_uM", kP0 * p.alpha), vv::set("hemoglobin.initial_saturation", kS0),
+      vv::set("hemoglobin.coupling", std::string(implicit ? "\"cell_implicit\"" : "\"explicit\""))};
+  const std::string label = std::string(implicit ? "implicit" : "lagged") + "_K" + std::to_string(K) +
+                            (t_end == kTEnd ? "" : "_stiff");
+  const auto run = vv::run_transport(vv::case_scene("verification/transport/hb_coupling.toml", set_up),
+                                     "verification.transport_hb_coupling", label, "O2");
+  // bound + free O2 (per unit depth, h = 1 um: the lattice's amounts): M + C_heme S × cells
+  const double cells = double(run.C.size());
+  const double M0 = run.series.series("O2_amount_uM_um2").front(), M = run.series.series("O2_amount_uM_um2").back();
+  const double S0 = run.series.series("cell_0_saturation").front(), S = run.series.series("cell_0_saturation").back();
+  const double total0 = M0 + p.C_heme * S0 * cells;
+  const double closure = std::fabs(M + p.C_heme * S * cells - total0) / total0;
   const auto ref = reference(p, t_end, 200000);
   const double change = ref[1] - kP0 * p.alpha;
-  return {std::fabs(o2.concentration()[0] - ref[1]) / change, closure, run.wall_time_s, run.worst_mass_residual};
+  return {std::fabs(run.C[0] - ref[1]) / change, closure, run.wall_time_s, run.worst_mass_residual, run.scene_text};
 }
 }  // namespace
 
@@ -111,7 +108,8 @@ TEST(TransportHbCoupling, FirstOrderInTimeAndExactClosure) {
       worst_balance = std::max(worst_balance, r.worst_mass_residual);
       record.add_run({{"coupling", std::string(implicit ? "cell-implicit" : "lagged")}, {"steps", double(K)},
                       {"dt_s", kTEnd / K}, {"error", r.error}, {"closure", r.closure},
-                      {"mass_residual", r.worst_mass_residual}, {"wall_time_s", r.wall_time_s}});
+                      {"mass_residual", r.worst_mass_residual}, {"wall_time_s", r.wall_time_s}},
+                     r.scene_text);
       auto& series = implicit ? imp : lag;
       auto& speed = implicit ? speed_imp : speed_lag;
       vv::add_convergence_point(series, speed, kTEnd / K, r.error, r.wall_time_s, "K=" + std::to_string(K));
@@ -140,10 +138,12 @@ TEST(TransportHbCoupling, FirstOrderInTimeAndExactClosure) {
   const CouplingRun stiff_lag = run_coupled(p, 25, false, kTStiff), stiff_imp = run_coupled(p, 25, true, kTStiff);
   record.add_run({{"coupling", std::string("lagged, stiff")}, {"steps", 25.0}, {"dt_s", kTStiff / 25},
                   {"error", stiff_lag.error}, {"closure", stiff_lag.closure},
-                  {"mass_residual", stiff_lag.worst_mass_residual}, {"wall_time_s", stiff_lag.wall_time_s}});
+                  {"mass_residual", stiff_lag.worst_mass_residual}, {"wall_time_s", stiff_lag.wall_time_s}},
+                 stiff_lag.scene_text);
   record.add_run({{"coupling", std::string("cell-implicit, stiff")}, {"steps", 25.0}, {"dt_s", kTStiff / 25},
                   {"error", stiff_imp.error}, {"closure", stiff_imp.closure},
-                  {"mass_residual", stiff_imp.worst_mass_residual}, {"wall_time_s", stiff_imp.wall_time_s}});
+                  {"mass_residual", stiff_imp.worst_mass_residual}, {"wall_time_s", stiff_imp.wall_time_s}},
+                 stiff_imp.scene_text);
   EXPECT_TRUE(record.add_metric({"stiff_lagged_error", "lagged P, dt = 200 us, 5 ms: relative error of C", "",
                                  stiff_lag.error, 0.1, 0.0, io::Comparison::at_least,
                                  "lambda_eff dt >> 2: the lagged coupling is linearly unstable and ends in a "

@@ -29,6 +29,7 @@
 #include "layered_slab.hpp"
 #include "transport/reactions.hpp"
 #include "transport/transport_units.hpp"
+#include "simulation/simulation.hpp"
 #include "transport_run.hpp"
 
 using namespace erythro;
@@ -59,51 +60,47 @@ struct SlabRun {
   int rows;
 };
 
-SlabRun run_slab(Stencil stencil, int m, bool contrast, Placement placement = Placement::midway,
-                 CollisionModel collision = {}) {
+SlabRun run_slab(const std::string& case_name, Stencil stencil, int m, bool contrast,
+                 Placement placement = Placement::midway, CollisionModel collision = {}) {
   const double h = 2.5 / m;
   const auto L = layers(contrast, placement == Placement::midway ? 0.0 : 0.5 * h);
   const vv::LayeredSlab exact(L);
   const int rows = static_cast<int>(std::lround(exact.length() / h));
   const TransportUnits units{h, dt_for_tau(h, kDNO, kTau)};
-  TransportBoundaries b;
-  b.bottom = {SideKind::zero_flux, 0.0};
-  b.top = {SideKind::zero_flux, 0.0};
-  const Grid g{1, rows};
-  TransportLattice lat(g, stencil, b);
-  lat.set_collision(collision);
-  lat.set_uniform_diffusivity(units.diffusivity(kDNO));
-  auto D = lat.diffusivity();
-  auto q = lat.source();
-  auto k = lat.decay_rate();
-  std::vector<double> C0(g.size()), ref(g.size());
-  for (int y = 0; y < rows; ++y) {
-    const double yc = (y + 0.5) * h;
-    int j = 0;
-    while (j + 1 < int(L.size()) && yc > exact.interfaces()[std::size_t(j) + 1]) ++j;
-    D[std::size_t(y)] = units.diffusivity(L[std::size_t(j)].D);
-    q[std::size_t(y)] = units.source(L[std::size_t(j)].q);
-    k[std::size_t(y)] = units.rate(L[std::size_t(j)].k);
-    if (placement != Placement::midway && j + 1 < int(L.size()) &&
-        std::fabs(yc - exact.interfaces()[std::size_t(j) + 1]) < 1e-9 * h) {  // node on the interface
-      const auto& a = L[std::size_t(j)];
-      const auto& c = L[std::size_t(j) + 1];
-      const double Dm = placement == Placement::on_nodes_arithmetic ? 0.5 * (a.D + c.D) : 2.0 * a.D * c.D / (a.D + c.D);
-      D[std::size_t(y)] = units.diffusivity(Dm);
-      q[std::size_t(y)] = units.source(0.5 * (a.q + c.q));
-      k[std::size_t(y)] = units.rate(0.5 * (a.k + c.k));
-    }
-    ref[std::size_t(y)] = C0[std::size_t(y)] = exact.concentration(yc);
-  }
-  lat.initialize(C0);  // start at the exact profile: only the discrete error must settle
-  const long interval = std::max(1L, std::lround(0.25 / units.dt_s));  // 0.25 s; slowest mode ~0.9 s
+  std::vector<double> C0(static_cast<std::size_t>(rows)), ref(C0.size());
+  for (int y = 0; y < rows; ++y) ref[std::size_t(y)] = C0[std::size_t(y)] = exact.concentration((y + 0.5) * h);
   double cmax = 0.0;
   for (double c : ref) cmax = std::max(cmax, c);
-  const auto run = vv::run_to_steady(lat, interval, 1e-9 * cmax, 200 * interval);
-  std::vector<double> C(lat.concentration().begin(), lat.concentration().end());
-  // Interfaces between rows: C by the mean of the two neighbours, flux by the face flux.
-  std::vector<double> east(g.size()), north(g.size());
-  lat.face_flux(east, north);
+  // The bands of layered_slab.toml at this level: a node whose square lies in one band takes its
+  // D, k and q; a node on an interface (Placement::on_nodes_*) the mean k and q of its two bands
+  // and the arithmetic or harmonic (transport.layer_mean) mean of D.
+  const long interval = std::max(1L, std::lround(0.25 / units.dt_s));  // 0.25 s; slowest mode ~0.9 s
+  auto set_up = vv::steady_overrides("NO", interval, 1e-9 * cmax, 200 * interval);
+  for (const std::string& o :
+       {vv::set("domain.spacing_um", h), vv::set("domain.size_um", h, rows * h), vv::set("transport.time_step_s", units.dt_s),
+        vv::set("transport.stencil", std::string(stencil == Stencil::d2q5 ? "\"d2q5\"" : "\"d2q9\"")),
+        vv::set("transport.collision", std::string(collision.kind == Collision::trt ? "\"trt\"" : "\"bgk\"")),
+        vv::set("transport.trt_magic", collision.magic),
+        vv::set("transport.layer_mean",
+                std::string(placement == Placement::on_nodes_arithmetic ? "\"arithmetic\"" : "\"harmonic\"")),
+        vv::set("species[0].diffusivity_um2_s", kDNO)})
+    set_up.push_back(o);
+  for (std::size_t j = 0; j < L.size(); ++j) {
+    const std::string p = "transport.layers[" + std::to_string(j) + "].";
+    set_up.push_back(vv::set(p + "y_um", exact.interfaces()[j], exact.interfaces()[j + 1]));
+    set_up.push_back(vv::set(p + "diffusivity_um2_s", L[j].D));
+    set_up.push_back(vv::set(p + "decay_per_s", L[j].k));
+    set_up.push_back(vv::set(p + "source_uM_per_s", L[j].q));
+  }
+  const auto configure = [&](sim::Simulation& s) { s.transport()->initialize(0, C0); };  // start at the exact profile
+  const std::string label = std::string(stencil == Stencil::d2q5 ? "d2q5" : "d2q9") + "_m" + std::to_string(m) +
+                            (contrast ? "_contrast" : "") + (placement == Placement::midway ? "" : "_nodes") +
+                            (placement == Placement::on_nodes_arithmetic ? "_arithmetic" : "");
+  auto run = vv::run_transport(vv::case_scene("verification/transport/layered_slab.toml", set_up), case_name, label,
+                               "NO", configure);
+  const std::vector<double>& C = run.C;
+  // Interfaces between rows: C by flux-continuous interpolation of the two neighbours, the flux
+  // by the face flux (series NO_layer_<j>_top_flux_uM_um_s of the transport probe, eq T6).
   double fmax = 0.0;
   for (int y = 0; y < rows; ++y) fmax = std::max(fmax, std::fabs(exact.flux((y + 0.5) * h)));
   double err_c = 0.0, err_f = 0.0;
@@ -114,11 +111,13 @@ SlabRun run_slab(Stencil stencil, int m, bool contrast, Placement placement = Pl
     // spacings ⇒ C_i = (D_a C_a + D_b C_b)/(D_a + D_b) (the mean when D is continuous).
     const double Da = L[i - 1].D, Db = L[i].D;
     const double c_num = (Da * C[std::size_t(below)] + Db * C[std::size_t(below) + 1]) / (Da + Db);
-    const double f_num = north[std::size_t(below)] * h / units.dt_s;  // amount per step → µM µm/s
     err_c = std::max(err_c, std::fabs(c_num - exact.concentration(yi)) / cmax);
-    err_f = std::max(err_f, std::fabs(f_num - exact.flux(yi)) / fmax);
+    if (placement == Placement::midway) {
+      const double f_num = run.series.series("NO_layer_" + std::to_string(i - 1) + "_top_flux_uM_um_s").back();
+      err_f = std::max(err_f, std::fabs(f_num - exact.flux(yi)) / fmax);
+    }
   }
-  return {vv::relative_l2(C, ref), err_c, err_f, run, rows};
+  return {vv::relative_l2(C, ref), err_c, err_f, std::move(run), rows};
 }
 
 void layered_slab_case(const std::string& case_name, const std::vector<int>& refinements, bool contrast = false,
@@ -157,13 +156,14 @@ void layered_slab_case(const std::string& case_name, const std::vector<int>& ref
                               0.0, 0.15, false, ""};
     io::SpeedErrorSeries speed{name, {}, {}, {}};
     for (int m : refinements) {
-      const SlabRun r = run_slab(stencil, m, contrast, Placement::midway, collision);
+      const SlabRun r = run_slab(case_name, stencil, m, contrast, Placement::midway, collision);
       EXPECT_TRUE(r.run.converged) << name << " m=" << m;
       worst_balance = std::max(worst_balance, r.run.worst_mass_residual);
       record.add_run({{"stencil", name}, {"m", double(m)}, {"rows", double(r.rows)},
                       {"steps", double(r.run.steps)}, {"error_l2", r.error_l2},
                       {"interface_C_error", r.interface_C_error}, {"interface_flux_error", r.interface_flux_error},
-                      {"mass_residual", r.run.worst_mass_residual}, {"wall_time_s", r.run.wall_time_s}});
+                      {"mass_residual", r.run.worst_mass_residual}, {"wall_time_s", r.run.wall_time_s}},
+                     r.run.scene_text);
       const double hh = 2.5 / m;
       series.h.push_back(hh);
       series.error.push_back(r.error_l2);
@@ -250,12 +250,13 @@ TEST(TransportLayeredSlabOnNodes, InterfaceThroughNodes) {
                                  ""};
     io::SpeedErrorSeries speed{v.name, {}, {}, {}};
     for (int m : {1, 2, 4, 8}) {
-      const SlabRun r = run_slab(Stencil::d2q5, m, v.contrast, v.placement);
+      const SlabRun r = run_slab("verification.transport_layered_slab_nodes", Stencil::d2q5, m, v.contrast, v.placement);
       EXPECT_TRUE(r.run.converged) << v.name << " m=" << m;
       worst_balance = std::max(worst_balance, r.run.worst_mass_residual);
       record.add_run({{"variant", v.name}, {"m", double(m)}, {"rows", double(r.rows)},
                       {"steps", double(r.run.steps)}, {"error_l2", r.error_l2},
-                      {"mass_residual", r.run.worst_mass_residual}, {"wall_time_s", r.run.wall_time_s}});
+                      {"mass_residual", r.run.worst_mass_residual}, {"wall_time_s", r.run.wall_time_s}},
+                     r.run.scene_text);
       vv::add_convergence_point(series, speed, 2.5 / m, r.error_l2, r.run.wall_time_s, "m=" + std::to_string(m));
       if (m == 8 && v.contrast) (v.placement == Placement::on_nodes_arithmetic ? finest_arith : finest_harm) = r.error_l2;
     }

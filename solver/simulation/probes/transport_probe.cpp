@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "simulation/transport_physics.hpp"
@@ -9,7 +10,16 @@
 namespace erythro::sim {
 
 TransportProbe::TransportProbe(const TransportPhysics& transport)
-    : transport_(transport), worst_(transport.species_count(), 0.0) {}
+    : transport_(transport), worst_(transport.species_count(), 0.0), previous_(transport.species_count()) {
+  const auto& T = transport.setup();
+  const int ny = transport.species_count() ? transport.lattice(0).grid().ny : 0;
+  for (std::size_t k = 0; k < T.layers.size(); ++k) {
+    const long top = std::lround(T.layers[k].y_hi);  // nearest face (in h)
+    if (T.layers[k].full_width && top >= 1 && top < ny)
+      fluxes_.push_back({static_cast<std::size_t>(T.layers[k].species), static_cast<std::size_t>(top - 1),
+                         static_cast<int>(k)});
+  }
+}
 
 void TransportProbe::declare(std::vector<SeriesInfo>& series) const {
   for (std::size_t i = 0; i < transport_.species_count(); ++i) {
@@ -18,9 +28,23 @@ void TransportProbe::declare(std::vector<SeriesInfo>& series) const {
     series.push_back({n + "_mass_balance_residual", "",
                       "relative mass-balance residual of the last transport step (docs/transport.md eq T5)"});
     series.push_back({n + "_max_mass_balance_residual", "", "largest |relative residual| of any transport step so far"});
+    series.push_back({n + "_amount_uM_um2", "uM*um^2", "stored amount of " + n + " (eq T5's M, per unit depth)"});
+    series.push_back({n + "_amount_change_uM_um2", "uM*um^2", "stored amount of " + n + " minus that at the start "
+                                                              "(per unit depth)"});
+    series.push_back({n + "_boundary_inflow_uM_um2", "uM*um^2", "net amount of " + n + " that entered through the "
+                                                                "sides since the start (per unit depth)"});
+    series.push_back({n + "_change_uM", "uM", "max |C - C at the previous sample| over the nodes (NaN at the first)"});
+    series.push_back({n + "_steady_balance", "", "|inflow + net source| / |net source| of the last transport step"});
   }
-  for (std::size_t c = 0; c < transport_.saturation().size(); ++c)
+  for (const LayerFlux& f : fluxes_)
+    series.push_back({transport_.name(f.species) + "_layer_" + std::to_string(f.layer) + "_top_flux_uM_um_s",
+                      "uM*um/s", "flux across the top edge of [[transport.layers]] entry " + std::to_string(f.layer) +
+                                     " (+y, mean over x)"});
+  for (std::size_t c = 0; c < transport_.saturation().size(); ++c) {
     series.push_back({"cell_" + std::to_string(c) + "_saturation", "", "cell-averaged HbO2 saturation"});
+    series.push_back({"cell_" + std::to_string(c) + "_released_uM_um2", "uM*um^2",
+                      "O2 released by the cell's haemoglobin since the start (per unit depth)"});
+  }
 }
 
 void TransportProbe::track_residuals() {
@@ -34,14 +58,51 @@ void TransportProbe::register_stages(TimeLoop& loop) {
 
 void TransportProbe::sample(const ProbeContext& context, std::span<double> values) {
   const double nodes = static_cast<double>(context.setup.grid.size());
+  const auto& units = transport_.setup().units;
+  const double area = units.h_um * units.h_um;  // lattice amount (µM per node) → µM·µm²
   std::size_t k = 0;
   for (std::size_t i = 0; i < transport_.species_count(); ++i) {
     const auto& lat = transport_.lattice(i);
+    const auto& mb = lat.mass_balance();
     values[k++] = lat.total_amount() / nodes;
-    values[k++] = context.step == 0 ? 0.0 : lat.mass_balance().relative_residual();
+    values[k++] = context.step == 0 ? 0.0 : mb.relative_residual();
     values[k++] = worst_[i];
+    const double M = lat.stored_amount();
+    values[k++] = M * area;
+    values[k++] = (M - transport_.initial_amount(i)) * area;
+    values[k++] = transport_.boundary_inflow(i) * area;
+    const auto C = lat.concentration();
+    double change = std::numeric_limits<double>::quiet_NaN();
+    if (previous_[i].size() == C.size()) {
+      change = 0.0;
+      for (std::size_t n = 0; n < C.size(); ++n) change = std::max(change, std::fabs(C[n] - previous_[i][n]));
+    }
+    previous_[i].assign(C.begin(), C.end());
+    values[k++] = change;
+    values[k++] = context.step == 0 ? 0.0
+                  : mb.source != 0.0 ? std::fabs(mb.boundary_in + mb.source) / std::fabs(mb.source)
+                  : mb.boundary_in == 0.0 ? 0.0
+                                          : 1.0;
   }
-  for (double S : transport_.saturation()) values[k++] = S;
+  if (!fluxes_.empty()) {
+    const Grid& g = context.setup.grid;
+    east_.resize(g.size());
+    north_.resize(g.size());
+    std::size_t computed = transport_.species_count();
+    for (const LayerFlux& f : fluxes_) {
+      if (computed != f.species) {
+        transport_.lattice(f.species).face_flux(east_, north_);
+        computed = f.species;
+      }
+      double sum = 0.0;
+      for (int x = 0; x < g.nx; ++x) sum += north_[f.row * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x)];
+      values[k++] = sum / g.nx * units.h_um / units.dt_s;  // amount per step → µM·µm/s
+    }
+  }
+  for (std::size_t c = 0; c < transport_.saturation().size(); ++c) {
+    values[k++] = transport_.saturation()[c];
+    values[k++] = transport_.released(c) * area;
+  }
 }
 
 }  // namespace erythro::sim
