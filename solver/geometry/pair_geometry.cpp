@@ -1,7 +1,7 @@
 #include "geometry/pair_geometry.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -50,31 +50,20 @@ ContactShape contact_shape(const Polygon& a, std::span<const char> in_contact, d
   const double s0 = 0.5 * (*lo + *hi), half = 0.5 * (*hi - *lo);
   r.length = 2.0 * half;
   if (!(half > 0)) return r;
-  // Normal equations of the Legendre fit (4 × 4, well conditioned on [−1, 1]).
-  std::array<std::array<double, 5>, 4> M{};
+  // Least squares n(u) ≈ Σ c_i P_i(u) on u ∈ [−1, 1] (Householder QR of the design matrix).
+  Eigen::MatrixX4d P(static_cast<Eigen::Index>(s.size()), 4);
+  Eigen::VectorXd normal(static_cast<Eigen::Index>(s.size()));
   for (std::size_t k = 0; k < s.size(); ++k) {
     const double u = (s[k] - s0) / half;
-    const std::array<double, 4> P{1.0, u, 0.5 * (3 * u * u - 1), 0.5 * (5 * u * u * u - 3 * u)};
-    for (int i = 0; i < 4; ++i) {
-      for (int j = 0; j < 4; ++j) M[i][j] += P[i] * P[j];
-      M[i][4] += P[i] * n[k];
-    }
+    const auto row = static_cast<Eigen::Index>(k);
+    P.row(row) << 1.0, u, 0.5 * (3 * u * u - 1), 0.5 * (5 * u * u * u - 3 * u);
+    normal(row) = n[k];
   }
-  for (int col = 0; col < 4; ++col) {  // Gaussian elimination with partial pivoting
-    int piv = col;
-    for (int i = col + 1; i < 4; ++i)
-      if (std::abs(M[i][col]) > std::abs(M[piv][col])) piv = i;
-    std::swap(M[col], M[piv]);
-    if (std::abs(M[col][col]) < 1e-300) return r;
-    for (int i = 0; i < 4; ++i) {
-      if (i == col) continue;
-      const double f = M[i][col] / M[col][col];
-      for (int j = col; j < 5; ++j) M[i][j] -= f * M[col][j];
-    }
-  }
-  r.bow = std::abs(M[2][4] / M[2][2]);
-  r.sigmoid = std::abs(M[3][4] / M[3][3]);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixX4d> qr(P);
+  if (qr.rank() < 4) return r;
+  const Eigen::Vector4d c = qr.solve(normal);
+  r.bow = std::abs(c(2));
+  r.sigmoid = std::abs(c(3));
   return r;
 }
-
 }  // namespace erythro::geometry

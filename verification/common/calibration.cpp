@@ -1,5 +1,6 @@
 #include "common/calibration.hpp"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -183,33 +184,26 @@ void statistics(CalibrationResult& res, const std::vector<double>& r0, std::size
     }
     res.sensitivity_rms[i] = std::sqrt(ss / static_cast<double>(K));
   }
-  // Gauss–Newton standard error: s² (JᵀJ)⁻¹, inverted by Gauss–Jordan (n is small).
+  // Gauss–Newton standard error: the diagonal of s² (JᵀJ)⁻¹, s² = |r0|²/(K − n). With
+  // J = QR (column-pivoted Householder), (JᵀJ)⁻¹ = P R⁻¹ R⁻ᵀ Pᵀ; a rank-deficient J means
+  // the parameters are not identifiable (errors stay infinite).
   res.gn_standard_error.assign(n, std::numeric_limits<double>::infinity());
   if (K <= n) return;
-  std::vector<std::vector<double>> a(n, std::vector<double>(2 * n, 0.0));
-  for (std::size_t i = 0; i < n; ++i) {
-    for (std::size_t j = 0; j < n; ++j)
-      for (std::size_t k = 0; k < K; ++k) a[i][j] += res.jacobian[k][i] * res.jacobian[k][j];
-    a[i][n + i] = 1.0;
-  }
-  for (std::size_t c = 0; c < n; ++c) {
-    std::size_t piv = c;
-    for (std::size_t r = c + 1; r < n; ++r)
-      if (std::abs(a[r][c]) > std::abs(a[piv][c])) piv = r;
-    if (std::abs(a[piv][c]) < 1e-300) return;  // singular: parameters not identifiable
-    std::swap(a[c], a[piv]);
-    const double d = a[c][c];
-    for (auto& v : a[c]) v /= d;
-    for (std::size_t r = 0; r < n; ++r)
-      if (r != c) {
-        const double f = a[r][c];
-        for (std::size_t j = 0; j < 2 * n; ++j) a[r][j] -= f * a[c][j];
-      }
-  }
-  double ss = 0.0;
-  for (double v : r0) ss += v * v;
-  const double s2 = ss / static_cast<double>(K - n);
-  for (std::size_t i = 0; i < n; ++i) res.gn_standard_error[i] = std::sqrt(s2 * a[i][n + i]);
+  Eigen::MatrixXd J(static_cast<Eigen::Index>(K), static_cast<Eigen::Index>(n));
+  for (std::size_t k = 0; k < K; ++k)
+    for (std::size_t i = 0; i < n; ++i) J(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(i)) = res.jacobian[k][i];
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(J);
+  if (qr.rank() < static_cast<Eigen::Index>(n)) return;
+  const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n))
+                                .triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd R_inv =
+      R.triangularView<Eigen::Upper>().solve(Eigen::MatrixXd::Identity(R.rows(), R.cols()));
+  const Eigen::MatrixXd covariance = qr.colsPermutation() * (R_inv * R_inv.transpose()) *
+                                     qr.colsPermutation().transpose();
+  const double s2 = Eigen::Map<const Eigen::VectorXd>(r0.data(), static_cast<Eigen::Index>(K)).squaredNorm() /
+                    static_cast<double>(K - n);
+  for (std::size_t i = 0; i < n; ++i)
+    res.gn_standard_error[i] = std::sqrt(s2 * covariance(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)));
 }
 
 }  // namespace

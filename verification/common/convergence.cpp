@@ -1,5 +1,6 @@
 #include "common/convergence.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -9,19 +10,12 @@ namespace erythro::vv {
 double least_squares_slope(const std::vector<double>& x, const std::vector<double>& y) {
   const std::size_t n = x.size();
   if (n < 2 || y.size() != n) throw std::invalid_argument("least_squares_slope: need two or more points");
-  double mx = 0, my = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    mx += x[k];
-    my += y[k];
-  }
-  mx /= static_cast<double>(n);
-  my /= static_cast<double>(n);
-  double sxy = 0, sxx = 0;
-  for (std::size_t k = 0; k < n; ++k) {
-    sxy += (x[k] - mx) * (y[k] - my);
-    sxx += (x[k] - mx) * (x[k] - mx);
-  }
-  return sxy / sxx;
+  // y ≈ c0 + c1 x in the least-squares sense (Householder QR of the design matrix [1 x]).
+  Eigen::MatrixX2d A(static_cast<Eigen::Index>(n), 2);
+  A.col(0).setOnes();
+  A.col(1) = Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<Eigen::Index>(n));
+  const Eigen::Map<const Eigen::VectorXd> b(y.data(), static_cast<Eigen::Index>(n));
+  return A.colPivHouseholderQr().solve(b)(1);
 }
 
 void fit_order(io::ConvergenceSeries& s) {

@@ -1,5 +1,6 @@
 #include "layered_slab.hpp"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <stdexcept>
 #include <utility>
@@ -12,14 +13,15 @@ LayeredSlab::LayeredSlab(std::vector<SlabLayer> layers) : layers_(std::move(laye
   y_.assign(1, 0.0);
   for (const auto& l : layers_) y_.push_back(y_.back() + l.thickness);
   const int M = 2 * L;
-  std::vector<std::vector<double>> A(M, std::vector<double>(M + 1, 0.0));  // augmented
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(M, M);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(M);
   auto row_value = [&](int r, int j, double s, double sign, bool derivative) {
     double p, pa, pb, dp, dpa, dpb;
     basis(j, s, p, pa, pb, dp, dpa, dpb);
     const double scale = derivative ? layers_[j].D : 1.0;  // flux continuity: D C'
-    A[r][2 * j] += sign * scale * (derivative ? dpa : pa);
-    A[r][2 * j + 1] += sign * scale * (derivative ? dpb : pb);
-    A[r][M] -= sign * scale * (derivative ? dp : p);
+    A(r, 2 * j) += sign * scale * (derivative ? dpa : pa);
+    A(r, 2 * j + 1) += sign * scale * (derivative ? dpb : pb);
+    rhs(r) -= sign * scale * (derivative ? dp : p);
   };
   int r = 0;
   row_value(r++, 0, 0.0, 1.0, true);  // C'(0) = 0
@@ -30,23 +32,7 @@ LayeredSlab::LayeredSlab(std::vector<SlabLayer> layers) : layers_(std::move(laye
     row_value(r++, j + 1, 0.0, -1.0, true);
   }
   row_value(r++, L - 1, layers_[L - 1].thickness, 1.0, true);  // C'(end) = 0
-  // Gaussian elimination with partial pivoting.
-  for (int c = 0; c < M; ++c) {
-    int piv = c;
-    for (int i = c + 1; i < M; ++i)
-      if (std::fabs(A[i][c]) > std::fabs(A[piv][c])) piv = i;
-    std::swap(A[c], A[piv]);
-    for (int i = c + 1; i < M; ++i) {
-      const double f = A[i][c] / A[c][c];
-      for (int k = c; k <= M; ++k) A[i][k] -= f * A[c][k];
-    }
-  }
-  std::vector<double> x(M);
-  for (int i = M - 1; i >= 0; --i) {
-    double s = A[i][M];
-    for (int k = i + 1; k < M; ++k) s -= A[i][k] * x[k];
-    x[i] = s / A[i][i];
-  }
+  const Eigen::VectorXd x = A.partialPivLu().solve(rhs);
   for (int j = 0; j < L; ++j) {
     a_.push_back(x[2 * j]);
     b_.push_back(x[2 * j + 1]);
