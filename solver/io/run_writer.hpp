@@ -18,6 +18,8 @@
 //                     _orientation_deg, _inclination_deg, _centroid_x_um, _centroid_y_um, _max_edge_strain,
 //                     _marker_phase_deg, _marker0_angle_deg, and cells_max_area_change,
 //                     cells_max_edge_strain (simulation/probes/cell_shape_probe.hpp);
+//                     with an interior viscosity, interior_index_updates, _fill_fraction,
+//                     _max_fill_mismatch_um2, _max_fallback_cells (probes/interior_probe.hpp);
 //                     with [transport]: <species>_mean_uM, <species>_mass_balance_residual,
 //                     <species>_max_mass_balance_residual, and with [hemoglobin]
 //                     cell_<c>_saturation (simulation/probes/transport_probe.hpp)

@@ -23,7 +23,7 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
     index_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()), interior::IndexFieldOptions{setup.indicator});
     polygons_.resize(static_cast<std::size_t>(cells_.cell_count()));
     lattice.enable_tau_field();
-    index_->update(polygons_from_cells());
+    record_fill(index_->update(polygons_from_cells()));
     index_->write_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);  // every node once
   }
 }
@@ -37,8 +37,14 @@ std::span<const geometry::Polygon> CellPhysics::polygons_from_cells() {
   return polygons_;
 }
 
+void CellPhysics::record_fill(const interior::FillReport& report) {
+  ++fill_history_.updates;
+  fill_history_.max_area_mismatch = std::max(fill_history_.max_area_mismatch, report.max_area_mismatch);
+  fill_history_.max_fallback_cells = std::max(fill_history_.max_fallback_cells, report.fallback_cells);
+}
+
 void CellPhysics::refresh_viscosity(fluid::FluidLattice& lattice) {
-  index_->update(polygons_from_cells());
+  record_fill(index_->update(polygons_from_cells()));
   // Eq 27: τ(x) = ½ + 3[ν_in + (ν_ex − ν_in) I(x)], rewritten only where I changed.
   index_->write_changed_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);
 }

@@ -56,10 +56,18 @@ class CellPhysics {
   // Whether the index field is rebuilt beside the force stage (two or more OpenMP
   // threads and a force stage that runs on one).
   bool index_beside_forces() const;
+  // What the index field's rebuilds so far reported (the first, at construction, included).
+  struct FillHistory {
+    long updates = 0;                 // rebuilds of I (and τ)
+    double max_area_mismatch = 0.0;   // max over rebuilds and cells of |Σ(1 − I) − A| (lattice units²)
+    int max_fallback_cells = 0;       // max over rebuilds of cells filled by ray casting (flood fill)
+  };
+  const FillHistory& fill_history() const { return fill_history_; }
 
  private:
   bool refresh_due(long step) const { return index_ && step > 0 && step % index_interval_ == 0; }
   void refresh_viscosity(fluid::FluidLattice& lattice);
+  void record_fill(const interior::FillReport& report);
   void refresh_viscosity_timed(fluid::FluidLattice& lattice);
   void compute_marker_forces();  // membrane forces [+ aggregation]
   void add_aggregation_forces();
@@ -74,6 +82,7 @@ class CellPhysics {
   double nu_interior_ = 0.0, nu_exterior_ = 0.0;
   long index_interval_ = 1;
   double index_seconds_ = 0.0, index_exposed_seconds_ = 0.0;
+  FillHistory fill_history_;
 };
 
 }  // namespace erythro::sim

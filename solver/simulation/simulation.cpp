@@ -11,6 +11,7 @@
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
+#include "simulation/probes/interior_probe.hpp"
 #include "simulation/probes/marker_speed_probe.hpp"
 #include "simulation/probes/pair_probe.hpp"
 #include "simulation/probes/transport_probe.hpp"
@@ -44,6 +45,7 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
       probes_.push_back(std::make_unique<CellShapeProbe>(*cells_, scene_.output.extremes_interval_steps));
     if (cells_)
       probes_.push_back(std::make_unique<MarkerSpeedProbe>(*cells_, scene_.output.extremes_interval_steps));
+    if (cells_ && cells_->index_field()) probes_.push_back(std::make_unique<InteriorProbe>(*cells_));
     if (cells_ && cells_->aggregation() && cells_->cells().cell_count() == 2)  // a doublet
       probes_.push_back(std::make_unique<PairProbe>(*cells_));
   } else if (setup_.membrane) {

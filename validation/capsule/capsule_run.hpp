@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "fluid/fluid_lattice.hpp"
 #include "ib/kernel.hpp"
+#include "io/result_record.hpp"
 
 namespace erythro::vv {
 
@@ -24,6 +24,7 @@ struct CapsuleConfig {
   double max_strain = 12.0;    // cap on γ̇t
   double min_strain = 4.0;     // never stop before this strain
   double steady_drift = 1e-4;  // stop when |ΔD| over the last strain unit is below this
+  bool pictures = false;       // keep pictures of the last field output (speed, membrane) for the report
 };
 
 struct CapsuleResult {
@@ -44,12 +45,9 @@ struct CapsuleResult {
   // field, spreading, fluid step, support-node velocity, interpolation and marker update.
   double t_forces = 0, t_zero = 0, t_spread = 0, t_fluid = 0, t_moments = 0, t_move = 0, wall_time_s = 0;
   std::vector<double> strain_history, D_history, theta_history;  // every 0.1 strain unit
+  std::vector<io::FieldPicture> pictures;  // CapsuleConfig::pictures: the last field output
 };
 
 CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, const std::string& label);
-
-// TEMPORARY, until validation/rbc and validation/doublet run scenes: simple shear between
-// walls at y = 0 and ny moving at ∓U = ∓γ̇ ny/2 (BGK, τ), from u = γ̇(y − H/2).
-fluid::FluidLattice make_shear_lattice(int nx, int ny, double gamma, double tau);
 
 }  // namespace erythro::vv

@@ -102,6 +102,7 @@ struct Bookkeeping {
                     {"t_moments_s", r.t_moments},
                     {"t_interpolate_move_s", r.t_move}},
                    r.scene_text);
+    for (const io::FieldPicture& p : r.pictures) record.add_field(p);
     std::printf("%-10s %-8s G=%.3f a/h=%4.1f Re=%.3f H=%2.0f Lx=%2.0f  D=%.5f th=%6.3f T=%.2f strain=%.1f drift=%.1e %.1fs\n",
                 role.c_str(), std::string(ib::to_string(c.kernel)).c_str(), c.capillary, c.radius, c.reynolds, c.height,
                 c.length, r.D, r.theta_deg, r.tt_period, r.strain, r.drift, r.wall_time_s);
@@ -151,6 +152,7 @@ TEST(CapsuleShear, FullStudy) {
       vv::CapsuleConfig c;
       c.capillary = ref.G;
       c.radius = a;
+      c.pictures = ref.G == 0.1 && a == 12;  // the steady capsule and its flow, for the report
       runs.push_back(book.run(c, "resolution"));
       h.push_back(1.0 / a);
       D.push_back(runs.back().D);
@@ -336,6 +338,7 @@ TEST(CapsuleShear, CiSubset) {
   c.radius = 6.0;
   c.min_strain = 3.0;
   c.max_strain = 4.0;
+  c.pictures = true;
   const auto r = book.run(c, "ci");
   record.add_metric({"D_deforms", "the capsule deforms (a rigid or leaking membrane gives D ~ 0)", "", r.D, 0.2, 0.0,
                      io::Comparison::at_least, "reference D = 0.3423; D < 0.2 would mean the coupling is broken"});

@@ -34,6 +34,7 @@ TEST(DoubletShear, CiSubset) {
   strong.de_star = kStrong;
   strong.strain = 6.0;
   strong.stop_theta_deg = -5.0;  // the line of centres has passed the flow direction: a quarter turn as one body
+  strong.pictures = true;
   vv::DoubletShearConfig weak = vv::ci_config();
   weak.de_star = kWeak;
   weak.strain = 6.0;

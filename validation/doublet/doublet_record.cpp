@@ -106,6 +106,7 @@ void add_row(io::ResultRecord& rec, const std::string& label, const DoubletShear
                {"max_edge_strain_cell1", r.max_edge_strain_cell[1]},
                {"wall_time_s", r.wall_time_s}},
               r.scene_text);
+  for (const io::FieldPicture& p : r.pictures) rec.add_field(p);
 }
 
 void add_health_metrics(io::ResultRecord& rec, const std::string& label, const DoubletShearResult& r) {

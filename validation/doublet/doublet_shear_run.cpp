@@ -175,8 +175,10 @@ DoubletShearResult run_doublet_shear(const DoubletShearConfig& c, const std::str
   options.configure = [&](sim::Simulation& sim) {
     sim.add_probe(std::make_unique<OutlineSnapshots>(*sim.cell_physics(), d.gamma, r));
   };
+  options.pictures = c.pictures;
   const CaseRun run = run_case_scene(d.scene, case_name, label, options);
   r.scene_text = run.file.scene_text();
+  r.pictures = run.pictures;
   r.wall_time_s = run.wall_time_s;
   r.steps = run.summary.steps;
   r.diverged = !run.ok();

@@ -20,6 +20,7 @@
 
 #include "ib/kernel.hpp"
 #include "interior/index_field.hpp"
+#include "io/result_record.hpp"
 
 namespace erythro::vv {
 
@@ -59,6 +60,7 @@ struct DoubletShearConfig {
   double stop_theta_deg = -1e9;    // stop at the first sample where the unwrapped θ is below this
   double stop_after_dissociation = 1.0;  // strain units kept after dissociation, then stop (doublet)
   double max_mach = 0.3;
+  bool pictures = false;           // keep pictures of the last field output (speed, membranes) for the report
 };
 
 struct DoubletShearResult {
@@ -94,6 +96,7 @@ struct DoubletShearResult {
   double aspect_quadrant = 0;      // mean equivalent-ellipse a/b over [t(θ=0), t(θ=−90)]
   std::vector<double> snap_strain; // outline snapshots (µm, absolute, cell 1 moved next to cell 0)
   std::vector<std::vector<double>> snap_x, snap_y;
+  std::vector<io::FieldPicture> pictures;  // DoubletShearConfig::pictures: the last field output
 };
 
 // Runs the scene into <results>/runs/<case_name>/<label>/ and reads its series back.

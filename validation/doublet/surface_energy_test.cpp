@@ -60,6 +60,7 @@ TEST(DoubletShear, SurfaceEnergy100) {
   fine.de_star = 0.0;
   vv::DoubletShearConfig fine5 = fine;
   fine5.de_star = 0.5;
+  fine5.pictures = true;  // the aggregated doublet and its flow at the thesis lattice, for the report
   plan.push_back({fine, "De*=0 h=0.15"});
   plan.push_back({fine5, "De*=0.5 h=0.15"});
   const std::vector<vv::DoubletShearResult> all = vv::run_doublet_shears(plan, rec.case_name());

@@ -13,12 +13,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <map>
 #include <string>
 #include <vector>
 
 #include "common/case_support.hpp"
+#include "common/concurrent_runs.hpp"
 #include "visc_support.hpp"
 
 using namespace erythro;
@@ -103,7 +105,7 @@ std::string label(const StudyRun& m) { return vv::fmt("tau_ex=%g", m.c.tau) + vv
 StudyRun run_one(const std::string& kind, double h_um, double tau, double ca, double strain) {
   StudyRun m{kind, ca, vv::stability_map_config(h_um, tau, ca, strain), {}};
   try {
-    m.r = vv::run_rbc(m.c);
+    m.r = vv::run_rbc(m.c, "validation.rbc_viscosity_long_runs");
   } catch (const std::exception& e) {
     m.r.diverged = true;
     m.r.diagnosis = std::string("could not start: ") + e.what();
@@ -175,14 +177,28 @@ TEST(RbcViscosityLongRuns, Full) {
       "Stability limits of BGK near tau = 1/2 (docs/stability.md) and of the explicit IB coupling "
       "(membrane::estimate_stability); IB leakage grows when the marker spacing approaches h (Peskin 2002, Acta "
       "Numerica 11:479, recalled: spacing <= h/2). No published map for this set-up: the runs are the measurement.");
-  std::vector<StudyRun> runs;
+  struct Spec {
+    const char* kind;
+    double h_um, tau, ca, strain;
+  };
+  std::vector<Spec> specs;
   // (1) Long runs at the corners, h = 0.4 µm.
   for (double ca : {0.1, 10.0})
-    for (double tau : {0.52, 1.0}) runs.push_back(run_one("long", 0.4, tau, ca, kLongStrain));
-  runs.push_back(run_one("long", 0.4, 0.52, 1.0, kLongStrain));  // the thesis moduli at the smallest tau_ex
+    for (double tau : {0.52, 1.0}) specs.push_back({"long", 0.4, tau, ca, kLongStrain});
+  specs.push_back({"long", 0.4, 0.52, 1.0, kLongStrain});  // the thesis moduli at the smallest tau_ex
   // (2) Second resolution, h = 0.3125 µm, γ̇t = 10; τ_ex = 0.505 recorded beyond the asserted range.
   for (double ca : {0.1, 10.0})
-    for (double tau : {0.505, 0.52, 1.0}) runs.push_back(run_one("fine map", 0.3125, tau, ca, kMapStrain));
+    for (double tau : {0.505, 0.52, 1.0}) specs.push_back({"fine map", 0.3125, tau, ca, kMapStrain});
+  // The runs are independent: at once on the case's cores (one OpenMP thread each, the
+  // long ones first; vv::run_concurrently gives the same bits as one after the other).
+  std::vector<StudyRun> runs(specs.size());
+  std::vector<std::function<void()>> jobs;
+  for (std::size_t i = 0; i < specs.size(); ++i)
+    jobs.push_back([&, i] {
+      const Spec& s = specs[i];
+      runs[i] = run_one(s.kind, s.h_um, s.tau, s.ca, s.strain);
+    });
+  vv::run_concurrently(jobs);
 
   std::vector<Drift> drifts;
   for (const StudyRun& m : runs) {
@@ -191,7 +207,7 @@ TEST(RbcViscosityLongRuns, Full) {
                 "%.3e, rate %.3e per strain (%.3e per period), 0.5%% at %.1f\n",
                 m.kind.c_str(), label(m).c_str(), d.periods, d.tumbling_period, d.membrane_period, d.max_to_10,
                 d.max_first_half, d.max_second_half, d.rate, d.per_period, d.strain_at_bound);
-    rec.add_run(row_of(m, d));
+    rec.add_run(row_of(m, d), m.r.scene_text);
     if (m.kind == "long") add_long_series(rec, m, d);
     drifts.push_back(d);
   }

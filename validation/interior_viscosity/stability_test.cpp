@@ -8,9 +8,11 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <functional>
 #include <vector>
 
 #include "common/case_support.hpp"
+#include "common/concurrent_runs.hpp"
 #include "visc_support.hpp"
 
 using namespace erythro;
@@ -46,23 +48,32 @@ void run_map(const char* name, double h_um, const std::vector<double>& taus, con
       // The membrane stability estimate is not enforced: the map records what a rejected set-up does.
       MapRun m{vv::stability_map_config(h_um, tau, ca, strain), {}, ca, {}};
       m.c.snapshot_strains = {strain};
+      runs.push_back(std::move(m));
+    }
+  // The runs are independent: at once on the case's cores (one OpenMP thread each;
+  // vv::run_concurrently gives the same bits as one after the other).
+  std::vector<std::function<void()>> jobs;
+  for (MapRun& m : runs)
+    jobs.push_back([&m, name] {
       try {
-        m.r = vv::run_rbc(m.c);
+        m.r = vv::run_rbc(m.c, name);
       } catch (const std::exception& e) {
         m.failure = e.what();
         m.r.diverged = true;
         m.r.diagnosis = "could not start: " + m.failure;
       }
       vv::print_run(m.c, m.r);
-      auto row = vv::run_row(m.c, m.r);
-      row["ca_factor"] = ca;
-      row["reynolds_lattice"] = m.c.reynolds;
-      row["stability_max_dt_factor"] = m.r.stability_factor;
-      row["status"] = std::string(m.r.diverged ? "diverged" : "stable");
-      rec.add_run(row);
-      if (runs.empty()) vv::describe_setup(rec, m.c, m.r);
-      runs.push_back(std::move(m));
-    }
+    });
+  vv::run_concurrently(jobs);
+  for (const MapRun& m : runs) {
+    auto row = vv::run_row(m.c, m.r);
+    row["ca_factor"] = m.ca_factor;
+    row["reynolds_lattice"] = m.c.reynolds;
+    row["stability_max_dt_factor"] = m.r.stability_factor;
+    row["status"] = std::string(m.r.diverged ? "diverged" : "stable");
+    rec.add_run(row, m.r.scene_text);
+  }
+  vv::describe_setup(rec, runs.front().c, runs.front().r);
   rec.set_parameter("viscosity_ratio", kRatio);
   rec.set_parameter("h_um", h_um);
   rec.set_parameter("strain", strain);
@@ -126,14 +137,14 @@ void run_map(const char* name, double h_um, const std::vector<double>& taus, con
     vv::RbcConfig c = vv::thesis_config(h_um, interior::Method::flood_fill, kRatio, strain);
     c.Es_N_m *= 1000.0;
     c.require_stability_estimate = false;
-    const vv::RbcResult r = vv::run_rbc(c);
+    const vv::RbcResult r = vv::run_rbc(c, name);
     vv::print_run(c, r);
     auto row = vv::run_row(c, r);
     row["ca_factor"] = 0.001;
     row["reynolds_lattice"] = c.reynolds;
     row["stability_max_dt_factor"] = r.stability_factor;
     row["status"] = std::string(r.diverged ? "diverged" : "stable");
-    rec.add_run(row);
+    rec.add_run(row, r.scene_text);
     rec.set_parameter("forced_divergence_diagnosis", r.diagnosis.empty() ? std::string("-") : r.diagnosis);
     rec.add_metric({"forced_divergence_stopped", "E_S x1000: 1 if the run stopped early with a diagnosis", "",
                     r.diverged && !r.diagnosis.empty() && r.strain < strain ? 1.0 : 0.0, 1.0, 0.0,

@@ -47,7 +47,7 @@ TEST(RbcIndexUpdateInterval, Full) {
   for (int k : ks) {
     vv::RbcConfig c = vv::thesis_config(h_um, interior::Method::flood_fill, kRatio, kStrain);
     c.index_update_interval = k;
-    res.push_back(vv::run_rbc(c));
+    res.push_back(vv::run_rbc(c, "validation.rbc_index_update_interval"));
     const vv::RbcResult& r = res.back();
     vv::print_run(c, r);
     auto row = vv::run_row(c, r);
@@ -56,7 +56,7 @@ TEST(RbcIndexUpdateInterval, Full) {
     row["D_error_vs_k1"] = dD;
     row["theta_error_vs_k1_deg"] = dT;
     row["error"] = dD;
-    rec.add_run(row);
+    rec.add_run(row, r.scene_text);
     if (k == 1) vv::describe_setup(rec, c, r);
     se.wall_time_s.push_back(r.wall_time_s);
     se.error.push_back(dD);

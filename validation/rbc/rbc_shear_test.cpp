@@ -52,6 +52,7 @@ void describe(io::ResultRecord& rec, const vv::RbcConfig& c, const vv::RbcResult
   rec.set_parameter("lattice_moduli", fmt("gamma = %.4g, ", r.gamma_lat) + fmt("E_S = %.4g, ", r.Es_lat) +
                                            fmt("E_B = %.4g, ", r.Eb_lat) + fmt("k_A = %.4g", r.kA_lat));
   rec.set_parameter("stability_max_dt_factor", r.stability_factor);
+  for (const io::FieldPicture& p : r.pictures) rec.add_field(p);
 }
 
 void add_common(io::ResultRecord& rec, const vv::RbcConfig& c, const vv::RbcResult& r) {
@@ -66,7 +67,8 @@ void add_common(io::ResultRecord& rec, const vv::RbcConfig& c, const vv::RbcResu
                {"max_area_change", r.max_area_change},
                {"max_edge_strain", r.max_edge_strain},
                {"error", r.max_area_change},
-               {"regime", vv::classify(r)}});
+               {"regime", vv::classify(r)}},
+              r.scene_text);
   rec.add_metric({"strain_reached", "shear strain reached without divergence", "", r.diverged ? 0.0 : r.strain,
                   c.strain - 1e-3, 0.0, io::Comparison::at_least,
                   "the run must cover the planned strain (steps = round(strain/gamma): within 1e-3)"});
@@ -122,7 +124,8 @@ TEST(RbcShear, FullCase) {
   vv::Stopwatch total;
   io::ResultRecord rec("validation.rbc_shear", "rbc");
   vv::RbcConfig c;
-  const vv::RbcResult r = vv::run_rbc(c);
+  c.pictures = true;
+  const vv::RbcResult r = vv::run_rbc(c, "validation.rbc_shear", "full");
   report(r);
   describe(rec, c, r);
   add_common(rec, c, r);
@@ -151,7 +154,8 @@ TEST(RbcShear, CiSubset) {
   vv::RbcConfig c;
   c.strain = 1.5;
   c.snapshot_strains = {0, 0.5, 1, 1.5};
-  const vv::RbcResult r = vv::run_rbc(c);
+  c.pictures = true;
+  const vv::RbcResult r = vv::run_rbc(c, "validation.rbc_shear_ci", "ci");
   report(r);
   describe(rec, c, r);
   add_common(rec, c, r);
