@@ -40,6 +40,8 @@ def render_section(record, section):
     if record.reference:
         lines += [f"**Reference**: {prose(record.reference)}", ""]
     lines += metrics_table(metrics)
+    if section.params:
+        lines += parameters_table(record, section)
     if section.runs:
         lines += runs_table(record, section)
     return "\n".join(lines)
@@ -65,13 +67,19 @@ def verdict_line(record, shown):
 def select_metrics(record, section):
     if not section.metrics:
         return list(record.metrics)
+    return _matching([m.name for m in record.metrics], section.metrics, "metric",
+                     lambda name: next(m for m in record.metrics if m.name == name))
+
+
+def _matching(names, patterns, kind, item):
+    """item(name) for every name matching one of the patterns, in pattern order, once each."""
     chosen = []
-    for pattern in section.metrics:
-        hits = [m for m in record.metrics if fnmatch.fnmatchcase(m.name, pattern)]
+    for pattern in patterns:
+        hits = [n for n in names if fnmatch.fnmatchcase(n, pattern)]
         if not hits:
-            raise SectionError(f"no metric matches {pattern!r}")
-        chosen += [m for m in hits if m not in chosen]
-    return chosen
+            raise SectionError(f"no {kind} matches {pattern!r}")
+        chosen += [n for n in hits if n not in chosen]
+    return [item(n) for n in chosen]
 
 
 def tolerance_cells(metric):
@@ -113,6 +121,12 @@ def metrics_table(metrics):
         rows.append([m.name, what, fmt.value_text(m), fmt.expected_text(m), tolerance,
                      comparison, metric_verdict(m), why])
     return folded(f"The {len(rows)} metrics", table(METRIC_HEADERS, rows))
+
+
+def parameters_table(record, section):
+    rows = _matching(list(record.parameters), section.params, "parameter",
+                     lambda name: [name, fmt.number(record.parameters[name])])
+    return ["Parameters (selected):", ""] + table(["Parameter", "Value"], rows)
 
 
 def runs_table(record, section):

@@ -10,6 +10,7 @@ end marker (docs/reports.md, "Measured tables in the docs"):
 After the case name come optional settings, each `key: a,b,c`:
   runs     the run-row columns to show (default: no runs table)
   metrics  the metrics to show, by name or shell-style pattern (default: all)
+  params   the record's parameters to show, by name or pattern (default: none)
   where    run rows to keep, `column=value` or `column=a|b` (several: a row must match all)
 """
 import re
@@ -17,8 +18,7 @@ from dataclasses import dataclass, field
 
 START = re.compile(r"^\s*<!--\s*measured:\s*(?P<body>.*?)\s*-->\s*$")
 END = re.compile(r"^\s*<!--\s*end measured\s*-->\s*$")
-SETTING = re.compile(r"(?:^|\s)(runs|metrics|where):\s*")
-SETTINGS = ("runs", "metrics", "where")
+SETTING = re.compile(r"(?:^|\s)(runs|metrics|params|where):\s*")
 
 
 class MarkerError(Exception):
@@ -30,6 +30,7 @@ class Section:
     case: str
     runs: list = field(default_factory=list)      # run-row columns, in order
     metrics: list = field(default_factory=list)   # metric names or patterns; [] = all
+    params: list = field(default_factory=list)    # parameter names or patterns; [] = none
     where: list = field(default_factory=list)     # (column, value) pairs
     start: int = 0        # index of the start-marker line
     end: int = 0          # index of the end-marker line

@@ -118,6 +118,17 @@ class DocTablesTest(unittest.TestCase):
         self.assertIn("no column theta_deg", err)
         self.assertNotIn("Synthetic et al.", self.read_page())
 
+    def test_metric_parameter_and_row_selection(self):
+        self.write_page(PAGE.replace("runs: capillary,D where: role=study",
+                                     "runs: D where: capillary=0.05|0.1,role=check "
+                                     "metrics: max_* params: tau,collision"))
+        self.assertEqual(self.run_tool("write")[0], 0)
+        text = self.read_page()
+        self.assertIn("2 of 2 metrics passed; 1 shown below", text)
+        self.assertNotIn("| D_G=0.10 |", text)
+        self.assertIn("| tau | 0.8 |\n| collision | BGK |", text)
+        self.assertIn("Runs: 1 of 3 rows, selected columns:\n\n| D |\n| --- |\n| 0.36 |", text)
+
     def test_script_runs_as_a_program(self):
         proc = subprocess.run(["/usr/bin/python3", SCRIPT, self.results, "--check",
                                "--docs", self.docs], capture_output=True, text=True, timeout=60)
@@ -129,9 +140,11 @@ class DocTablesTest(unittest.TestCase):
 
 class MarkersTest(unittest.TestCase):
     def test_settings_of_a_marker(self):
-        s = parse_marker("v.case runs: a,b , c metrics: order*,mass where: N=64,model=trt", 3)
+        s = parse_marker("v.case runs: a,b , c metrics: order*,mass params: tau "
+                         "where: N=64|128,part=c shear wave", 3)
         self.assertEqual((s.case, s.runs, s.metrics), ("v.case", ["a", "b", "c"], ["order*", "mass"]))
-        self.assertEqual(s.where, [("N", "64"), ("model", "trt")])
+        self.assertEqual(s.params, ["tau"])
+        self.assertEqual(s.where, [("N", "64|128"), ("part", "c shear wave")])
 
     def test_unpaired_markers_are_errors(self):
         with self.assertRaises(MarkerError):
