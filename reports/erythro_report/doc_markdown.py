@@ -15,7 +15,7 @@ from . import formatting as fmt
 TOOL = "reports/doc_tables.py"
 METRIC_HEADERS = ["Metric", "What it measures", "Value", "Expected", "Tolerance",
                   "Comparison", "Verdict", "Why this tolerance"]
-RUN_DIGITS = 4
+RUN_DIGITS = 5
 FOLD_ROWS = 15   # a longer table is folded (<details>) so that the page stays readable
 
 
@@ -34,15 +34,19 @@ def prose(text):
 def render_section(record, section):
     """The body of `section` (without its marker lines) for `record`."""
     metrics = select_metrics(record, section)
-    lines = ["", provenance(record), "", verdict_line(record, metrics), ""]
-    if record.requirement:
-        lines += [f"**Requirement** (as the record states it): {prose(record.requirement)}", ""]
-    if record.reference:
-        lines += [f"**Reference**: {prose(record.reference)}", ""]
-    lines += metrics_table(metrics)
-    if section.params:
+    shown = section.parts
+    lines = ["", provenance(record), ""]
+    if "head" in shown:
+        lines += [verdict_line(record, metrics), ""]
+        if record.requirement:
+            lines += [f"**Requirement** (as the record states it): {prose(record.requirement)}", ""]
+        if record.reference:
+            lines += [f"**Reference**: {prose(record.reference)}", ""]
+    if "metrics" in shown:
+        lines += metrics_table(metrics)
+    if "params" in shown and section.params:
         lines += parameters_table(record, section)
-    if section.runs:
+    if "runs" in shown and section.runs:
         lines += runs_table(record, section)
     return "\n".join(lines)
 

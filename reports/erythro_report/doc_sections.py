@@ -12,13 +12,16 @@ After the case name come optional settings, each `key: a,b,c`:
   metrics  the metrics to show, by name or shell-style pattern (default: all)
   params   the record's parameters to show, by name or pattern (default: none)
   where    run rows to keep, `column=value` or `column=a|b` (several: a row must match all)
+  parts    what to show, of head (verdict, requirement, reference), metrics, params, runs
+           (default: all of them that apply), for a second section of one case
 """
 import re
 from dataclasses import dataclass, field
 
 START = re.compile(r"^\s*<!--\s*measured:\s*(?P<body>.*?)\s*-->\s*$")
 END = re.compile(r"^\s*<!--\s*end measured\s*-->\s*$")
-SETTING = re.compile(r"(?:^|\s)(runs|metrics|params|where):\s*")
+SETTING = re.compile(r"(?:^|\s)(runs|metrics|params|where|parts):\s*")
+PARTS = ("head", "metrics", "params", "runs")
 
 
 class MarkerError(Exception):
@@ -32,6 +35,7 @@ class Section:
     metrics: list = field(default_factory=list)   # metric names or patterns; [] = all
     params: list = field(default_factory=list)    # parameter names or patterns; [] = none
     where: list = field(default_factory=list)     # (column, value) pairs
+    parts: list = field(default_factory=lambda: list(PARTS))
     start: int = 0        # index of the start-marker line
     end: int = 0          # index of the end-marker line
     body: str = ""        # the text between the two marker lines, as on the page
@@ -55,6 +59,8 @@ def parse_marker(body, line_no):
             raise MarkerError(f"line {line_no}: '{key}:' without a value")
         if key == "where":
             section.where = [_where_pair(item, line_no) for item in items]
+        elif key == "parts" and set(items) - set(PARTS):
+            raise MarkerError(f"line {line_no}: 'parts:' takes {', '.join(PARTS)}, got {value!r}")
         else:
             setattr(section, key, items)
     return section

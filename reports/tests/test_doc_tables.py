@@ -129,6 +129,16 @@ class DocTablesTest(unittest.TestCase):
         self.assertIn("| tau | 0.8 |\n| collision | BGK |", text)
         self.assertIn("Runs: 1 of 3 rows, selected columns:\n\n| D |\n| --- |\n| 0.36 |", text)
 
+    def test_second_section_of_a_case_shows_only_its_parts(self):
+        self.write_page(PAGE + f"\n<!-- measured: {CASE} parts: params params: tau -->\n"
+                               "<!-- end measured -->\n")
+        self.assertEqual(self.run_tool("write")[0], 0)
+        second = self.read_page().split("parts: params")[1]
+        self.assertIn("git revision abc1234", second)
+        self.assertIn("| tau | 0.8 |", second)
+        self.assertNotIn("Requirement", second)
+        self.assertNotIn("D_G=0.10", second)
+
     def test_script_runs_as_a_program(self):
         proc = subprocess.run(["/usr/bin/python3", SCRIPT, self.results, "--check",
                                "--docs", self.docs], capture_output=True, text=True, timeout=60)
