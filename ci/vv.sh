@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Main job: install what is missing, build, run the whole V&V suite (ctest label
 # `full`: unit, verification, validation, regression, long studies) and the fluid
-# benchmark, then generate the report and print where it is. Exits non-zero if any
-# case failed. Prints the expected duration first (reports/suite.py expect, from the
-# last recorded times), keeps ctest's per-test times in the results folder
-# (*.junit.xml, shown by the report) and in build/timings/full.tsv (for the next
-# estimate). To split the suite over machines: ci/vv-shard.sh and ci/vv-merge.sh.
+# benchmark, then generate the report and print where it is, and rewrite the measured
+# sections of docs/verification-*.md and docs/validation-*.md from the new records
+# (reports/doc_tables.py --write; commit the pages with the change they document).
+# Exits non-zero if any case failed. Prints the expected duration first
+# (reports/suite.py expect, from the last recorded times), keeps ctest's per-test times
+# in the results folder (*.junit.xml, shown by the report) and in build/timings/full.tsv
+# (for the next estimate). To split the suite over machines: ci/vv-shard.sh and ci/vv-merge.sh.
 set -uo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${ERYTHRO_BUILD_DIR:-$root/build}
@@ -27,6 +29,9 @@ ctest --test-dir "$build" -L benchmark --output-on-failure \
   --out "$build/timings/full.tsv" || true
 /usr/bin/python3 "$root/reports/generate.py" "$results" --out "$report"
 report_status=$?
+# The docs pages' measured sections, from the same records (a case without a record
+# keeps its section); a marker that does not fit its record fails the job.
+/usr/bin/python3 "$root/reports/doc_tables.py" "$results" --write || report_status=1
 echo "report: $report/index.html"
 echo "summary: $report/summary.md"
 echo "vv.sh finished in $(( $(date +%s) - start )) s (build included)"

@@ -9,4 +9,6 @@ Modules, one job each:
   plots      matplotlib figures (Agg), saved as PNG files
   html_report / markdown_report   the two outputs
   cli        the command line (reports/generate.py calls cli.main)
+  doc_sections / doc_markdown / doc_tables_cli   the measured sections of the docs pages
+             (reports/doc_tables.py calls doc_tables_cli.main)
 """
