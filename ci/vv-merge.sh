@@ -7,7 +7,7 @@ set -uo pipefail
 if [[ $# -lt 2 ]]; then echo "usage: $0 OUT DIR..." >&2; exit 2; fi
 root=$(cd "$(dirname "$0")/.." && pwd)
 out=$1; shift
-/usr/bin/python3 "$root/reports/generate.py" "$@" --out "$out"
+/usr/bin/python3 "$root/reports/generate.py" "$@" --out "$out" --labels "${ERYTHRO_SHARD_LABEL:-full}"
 status=$?
 echo "summary: $out/summary.md"
 exit $status
