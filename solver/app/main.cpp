@@ -1,9 +1,10 @@
-// The `erythro` command: run, check, compare, bench. Exit codes: docs/cli.md.
+// The `erythro` command: run, check, compare, bench, schema. Exit codes: docs/cli.md.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
 #include "app/bench.hpp"
 #include "app/commands.hpp"
+#include "app/schema_command.hpp"
 #include "common/build_info.hpp"
 #include "common/error.hpp"
 
@@ -37,6 +38,9 @@ int main(int argc, char** argv) {
   app::BenchOptions bench;
   auto* bench_cmd = app::add_bench_subcommand(cli, bench);
 
+  app::SchemaOptions schema;
+  auto* schema_cmd = app::add_schema_subcommand(cli, schema);
+
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -52,6 +56,7 @@ int main(int argc, char** argv) {
   if (*check_cmd) return app::check_command(check_scene, check_overrides);
   if (*compare_cmd) return app::compare_command(current, baseline, tolerances);
   if (*bench_cmd) return app::bench_command(bench);
+  if (*schema_cmd) return app::schema_command(schema);
   std::cout << cli.help();
   return exit_code::bad_input;
 }

@@ -25,7 +25,7 @@ inline constexpr int runtime_failure = 1;  // unexpected internal error
 inline constexpr int bad_input = 2;        // scene or command-line error
 inline constexpr int diverged = 3;         // health monitor stopped the run
 inline constexpr int output_failure = 4;   // output folder unwritable or would be overwritten
-inline constexpr int regression = 5;       // `erythro compare`: a quantity moved beyond its tolerance
+inline constexpr int regression = 5;       // `compare`: a quantity moved beyond its tolerance; `schema --check`: stale page
 }  // namespace exit_code
 
 }  // namespace erythro

@@ -3,6 +3,10 @@
 // µm/s). Produced by scene_parser (TOML), consumed by units.hpp, which derives the
 // lattice parameters and rejects impossible set-ups. Keys: docs/scenes.md.
 //
+// The keys' defaults are declared in the schema (scene_keys.cpp), which the parser reads
+// them from. The initialisers below are the defaults of scenes built in code; a test
+// (tests/scene/scene_schema_test.cpp) keeps them equal to the schema's.
+//
 // A scene declares only the modules it needs; an absent module is std::nullopt and
 // nothing is allocated for it.
 #include <array>

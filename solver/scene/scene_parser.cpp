@@ -1,20 +1,24 @@
-// TOML scene file → Scene (physical units). Keys, units and ranges: docs/scenes.md.
+// TOML scene file → Scene (physical units). Keys, units, ranges and defaults: the schema
+// (scene_keys.cpp), documented in docs/scenes.md.
 //
 // Three passes over the parsed document:
 //   1. apply --set overrides (each must name a known key or table);
 //   2. walk every table and reject unknown keys/tables (with a did-you-mean);
-//   3. read each known key, checking its type and single-value range.
+//   3. read each known key, checking its type and single-value range; a key the scene
+//      leaves out takes the schema's default (scene_keys.cpp), never one written here.
 // Checks that need several values (node counts, τ margin, Mach) live in units.cpp.
 #include "scene/scene_parser.hpp"
 
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 #include <string_view>
 #include <system_error>
 
@@ -23,13 +27,6 @@
 
 namespace erythro::scene {
 namespace {
-
-// The scene's arrays of tables: [[cells]], [[species]], [[stop_when]], [[fluid.layers]] and
-// [[transport.layers]].
-bool is_array_of_tables(std::string_view name) {
-  return name == "cells" || name == "species" || name == "stop_when" || name == "fluid.layers" ||
-         name == "transport.layers";
-}
 
 using namespace detail;  // the schema: Kind, KeySpec, find_key, range_text, ...
 
@@ -138,68 +135,64 @@ class Reader {
     }
   }
 
-  double number(std::string_view path, double fallback) const {
-    const toml::node* n = find(path);
-    return n ? number_of(*n, spec(path)) : fallback;
+  // Typed readers. number(path): the scene's value, else the schema's default literal; a key
+  // whose schema default is a note (required, or derived from other keys) has no value to
+  // fall back on, so the caller checks has() first or passes the derived value:
+  // number(path, derived). Passing one for a key the schema has a literal default for is a
+  // logic_error, so a default can only be declared in the schema.
+  double number(std::string_view path) const { return value(path, &Reader::number_of); }
+  double number(std::string_view path, double derived) const { return value(path, derived, &Reader::number_of); }
+  long integer(std::string_view path) const { return value(path, &Reader::integer_of); }
+  long integer(std::string_view path, long derived) const { return value(path, derived, &Reader::integer_of); }
+  std::string text(std::string_view path) const { return value(path, &Reader::text_of); }
+  std::string text(std::string_view path, const std::string& derived) const {
+    return value(path, derived, &Reader::text_of);
   }
-
-  long integer(std::string_view path, long fallback) const {
-    const toml::node* n = find(path);
-    if (!n) return fallback;
-    const KeySpec& k = spec(path);
-    if (!n->is_integer()) wrong_type(*n, k);  // 10.5 or 10.0 where a count is expected
-    const auto v = n->as_integer()->get();
-    if (!k.bound.contains(static_cast<double>(v))) out_of_range(*n, k);
-    return static_cast<long>(v);
+  std::array<double, 2> vec2(std::string_view path) const { return value(path, &Reader::vec2_of); }
+  std::array<double, 2> vec2(std::string_view path, const std::array<double, 2>& derived) const {
+    return value(path, derived, &Reader::vec2_of);
   }
-
-  std::string text(std::string_view path, const std::string& fallback) const {
-    const toml::node* n = find(path);
-    if (!n) return fallback;
-    const KeySpec& k = spec(path);
-    if (!n->is_string()) wrong_type(*n, k);
-    const std::string v = n->as_string()->get();
-    if (!allowed(k, v)) out_of_range(*n, k);
-    return v;
-  }
-
-  std::array<double, 2> vec2(std::string_view path, std::array<double, 2> fallback) const {
-    const toml::node* n = find(path);
-    if (!n) return fallback;
-    const KeySpec& k = spec(path);
-    const auto* a = n->as_array();
-    if (!a || a->size() != 2) wrong_type(*n, k);
-    return {number_of(*a->get(0), k, n), number_of(*a->get(1), k, n)};
-  }
-
-  bool flag(std::string_view path, bool fallback) const {
-    const toml::node* n = find(path);
-    if (!n) return fallback;
-    if (!n->is_boolean()) wrong_type(*n, spec(path));
-    return n->as_boolean()->get();
-  }
-
-  std::vector<std::string> string_list(std::string_view path, std::vector<std::string> fallback) const {
-    const toml::node* n = find(path);
-    if (!n) return fallback;
-    const KeySpec& k = spec(path);
-    const auto* a = n->as_array();
-    if (!a) wrong_type(*n, k);
-    std::vector<std::string> out;
-    for (const toml::node& e : *a) {
-      if (!e.is_string()) wrong_type(*n, k);
-      const std::string v = e.as_string()->get();
-      if (!allowed(k, v)) fail(*n, path, "contains " + in_quotes(v) + ": each entry " + range_text(k));
-      if (std::find(out.begin(), out.end(), v) != out.end()) fail(*n, path, "lists " + in_quotes(v) + " twice");
-      out.push_back(v);
-    }
-    return out;
-  }
+  bool flag(std::string_view path) const { return value(path, &Reader::flag_of); }
+  std::vector<std::string> string_list(std::string_view path) const { return value(path, &Reader::string_list_of); }
 
   // The table's line (for messages about keys missing from it), or the bare origin.
   std::string where_table(std::string_view table) const { return where(find(table)); }
 
  private:
+  template <class T>
+  using Convert = T (Reader::*)(const toml::node&, const KeySpec&) const;
+
+  // The value of `path` in the scene, else the schema's default literal read like a value.
+  template <class T>
+  T value(std::string_view path, Convert<T> convert) const {
+    const KeySpec k = spec(path);
+    if (const toml::node* n = find(path)) return (this->*convert)(*n, k);
+    const toml::table fallback = schema_default(k);
+    return (this->*convert)(*fallback.get("v"), k);
+  }
+  // The value of `path` in the scene, else `derived`, for a key without a literal default.
+  template <class T>
+  T value(std::string_view path, const T& derived, Convert<T> convert) const {
+    const KeySpec k = spec(path);
+    if (k.when_absent.is_literal)
+      throw std::logic_error("scene_parser: key '" + k.path + "' has the schema default " + k.when_absent.text +
+                             ": read it without a fallback");
+    const toml::node* n = find(path);
+    return n ? (this->*convert)(*n, k) : derived;
+  }
+  // The schema's default of a key as the TOML table {v = <literal>}.
+  static toml::table schema_default(const KeySpec& k) {
+    if (!k.when_absent.is_literal)
+      throw std::logic_error("scene_parser: key '" + k.path + "' has no default value in the schema (" +
+                             k.when_absent.text + "): check has() first or pass the derived value");
+    try {
+      const std::string source = "the schema default of " + k.path;
+      return toml::parse(std::string_view("v = " + k.when_absent.text), std::string_view(source));
+    } catch (const toml::parse_error&) {
+      throw std::logic_error("scene_parser: the schema default of '" + k.path + "' is not TOML: " + k.when_absent.text);
+    }
+  }
+
   // The schema entry, named by the path as written (cells[2].radius_um, not cells.radius_um).
   static KeySpec spec(std::string_view path) {
     const KeySpec* k = find_key(path);
@@ -211,15 +204,52 @@ class Reader {
   static bool allowed(const KeySpec& k, const std::string& v) {
     return k.choices.empty() || std::find(k.choices.begin(), k.choices.end(), v) != k.choices.end();
   }
-  // Integers are accepted where floats are expected (2 → 2.0). `whole`: the array holding n.
-  double number_of(const toml::node& n, const KeySpec& k, const toml::node* whole = nullptr) const {
-    const toml::node& shown = whole ? *whole : n;
+
+  // One converter per Kind: the node's value, checked against the key's type and range.
+  // Integers are accepted where floats are expected (2 → 2.0).
+  double number_of(const toml::node& n, const KeySpec& k) const { return element_of(n, k, n); }
+  // `whole`: the node shown in messages (the array holding n, for a vec2 element).
+  double element_of(const toml::node& n, const KeySpec& k, const toml::node& whole) const {
     double v = 0.0;
     if (const auto* i = n.as_integer()) v = static_cast<double>(i->get());
     else if (const auto* d = n.as_floating_point()) v = d->get();
-    else wrong_type(shown, k);
-    if (!k.bound.contains(v)) out_of_range(shown, k);
+    else wrong_type(whole, k);
+    if (!k.bound.contains(v)) out_of_range(whole, k);
     return v;
+  }
+  long integer_of(const toml::node& n, const KeySpec& k) const {
+    if (!n.is_integer()) wrong_type(n, k);  // 10.5 or 10.0 where a count is expected
+    const auto v = n.as_integer()->get();
+    if (!k.bound.contains(static_cast<double>(v))) out_of_range(n, k);
+    return static_cast<long>(v);
+  }
+  std::string text_of(const toml::node& n, const KeySpec& k) const {
+    if (!n.is_string()) wrong_type(n, k);
+    const std::string v = n.as_string()->get();
+    if (!allowed(k, v)) out_of_range(n, k);
+    return v;
+  }
+  std::array<double, 2> vec2_of(const toml::node& n, const KeySpec& k) const {
+    const auto* a = n.as_array();
+    if (!a || a->size() != 2) wrong_type(n, k);
+    return {element_of(*a->get(0), k, n), element_of(*a->get(1), k, n)};
+  }
+  bool flag_of(const toml::node& n, const KeySpec& k) const {
+    if (!n.is_boolean()) wrong_type(n, k);
+    return n.as_boolean()->get();
+  }
+  std::vector<std::string> string_list_of(const toml::node& n, const KeySpec& k) const {
+    const auto* a = n.as_array();
+    if (!a) wrong_type(n, k);
+    std::vector<std::string> out;
+    for (const toml::node& e : *a) {
+      if (!e.is_string()) wrong_type(n, k);
+      const std::string v = e.as_string()->get();
+      if (!allowed(k, v)) fail(n, k.path, "contains " + in_quotes(v) + ": each entry " + range_text(k));
+      if (std::find(out.begin(), out.end(), v) != out.end()) fail(n, k.path, "lists " + in_quotes(v) + " twice");
+      out.push_back(v);
+    }
+    return out;
   }
 
   const toml::table& root_;
@@ -320,8 +350,8 @@ void apply_override(toml::table& root, const std::string& text, const std::strin
 SideSpec read_side(const Reader& r, const std::string& name) {
   const std::string p = "boundaries." + name + ".";
   SideSpec s;
-  s.type = r.text(p + "type", s.type);
-  s.velocity_um_s = r.vec2(p + "velocity_um_s", s.velocity_um_s);
+  s.type = r.text(p + "type");
+  s.velocity_um_s = r.vec2(p + "velocity_um_s");
   if (s.type != "moving_wall" && (s.velocity_um_s[0] != 0.0 || s.velocity_um_s[1] != 0.0))
     r.fail(*r.find(p + "velocity_um_s"), p + "velocity_um_s",
            "is not allowed here: only a side with type = \"moving_wall\" has a velocity (this side is \"" + s.type +
@@ -355,32 +385,32 @@ int exactly_one(const Reader& r, const std::string& table, const std::string& a,
 Scene read_scene(const Reader& r, const std::string& origin) {
   Scene s;
   s.name = r.text("scene.name", std::filesystem::path(origin).stem().string());
-  s.description = r.text("scene.description", "");
+  s.description = r.text("scene.description");
 
   for (const char* key : {"domain.size_um", "domain.spacing_um"})
     if (!r.has(key))
       throw InputError(r.where_table("domain") + ": missing key '" + key + "' (required; " +
                        range_text(*find_key(key)) + ")");
-  s.domain.size_um = r.vec2("domain.size_um", {});
-  s.domain.spacing_um = r.number("domain.spacing_um", 0.0);
+  s.domain.size_um = r.vec2("domain.size_um");
+  s.domain.spacing_um = r.number("domain.spacing_um");
 
   // A still-medium transport scene builds no fluid and has no [time] (units.cpp says so
   // if one is given); every other scene gives exactly one fluid time key.
-  const bool still_medium = r.has("transport") && r.text("transport.coupling", "none") == "none";
+  const bool still_medium = r.has("transport") && r.text("transport.coupling") == "none";
   if (!still_medium) {
     if (exactly_one(r, "time", "step_s", "tau", "step_s in s, > 0; or tau, > 0.5") == 0)
-      s.time.step_s = r.number("time.step_s", 0.0);
+      s.time.step_s = r.number("time.step_s");
     else
-      s.time.tau = r.number("time.tau", 0.0);
+      s.time.tau = r.number("time.tau");
   } else {
-    if (r.has("time.step_s")) s.time.step_s = r.number("time.step_s", 0.0);
-    if (r.has("time.tau")) s.time.tau = r.number("time.tau", 0.0);
+    if (r.has("time.step_s")) s.time.step_s = r.number("time.step_s");
+    if (r.has("time.tau")) s.time.tau = r.number("time.tau");
   }
 
-  s.fluid.density_kg_m3 = r.number("fluid.density_kg_m3", s.fluid.density_kg_m3);
-  s.fluid.viscosity_cP = r.number("fluid.viscosity_cP", s.fluid.viscosity_cP);
-  s.fluid.collision = r.text("fluid.collision", s.fluid.collision);
-  s.fluid.trt_magic = r.number("fluid.trt_magic", s.fluid.trt_magic);
+  s.fluid.density_kg_m3 = r.number("fluid.density_kg_m3");
+  s.fluid.viscosity_cP = r.number("fluid.viscosity_cP");
+  s.fluid.collision = r.text("fluid.collision");
+  s.fluid.trt_magic = r.number("fluid.trt_magic");
   read_layers(r, s);
 
   s.boundaries.left = read_side(r, "left");
@@ -390,15 +420,15 @@ Scene read_scene(const Reader& r, const std::string& origin) {
 
   if (r.has("body_force")) {  // the table's presence engages the force
     BodyForceSpec f;
-    f.density_N_m3 = r.vec2("body_force.density_N_m3", f.density_N_m3);
-    f.frequency_Hz = r.number("body_force.frequency_Hz", f.frequency_Hz);
-    f.phase_rad = r.number("body_force.phase_rad", f.phase_rad);
+    f.density_N_m3 = r.vec2("body_force.density_N_m3");
+    f.frequency_Hz = r.number("body_force.frequency_Hz");
+    f.phase_rad = r.number("body_force.phase_rad");
     s.body_force = f;
   }
 
-  s.initial.type = r.text("initial.type", s.initial.type);
-  s.initial.velocity_um_s = r.vec2("initial.velocity_um_s", s.initial.velocity_um_s);
-  s.initial.non_equilibrium = r.flag("initial.non_equilibrium", s.initial.non_equilibrium);
+  s.initial.type = r.text("initial.type");
+  s.initial.velocity_um_s = r.vec2("initial.velocity_um_s");
+  s.initial.non_equilibrium = r.flag("initial.non_equilibrium");
   const auto& u0 = s.initial.velocity_um_s;
   if ((s.initial.type == "rest" || s.initial.type == "shear") && (u0[0] != 0.0 || u0[1] != 0.0))
     r.fail(*r.find("initial.velocity_um_s"), "initial.velocity_um_s",
@@ -409,56 +439,56 @@ Scene read_scene(const Reader& r, const std::string& origin) {
            "is out of range: with initial.type = \"" + s.initial.type + "\" it must be [U, 0] (µm/s)");
 
   if (exactly_one(r, "run", "steps", "duration_s", "steps, an integer >= 1; or duration_s in s, > 0") == 0)
-    s.run.steps = r.integer("run.steps", 0);
+    s.run.steps = r.integer("run.steps");
   else
-    s.run.duration_s = r.number("run.duration_s", 0.0);
+    s.run.duration_s = r.number("run.duration_s");
   if (r.has("run.steady_state")) {
     SteadyStateSpec ss;
-    ss.tolerance = r.number("run.steady_state.tolerance", ss.tolerance);
-    ss.check_interval_steps = r.integer("run.steady_state.check_interval_steps", ss.check_interval_steps);
+    ss.tolerance = r.number("run.steady_state.tolerance");
+    ss.check_interval_steps = r.integer("run.steady_state.check_interval_steps");
     s.run.steady_state = ss;
   }
 
-  s.monitor.interval_steps = r.integer("monitor.interval_steps", s.monitor.interval_steps);
-  s.monitor.max_mach = r.number("monitor.max_mach", s.monitor.max_mach);
-  s.monitor.max_area_change = r.number("monitor.max_area_change", s.monitor.max_area_change);
-  s.monitor.max_edge_strain = r.number("monitor.max_edge_strain", s.monitor.max_edge_strain);
+  s.monitor.interval_steps = r.integer("monitor.interval_steps");
+  s.monitor.max_mach = r.number("monitor.max_mach");
+  s.monitor.max_area_change = r.number("monitor.max_area_change");
+  s.monitor.max_edge_strain = r.number("monitor.max_edge_strain");
   if (r.has("monitor.concentration_range_uM")) {
-    const auto range = r.vec2("monitor.concentration_range_uM", {});
+    const auto range = r.vec2("monitor.concentration_range_uM");
     if (!(range[0] < range[1]))
       r.fail(*r.find("monitor.concentration_range_uM"), "monitor.concentration_range_uM",
              "is out of range: it must be [lo, hi] with lo < hi (µM)");
     s.monitor.concentration_range_uM = range;
   }
 
-  s.output.fields_interval_steps = r.integer("output.fields_interval_steps", s.output.fields_interval_steps);
+  s.output.fields_interval_steps = r.integer("output.fields_interval_steps");
   s.output.diagnostics_interval_steps =
-      r.integer("output.diagnostics_interval_steps", s.output.diagnostics_interval_steps);
-  s.output.fields = r.string_list("output.fields", s.output.fields);
-  s.output.extremes_interval_steps = r.integer("output.extremes_interval_steps", s.output.extremes_interval_steps);
-  s.output.dense_diagnostics_steps = r.integer("output.dense_diagnostics_steps", s.output.dense_diagnostics_steps);
+      r.integer("output.diagnostics_interval_steps");
+  s.output.fields = r.string_list("output.fields");
+  s.output.extremes_interval_steps = r.integer("output.extremes_interval_steps");
+  s.output.dense_diagnostics_steps = r.integer("output.dense_diagnostics_steps");
   read_stop_when(r, s);
 
-  s.limits.min_tau_margin = r.number("limits.min_tau_margin", s.limits.min_tau_margin);
-  s.limits.max_mach = r.number("limits.max_mach", s.limits.max_mach);
+  s.limits.min_tau_margin = r.number("limits.min_tau_margin");
+  s.limits.max_mach = r.number("limits.max_mach");
   s.limits.min_nodes_across_channel =
-      static_cast<int>(r.integer("limits.min_nodes_across_channel", s.limits.min_nodes_across_channel));
-  s.limits.membrane_stability = r.text("limits.membrane_stability", s.limits.membrane_stability);
-  s.limits.max_marker_spacing = r.number("limits.max_marker_spacing", s.limits.max_marker_spacing);
-  s.limits.min_cell_gap = r.number("limits.min_cell_gap", s.limits.min_cell_gap);
+      static_cast<int>(r.integer("limits.min_nodes_across_channel"));
+  s.limits.membrane_stability = r.text("limits.membrane_stability");
+  s.limits.max_marker_spacing = r.number("limits.max_marker_spacing");
+  s.limits.min_cell_gap = r.number("limits.min_cell_gap");
 
   if (r.has("membrane")) {
     MembraneSpec m;
-    m.law = r.text("membrane.law", m.law);
-    m.shear_modulus_dyn_cm = r.number("membrane.shear_modulus_dyn_cm", m.shear_modulus_dyn_cm);
-    m.bending_modulus_dyn_cm = r.number("membrane.bending_modulus_dyn_cm", m.bending_modulus_dyn_cm);
-    m.area_modulus_Pa = r.number("membrane.area_modulus_Pa", m.area_modulus_Pa);
-    m.skalak_c = r.number("membrane.skalak_c", m.skalak_c);
-    m.kernel = r.text("membrane.kernel", m.kernel);
+    m.law = r.text("membrane.law");
+    m.shear_modulus_dyn_cm = r.number("membrane.shear_modulus_dyn_cm");
+    m.bending_modulus_dyn_cm = r.number("membrane.bending_modulus_dyn_cm");
+    m.area_modulus_Pa = r.number("membrane.area_modulus_Pa");
+    m.skalak_c = r.number("membrane.skalak_c");
+    m.kernel = r.text("membrane.kernel");
     if (r.has("membrane.interior_viscosity_cP"))
-      m.interior_viscosity_cP = r.number("membrane.interior_viscosity_cP", 0.0);
-    m.interior_method = r.text("membrane.interior_method", m.interior_method);
-    m.index_update_interval = r.integer("membrane.index_update_interval", m.index_update_interval);
+      m.interior_viscosity_cP = r.number("membrane.interior_viscosity_cP");
+    m.interior_method = r.text("membrane.interior_method");
+    m.index_update_interval = r.integer("membrane.index_update_interval");
     for (const char* key : {"membrane.interior_method", "membrane.index_update_interval"})
       if (!m.interior_viscosity_cP && r.has(key))
         r.fail(*r.find(key), key, "needs membrane.interior_viscosity_cP (without it the interior has the fluid's viscosity)");
@@ -472,7 +502,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
     for (std::size_t i = 0; i < count; ++i) {
       const std::string p = "cells[" + std::to_string(i) + "].";
       CellSpec c;
-      c.shape = r.text(p + "shape", c.shape);
+      c.shape = r.text(p + "shape");
       const bool ellipse = c.shape == "ellipse";
       const std::string size_key = ellipse ? "semi_axes_um" : "radius_um";
       const std::string wrong_key = ellipse ? "radius_um" : "semi_axes_um";
@@ -486,12 +516,12 @@ Scene read_scene(const Reader& r, const std::string& origin) {
         throw InputError(r.where(cells->as_array()->get(i)) + ": missing key '" + p + "center_um' (required; µm)");
       c.radius_um = r.number(p + "radius_um", c.radius_um);
       c.semi_axes_um = r.vec2(p + "semi_axes_um", c.semi_axes_um);
-      c.center_um = r.vec2(p + "center_um", c.center_um);
-      c.angle_deg = r.number(p + "angle_deg", c.angle_deg);
-      c.scale = r.number(p + "scale", c.scale);
+      c.center_um = r.vec2(p + "center_um");
+      c.angle_deg = r.number(p + "angle_deg");
+      c.scale = r.number(p + "scale");
       c.markers = r.integer(p + "markers", c.markers);
-      if (r.has(p + "shear_modulus_dyn_cm")) c.shear_modulus_dyn_cm = r.number(p + "shear_modulus_dyn_cm", 0.0);
-      c.prestretch = r.number(p + "prestretch", c.prestretch);
+      if (r.has(p + "shear_modulus_dyn_cm")) c.shear_modulus_dyn_cm = r.number(p + "shear_modulus_dyn_cm");
+      c.prestretch = r.number(p + "prestretch");
       s.cells.push_back(c);
     }
   }
@@ -504,11 +534,11 @@ Scene read_scene(const Reader& r, const std::string& origin) {
       throw InputError(r.where_table("aggregation") + ": give exactly one of aggregation.de_star (γ/E_S, the thesis's "
                        "levels 1-5), aggregation.surface_energy_J_m2 (γ) or aggregation.pair_density_Pa (D_e); " +
                        std::to_string(given) + " given");
-    if (r.has(strengths[0])) a.de_star = r.number(strengths[0], 0.0);
-    if (r.has(strengths[1])) a.surface_energy_J_m2 = r.number(strengths[1], 0.0);
-    if (r.has(strengths[2])) a.pair_density_Pa = r.number(strengths[2], 0.0);
-    a.zero_force_distance_um = r.number("aggregation.zero_force_distance_um", a.zero_force_distance_um);
-    a.decay_per_um = r.number("aggregation.decay_per_um", a.decay_per_um);
+    if (r.has(strengths[0])) a.de_star = r.number(strengths[0]);
+    if (r.has(strengths[1])) a.surface_energy_J_m2 = r.number(strengths[1]);
+    if (r.has(strengths[2])) a.pair_density_Pa = r.number(strengths[2]);
+    a.zero_force_distance_um = r.number("aggregation.zero_force_distance_um");
+    a.decay_per_um = r.number("aggregation.decay_per_um");
     const double cutoff = r.number("aggregation.cutoff_um", a.zero_force_distance_um + 5.0 / a.decay_per_um);
     if (r.has("aggregation.cutoff_um")) a.cutoff_um = cutoff;
     if (cutoff <= a.zero_force_distance_um)
@@ -533,9 +563,9 @@ void read_layers(const Reader& r, Scene& s) {
         throw InputError(r.where(layers->as_array()->get(i)) + ": missing key '" + p + required + "' (required; " +
                          range_text(*find_key(std::string("fluid.layers.") + required)) + ")");
     ViscosityLayerSpec layer;
-    layer.y_um = r.vec2(p + "y_um", layer.y_um);
-    if (r.has(p + "x_um")) layer.x_um = r.vec2(p + "x_um", {});
-    layer.viscosity_cP = r.number(p + "viscosity_cP", 0.0);
+    layer.y_um = r.vec2(p + "y_um");
+    if (r.has(p + "x_um")) layer.x_um = r.vec2(p + "x_um");
+    layer.viscosity_cP = r.number(p + "viscosity_cP");
     s.fluid.layers.push_back(layer);
   }
 }
@@ -551,23 +581,23 @@ void read_stop_when(const Reader& r, Scene& s) {
     if (!r.has(p + "series"))
       throw InputError(r.where(entry) + ": missing key '" + p + "series' (required: the name of a diagnostics series)");
     StopWhenSpec w;
-    w.series = r.text(p + "series", "");
+    w.series = r.text(p + "series");
     const int conditions = static_cast<int>(r.has(p + "below")) + static_cast<int>(r.has(p + "above")) +
                            static_cast<int>(r.has(p + "change_below"));
     if (conditions != 1)
       throw InputError(r.where(entry) + ": [[stop_when]] entry " + std::to_string(i) +
                        " needs exactly one of below, above, change_below (has " + std::to_string(conditions) + ")");
-    if (r.has(p + "below")) w.below = r.number(p + "below", 0.0);
-    if (r.has(p + "above")) w.above = r.number(p + "above", 0.0);
-    if (r.has(p + "change_below")) w.change_below = r.number(p + "change_below", 0.0);
+    if (r.has(p + "below")) w.below = r.number(p + "below");
+    if (r.has(p + "above")) w.above = r.number(p + "above");
+    if (r.has(p + "change_below")) w.change_below = r.number(p + "change_below");
     w.window_steps = r.integer(p + "window_steps", 0);
     if (w.change_below && w.window_steps < 1)
       throw InputError(r.where(entry) + ": missing key '" + p +
                        "window_steps' (required with change_below: the steps between the two values compared)");
     if (!w.change_below && r.has(p + "window_steps"))
       r.fail(*r.find(p + "window_steps"), p + "window_steps", "is only allowed with change_below");
-    w.min_steps = r.integer(p + "min_steps", 0);
-    w.after_steps = r.integer(p + "after_steps", 0);
+    w.min_steps = r.integer(p + "min_steps");
+    w.after_steps = r.integer(p + "after_steps");
     s.stop_when.push_back(w);
   }
 }
@@ -576,17 +606,17 @@ void read_stop_when(const Reader& r, Scene& s) {
 void read_transport(const Reader& r, Scene& s) {
   if (r.has("transport")) {
     TransportSpec t;
-    t.coupling = r.text("transport.coupling", t.coupling);
-    if (r.has("transport.time_step_s")) t.time_step_s = r.number("transport.time_step_s", 0.0);
+    t.coupling = r.text("transport.coupling");
+    if (r.has("transport.time_step_s")) t.time_step_s = r.number("transport.time_step_s");
     t.fluid_steps_per_step = r.integer("transport.fluid_steps_per_step", t.fluid_steps_per_step);
-    t.stencil = r.text("transport.stencil", t.stencil);
-    t.collision = r.text("transport.collision", t.collision);
-    t.trt_magic = r.number("transport.trt_magic", t.trt_magic);
-    if (r.has("transport.velocity_um_s")) t.velocity_um_s = r.vec2("transport.velocity_um_s", {});
-    t.cell_representation = r.text("transport.cell_representation", t.cell_representation);
-    t.interface = r.text("transport.interface", t.interface);
-    t.layer_mean = r.text("transport.layer_mean", t.layer_mean);
-    t.readout = r.text("transport.readout", t.readout);
+    t.stencil = r.text("transport.stencil");
+    t.collision = r.text("transport.collision");
+    t.trt_magic = r.number("transport.trt_magic");
+    if (r.has("transport.velocity_um_s")) t.velocity_um_s = r.vec2("transport.velocity_um_s");
+    t.cell_representation = r.text("transport.cell_representation");
+    t.interface = r.text("transport.interface");
+    t.layer_mean = r.text("transport.layer_mean");
+    t.readout = r.text("transport.readout");
     s.transport = t;
   }
   if (const toml::node* species = r.find("species")) {
@@ -600,15 +630,15 @@ void read_transport(const Reader& r, Scene& s) {
           throw InputError(r.where(species->as_array()->get(i)) + ": missing key '" + p + required + "' (required; " +
                            range_text(*find_key(std::string("species.") + required)) + ")");
       SpeciesSpec sp;
-      sp.name = r.text(p + "name", sp.name);
+      sp.name = r.text(p + "name");
       for (const SpeciesSpec& other : s.species)
         if (other.name == sp.name) r.fail(*r.find(p + "name"), p + "name", "is used by two [[species]] entries");
-      sp.diffusivity_um2_s = r.number(p + "diffusivity_um2_s", 0.0);
-      if (r.has(p + "cell_diffusivity_um2_s")) sp.cell_diffusivity_um2_s = r.number(p + "cell_diffusivity_um2_s", 0.0);
-      sp.initial_uM = r.number(p + "initial_uM", sp.initial_uM);
-      if (r.has(p + "cell_initial_uM")) sp.cell_initial_uM = r.number(p + "cell_initial_uM", 0.0);
-      sp.source_uM_per_s = r.number(p + "source_uM_per_s", sp.source_uM_per_s);
-      sp.decay_per_s = r.number(p + "decay_per_s", sp.decay_per_s);
+      sp.diffusivity_um2_s = r.number(p + "diffusivity_um2_s");
+      if (r.has(p + "cell_diffusivity_um2_s")) sp.cell_diffusivity_um2_s = r.number(p + "cell_diffusivity_um2_s");
+      sp.initial_uM = r.number(p + "initial_uM");
+      if (r.has(p + "cell_initial_uM")) sp.cell_initial_uM = r.number(p + "cell_initial_uM");
+      sp.source_uM_per_s = r.number(p + "source_uM_per_s");
+      sp.decay_per_s = r.number(p + "decay_per_s");
       const char* sides[] = {"left", "right", "bottom", "top"};
       for (int k = 0; k < 4; ++k) {
         sp.side[k] = r.text(p + sides[k], "");
@@ -636,20 +666,20 @@ void read_transport(const Reader& r, Scene& s) {
           throw InputError(r.where(entry) + ": missing key '" + p + required + "' (required; " +
                            range_text(*find_key(std::string("transport.layers.") + required)) + ")");
       TransportLayerSpec l;
-      l.species = r.text(p + "species", "");
+      l.species = r.text(p + "species");
       if (std::none_of(s.species.begin(), s.species.end(), [&](const SpeciesSpec& sp) { return sp.name == l.species; }))
         r.fail(*r.find(p + "species"), p + "species", "names no [[species]] entry");
-      l.y_um = r.vec2(p + "y_um", {});
+      l.y_um = r.vec2(p + "y_um");
       if (!(l.y_um[0] < l.y_um[1]))
         r.fail(*r.find(p + "y_um"), p + "y_um", "is out of range: it must be [from, to] with from < to (µm)");
       if (r.has(p + "x_um")) {
-        l.x_um = r.vec2(p + "x_um", {});
+        l.x_um = r.vec2(p + "x_um");
         if (!((*l.x_um)[0] < (*l.x_um)[1]))
           r.fail(*r.find(p + "x_um"), p + "x_um", "is out of range: it must be [from, to] with from < to (µm)");
       }
-      if (r.has(p + "diffusivity_um2_s")) l.diffusivity_um2_s = r.number(p + "diffusivity_um2_s", 0.0);
-      if (r.has(p + "decay_per_s")) l.decay_per_s = r.number(p + "decay_per_s", 0.0);
-      if (r.has(p + "source_uM_per_s")) l.source_uM_per_s = r.number(p + "source_uM_per_s", 0.0);
+      if (r.has(p + "diffusivity_um2_s")) l.diffusivity_um2_s = r.number(p + "diffusivity_um2_s");
+      if (r.has(p + "decay_per_s")) l.decay_per_s = r.number(p + "decay_per_s");
+      if (r.has(p + "source_uM_per_s")) l.source_uM_per_s = r.number(p + "source_uM_per_s");
       s.transport_layers.push_back(l);
     }
   }
@@ -657,18 +687,18 @@ void read_transport(const Reader& r, Scene& s) {
     if (!s.transport)
       throw InputError(r.where_table("hemoglobin") + ": [hemoglobin] needs [transport] and an O2 [[species]] entry");
     HemoglobinSpec hb;
-    hb.species = r.text("hemoglobin.species", hb.species);
-    hb.k_off_per_s = r.number("hemoglobin.k_off_per_s", hb.k_off_per_s);
-    hb.heme_uM = r.number("hemoglobin.heme_uM", hb.heme_uM);
-    hb.solubility_uM_per_torr = r.number("hemoglobin.solubility_uM_per_torr", hb.solubility_uM_per_torr);
-    hb.p50_torr = r.number("hemoglobin.p50_torr", hb.p50_torr);
-    hb.hill_n = r.number("hemoglobin.hill_n", hb.hill_n);
-    hb.rate_modifier = r.number("hemoglobin.rate_modifier", hb.rate_modifier);
+    hb.species = r.text("hemoglobin.species");
+    hb.k_off_per_s = r.number("hemoglobin.k_off_per_s");
+    hb.heme_uM = r.number("hemoglobin.heme_uM");
+    hb.solubility_uM_per_torr = r.number("hemoglobin.solubility_uM_per_torr");
+    hb.p50_torr = r.number("hemoglobin.p50_torr");
+    hb.hill_n = r.number("hemoglobin.hill_n");
+    hb.rate_modifier = r.number("hemoglobin.rate_modifier");
     if (r.has("hemoglobin.initial_saturation"))
-      hb.initial_saturation = r.number("hemoglobin.initial_saturation", 0.0);
-    hb.coupling = r.text("hemoglobin.coupling", hb.coupling);
-    hb.mean_pressure = r.text("hemoglobin.mean_pressure", hb.mean_pressure);
-    hb.heme_weights = r.text("hemoglobin.heme_weights", hb.heme_weights);
+      hb.initial_saturation = r.number("hemoglobin.initial_saturation");
+    hb.coupling = r.text("hemoglobin.coupling");
+    hb.mean_pressure = r.text("hemoglobin.mean_pressure");
+    hb.heme_weights = r.text("hemoglobin.heme_weights");
     const bool known = std::any_of(s.species.begin(), s.species.end(),
                                    [&](const SpeciesSpec& sp) { return sp.name == hb.species; });
     if (!known)

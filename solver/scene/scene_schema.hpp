@@ -1,10 +1,13 @@
 #pragma once
-// The scene-file schema: every known key and table, with its type, unit and
-// allowed range, and the text of the messages about them. Private to scene/.
+// The scene-file schema: every known key and table, with its type, unit, allowed range,
+// default and meaning, and the text of the messages about them. Private to scene/; the
+// parser takes its checks and defaults from it, and the key reference of docs/scenes.md
+// is generated from it (key_reference.hpp).
 #include <cmath>
 #include <limits>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace erythro::scene::detail {
@@ -26,17 +29,48 @@ struct Bound {
   }
 };
 
+// What a key is when the scene leaves it out: either a TOML literal the parser reads in
+// its place ("0.3", "\"bgk\"", "[0.0, 0.0]"), or a note in words for a key that is
+// required or whose default follows from other keys ("required", "r0 + 5/β").
+struct Default {
+  std::string text;
+  bool is_literal = false;
+};
+inline Default literal(std::string toml_value) { return {std::move(toml_value), true}; }
+inline Default quoted(const std::string& word) { return {"\"" + word + "\"", true}; }  // a TOML string
+inline Default note(std::string words) { return {std::move(words), false}; }
+
 struct KeySpec {
-  std::string path;  // full dotted key
-  Kind kind;
+  std::string path;  // full dotted key; [[array]] entries drop the index: "cells.radius_um"
+  Kind kind = Kind::number;
   std::string unit;  // "" when dimensionless
   Bound bound;
   std::vector<std::string> choices;  // allowed strings (string, string_list); empty: any
+  Default when_absent;
+  // A condition beyond `bound` and `choices` that the parser or units.cpp checks together
+  // with other keys ("only with law = \"skalak\""); documentation only, "" if none.
+  std::string rule;
+  std::string meaning;  // one line in plain words (Markdown code spans allowed)
 };
+
+struct TableSpec {
+  std::string path;     // "boundaries.left", "cells"
+  bool array = false;   // an array of tables: [[cells]], one entry per cell
+  std::string meaning;  // one line: what the table is for, when it is required
+};
+
+// Every key and every table, in the order of docs/scenes.md (scene_keys.cpp).
+const std::vector<KeySpec>& known_keys();
+const std::vector<TableSpec>& known_tables();
 
 // The schema entry of a dotted key ("cells[3].radius_um" matches "cells.radius_um"), or nullptr.
 const KeySpec* find_key(std::string_view path);
+// A plain table ([fluid], [boundaries.left]); not an array of tables.
 bool is_known_table(std::string_view path);
+// [[cells]], [[species]], [[stop_when]], [[fluid.layers]], [[transport.layers]].
+bool is_array_of_tables(std::string_view path);
+// The table holding a key: "boundaries.left.type" → "boundaries.left".
+std::string_view table_of(std::string_view key_path);
 
 // "must be > 0 (cP)", "must be in (0, 1]", "must be one of "bgk", "trt"".
 std::string range_text(const KeySpec& k);

@@ -116,6 +116,21 @@ expect cells_overlap 2 "key 'cells\[1\]\.center_um'.*overlap cell 0" -- "$ERYTHR
 checks=$((checks + 1)); if [[ -e overlap ]]; then echo "FAIL cells_overlap: created output"; failures=$((failures+1)); else echo "ok   cells_overlap_no_output"; fi
 expect membrane_unstable 2 "membrane.shear_modulus_dyn_cm.*Π_T.*exceeds" -- "$ERYTHRO" check "$CAPSULE" --set membrane.shear_modulus_dyn_cm=1e3
 
+# `erythro schema`: the key reference of docs/scenes.md, generated from the scene schema. A
+# stale copy is caught (exit 5, naming the line), --write repairs it and touches nothing else,
+# and a page without the marker lines is refused (exit 2).
+expect schema_print 0 '### `\[fluid\]`' -- "$ERYTHRO" schema
+sed 's/| `1025.0` |/| `1000.0` |/' "$SRC/docs/scenes.md" > stale.md
+expect schema_stale 5 'stale.md:[0-9]+: the schema gives' -- "$ERYTHRO" schema --check stale.md
+expect schema_stale_hint 5 'erythro schema --write stale.md' -- "$ERYTHRO" schema --check stale.md
+expect schema_write 0 'wrote the key reference' -- "$ERYTHRO" schema --write stale.md
+expect schema_rewritten 0 'is current' -- "$ERYTHRO" schema --check stale.md
+checks=$((checks + 1))
+if cmp -s stale.md "$SRC/docs/scenes.md"; then echo "ok   schema_write_restores_page"; else
+  echo "FAIL schema --write did not restore the page"; failures=$((failures + 1)); fi
+printf '# no markers\n' > unmarked.md
+expect schema_no_markers 2 'no generated section' -- "$ERYTHRO" schema --check unmarked.md
+
 no_partials no_partial_files
 
 echo "$((checks - failures)) passed, $failures failed"
