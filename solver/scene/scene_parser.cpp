@@ -286,7 +286,9 @@ toml::table* array_entry(toml::table& root, const std::string& part, const std::
   if (!well_formed)
     throw InputError(origin + ": --set " + text + ": " + entries + " are addressed by index, e.g. --set " + name +
                      "[0]." + text.substr(text.find('.') == std::string::npos ? 0 : text.find('.') + 1));
-  const std::size_t index = std::stoul(part.substr(open + 1, part.size() - open - 2));
+  // More digits than any index of a file could need is past the end too (no overflow).
+  const std::string digits = part.substr(open + 1, part.size() - open - 2);
+  const std::size_t index = digits.size() > 9 ? std::numeric_limits<std::size_t>::max() : std::stoul(digits);
   toml::array* array = root.get(name) ? root.get(name)->as_array() : nullptr;
   const std::size_t count = array ? array->size() : 0;
   if (index >= count)

@@ -65,7 +65,12 @@ void run_case(const char* name, const std::vector<double>& h_list) {
       const vv::RbcConfig c = vv::thesis_config(t.h_um, methods[k], kRatio, kStrain);
       rec.add_run(vv::run_row(c, t.r[k]), t.r[k].scene_text);
       vv::add_run_series(rec, vv::run_label(c), t.r[k], true);
-      for (const io::FieldPicture& p : t.r[k].pictures) rec.add_field(p);
+      for (io::FieldPicture p : t.r[k].pictures) {  // named by the method, not the run's folder
+        for (std::string* text : {&p.name, &p.title})
+          if (const auto at = text->find(vv::run_folder(c)); at != std::string::npos)
+            text->replace(at, vv::run_folder(c).size(), vv::run_label(c));
+        rec.add_field(p);
+      }
       if (&t == &all.front() && k == 0) vv::describe_setup(rec, c, t.r[k]);
     }
   rec.set_parameter("viscosity_ratio", kRatio);

@@ -24,7 +24,8 @@ RbcConfig thesis_config(double h_um, interior::Method method, double ratio, doub
 // validation.rbc_viscosity_long_runs): thesis_config with the flood-filled cytoplasm at
 // ratio 5, τ_ex = tau_ex, E_S / ca_factor (Ca × ca_factor), and the lattice shear rate fixed
 // at its τ_ex = 1, Re = 0.05 value (Re = 0.05·(1/6)/ν_ex), so the step count and the wall
-// speed do not change with τ_ex; the membrane stability estimate is recorded, not enforced.
+// speed do not change with τ_ex; the membrane stability estimate is recorded, not enforced;
+// the health monitor's edge-strain limit is 2 (the soft corner's segments stretch beyond 1).
 RbcConfig stability_map_config(double h_um, double tau_ex, double ca_factor, double strain);
 
 // "flood_fill x5 h=0.25" and the like.

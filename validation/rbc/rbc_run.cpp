@@ -36,6 +36,7 @@ std::vector<std::string> physical_overrides(const RbcConfig& c, const scene::Sce
       set("boundaries.bottom.velocity_um_s", -U, 0.0),
       set("boundaries.top.velocity_um_s", U, 0.0),
       set("monitor.max_mach", c.max_mach),
+      set("monitor.max_edge_strain", c.max_edge_strain),
       set("membrane.kernel", "\"" + std::string(ib::to_string(c.kernel)) + "\""),
       set("membrane.shear_modulus_dyn_cm", Es * 1e3),
       set("membrane.bending_modulus_dyn_cm", bending_reduced * c.a_m * c.a_m * Es * 1e7),  // J → dyn·cm

@@ -43,6 +43,7 @@ struct RbcConfig {
   double marker_spacing = 0.5;   // rest marker spacing in h
   double strain = 20.0;          // γ̇t to run
   double max_mach = 0.3;         // health monitor: |u|/c_s limit (monitor.max_mach)
+  double max_edge_strain = 1.0;  // health monitor: max |ℓ/ℓ0 − 1| of a membrane (monitor.max_edge_strain)
   // The scene rejects a set-up membrane::estimate_stability finds unstable (default). The
   // stability map (validation.rbc_viscosity_stability) runs such set-ups anyway
   // (limits.membrane_stability = "warn") to see what they do.

@@ -181,6 +181,9 @@ TEST(SceneCells, UnknownAndMistypedKeysAreErrors) {
                   "the scene has 1 [[cells]] entries (index 0 … 0)");
   EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells[x].radius_um=3"}); }),
                   "addressed by index");
+  // An index too large for any integer type is past the end, not an internal error.
+  EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells[99999999999999999999].radius_um=2"}); }),
+                  "the scene has 1 [[cells]] entries (index 0 … 0)");
   // An override goes through the same checks as the file: range, then overlap.
   EXPECT_CONTAINS(error_of([] { derive(channel + circle_at_centre, {"cells[0].radius_um=-1"}); }),
                   "cells[0].radius_um");
