@@ -97,6 +97,7 @@ struct Bookkeeping {
   vv::CapsuleResult run(const vv::CapsuleConfig& c, const std::string& role) {
     const std::string label = label_of(c, role);
     const auto found = prefetched.find(label);
+    EXPECT_TRUE(prefetched.empty() || found != prefetched.end()) << label << " is missing from full_study_plan()";
     const auto r = found != prefetched.end() ? found->second : vv::run_capsule(c, record.case_name(), label);
     EXPECT_FALSE(r.diverged) << role << " a/h=" << c.radius << ": " << r.diagnosis;
     if (r.strain >= c.max_strain - 0.05) ++capped;
@@ -162,39 +163,42 @@ void describe(io::ResultRecord& record) {
                                        "marker polygon; mean over the last strain unit");
 }
 
+// One resolution level at capillary number G (the pictures of the steady capsule and its
+// flow for the report: cosine4, G = 0.1, a/h = 12).
+vv::CapsuleConfig resolution_config(double G, double a, ib::KernelType kernel = ib::KernelType::cosine4) {
+  vv::CapsuleConfig c;
+  c.kernel = kernel;
+  c.capillary = G;
+  c.radius = a;
+  c.pictures = kernel == ib::KernelType::cosine4 && G == 0.1 && a == 12;
+  return c;
+}
+
+// The corrections' runs at the coarsest level a: Reynolds number Re, H = height·a, L_x = length·a.
+vv::CapsuleConfig correction_config(double G, double a, double Re, double height, double length) {
+  vv::CapsuleConfig c;
+  c.capillary = G;
+  c.radius = a;
+  c.reynolds = Re;
+  c.height = height;
+  c.length = length;
+  return c;
+}
+
 // Every run of the full study below (the same configurations, in any order: the study reads
 // them back by label through Bookkeeping::run).
 std::vector<std::pair<vv::CapsuleConfig, std::string>> full_study_plan() {
   std::vector<std::pair<vv::CapsuleConfig, std::string>> plan;
   for (const auto& ref : kReference) {
     const auto& levels = ref.G >= 0.05 ? kLevelsLargeG : kLevelsSmallG;
-    for (double a : levels) {
-      vv::CapsuleConfig c;
-      c.capillary = ref.G;
-      c.radius = a;
-      c.pictures = ref.G == 0.1 && a == 12;
-      plan.push_back({c, "resolution"});
-    }
-    vv::CapsuleConfig c6;
-    c6.capillary = ref.G;
-    c6.radius = levels[0];
-    c6.reynolds = 0.05;
-    plan.push_back({c6, "inertia"});
-    c6.reynolds = 0.025;
-    plan.push_back({c6, "inertia"});
-    c6.height = c6.length = 32.0;
-    plan.push_back({c6, "domain"});
+    for (double a : levels) plan.push_back({resolution_config(ref.G, a), "resolution"});
+    plan.push_back({correction_config(ref.G, levels[0], 0.05, 16, 16), "inertia"});
+    plan.push_back({correction_config(ref.G, levels[0], 0.025, 16, 16), "inertia"});
+    plan.push_back({correction_config(ref.G, levels[0], 0.025, 32, 32), "domain"});
     if (ref.G == 0.1) {
-      c6.length = 16.0;
-      plan.push_back({c6, "confinement"});
+      plan.push_back({correction_config(ref.G, levels[0], 0.025, 32, 16), "confinement"});
       for (const ib::KernelType kernel : {ib::KernelType::peskin4, ib::KernelType::roma3, ib::KernelType::linear2})
-        for (double a : kOtherKernelLevels) {
-          vv::CapsuleConfig c;
-          c.kernel = kernel;
-          c.capillary = ref.G;
-          c.radius = a;
-          plan.push_back({c, "resolution"});
-        }
+        for (double a : kOtherKernelLevels) plan.push_back({resolution_config(ref.G, a, kernel), "resolution"});
     }
   }
   return plan;
@@ -221,11 +225,7 @@ TEST(CapsuleShear, FullStudy) {
     std::vector<vv::CapsuleResult> runs;
     const auto& kLevels = ref.G >= 0.05 ? kLevelsLargeG : kLevelsSmallG;
     for (double a : kLevels) {
-      vv::CapsuleConfig c;
-      c.capillary = ref.G;
-      c.radius = a;
-      c.pictures = ref.G == 0.1 && a == 12;  // the steady capsule and its flow, for the report
-      runs.push_back(book.run(c, "resolution"));
+      runs.push_back(book.run(resolution_config(ref.G, a), "resolution"));
       h.push_back(1.0 / a);
       D.push_back(runs.back().D);
       th.push_back(runs.back().theta_deg);
@@ -234,25 +234,19 @@ TEST(CapsuleShear, FullStudy) {
     const auto eD = vv::richardson(h, D, 1.0);
     const auto eT = vv::richardson(h, th, 1.0);
     // 2. Inertia: Re = 0.05, 0.025 at a/h = 6 (D linear in Re → D0 = 2 D(0.025) − D(0.05)).
-    vv::CapsuleConfig c6;
-    c6.capillary = ref.G;
-    c6.radius = kLevels[0];
-    c6.reynolds = 0.05;
-    const auto r05 = book.run(c6, "inertia");
-    c6.reynolds = 0.025;
-    const auto r025 = book.run(c6, "inertia");
+    const double a6 = kLevels[0];
+    const auto r05 = book.run(correction_config(ref.G, a6, 0.05, 16, 16), "inertia");
+    const auto r025 = book.run(correction_config(ref.G, a6, 0.025, 16, 16), "inertia");
     const double D_re0 = 2.0 * r025.D - r05.D, th_re0 = 2.0 * r025.theta_deg - r05.theta_deg;
     // Quadratic through Re = 0.1, 0.05, 0.025 (Richardson in Re, order 1 then 2) as a check.
     const double D_re0_quad = (8.0 * r025.D - 6.0 * r05.D + runs[0].D) / 3.0;
     const double dD_re = D_re0 - runs[0].D, dth_re = th_re0 - runs[0].theta_deg;
     // 3. Domain: H = L_x = 32a at Re = 0.025 (a/h = 6), plus H alone for the confinement figure.
-    c6.height = c6.length = 32.0;
-    const auto r32 = book.run(c6, "domain");
+    const auto r32 = book.run(correction_config(ref.G, a6, 0.025, 32, 32), "domain");
     const double dD_dom = r32.D - r025.D, dth_dom = r32.theta_deg - r025.theta_deg;
     double dD_conf = 0, dth_conf = 0;
     if (ref.G == 0.1) {  // H alone (confinement) against H and L_x together
-      c6.length = 16.0;
-      const auto rH = book.run(c6, "confinement");
+      const auto rH = book.run(correction_config(ref.G, a6, 0.025, 32, 16), "confinement");
       dD_conf = rH.D - r025.D;
       dth_conf = rH.theta_deg - r025.theta_deg;
       record.set_parameter("confinement_" + g, "a/h = 6, Re = 0.025, L_x = 16a: H = 16a -> 32a changes D by " +
@@ -326,11 +320,7 @@ TEST(CapsuleShear, FullStudy) {
         const std::string name(ib::to_string(kernel));
         std::vector<double> hp, Dp, thp, wp;
         for (double a : kOtherKernelLevels) {
-          vv::CapsuleConfig c;
-          c.kernel = kernel;
-          c.capillary = ref.G;
-          c.radius = a;
-          const auto r = book.run(c, "resolution");
+          const auto r = book.run(resolution_config(ref.G, a, kernel), "resolution");
           hp.push_back(1.0 / a);
           Dp.push_back(r.D);
           thp.push_back(r.theta_deg);
