@@ -59,9 +59,57 @@ void FluidLattice::enable_force_field() {
   force_y_.assign(grid_.size(), 0.0);
 }
 
+std::span<double> FluidLattice::force_x() {
+  force_rows_known_ = false;
+  return force_x_;
+}
+
+std::span<double> FluidLattice::force_y() {
+  force_rows_known_ = false;
+  return force_y_;
+}
+
+void FluidLattice::clear_force_field() {
+  enable_force_field();
+  const std::size_t nx = static_cast<std::size_t>(grid_.nx);
+  for (int y = 0; y < grid_.ny; ++y) {
+    if (force_rows_known_ && !force_rows_[static_cast<std::size_t>(y)]) continue;
+    std::fill_n(force_x_.begin() + static_cast<std::ptrdiff_t>(y * nx), nx, 0.0);
+    std::fill_n(force_y_.begin() + static_cast<std::ptrdiff_t>(y * nx), nx, 0.0);
+  }
+  force_rows_.assign(static_cast<std::size_t>(grid_.ny), 0);
+  force_rows_known_ = true;
+}
+
+FluidLattice::ForceRowsWriter FluidLattice::force_rows_writer() {
+  enable_force_field();
+  // Rows not known (written through force_x() since the last clear): the flags the
+  // writer sets are kept but not used, every row stays forced until the next clear.
+  force_rows_.resize(static_cast<std::size_t>(grid_.ny), 1);
+  return {force_x_, force_y_, force_rows_};
+}
+
 void FluidLattice::enable_tau_field() {
   if (!tau_field_.empty()) return;
   tau_field_.assign(grid_.size(), collision_.tau);
+  refresh_tau_rows();
+}
+
+std::span<double> FluidLattice::tau_field() {
+  row_tau_known_ = false;
+  return tau_field_;
+}
+
+void FluidLattice::refresh_tau_rows() {
+  const std::size_t nx = static_cast<std::size_t>(grid_.nx);
+  row_tau_.assign(static_cast<std::size_t>(grid_.ny), 0.0);
+#pragma omp parallel for schedule(static) if (grid_.worth_threading())
+  for (int y = 0; y < grid_.ny; ++y) {
+    const double* row = tau_field_.data() + static_cast<std::size_t>(y) * nx;
+    const bool one_value = std::all_of(row, row + nx, [&](double t) { return t == row[0]; });
+    row_tau_[static_cast<std::size_t>(y)] = one_value ? row[0] : 0.0;
+  }
+  row_tau_known_ = true;
 }
 
 void FluidLattice::step() {
@@ -75,6 +123,8 @@ void FluidLattice::step() {
   args.tau_field = tau_field_.empty() ? nullptr : tau_field_.data();
   args.force_x = force_x_.empty() ? nullptr : force_x_.data();
   args.force_y = force_y_.empty() ? nullptr : force_y_.data();
+  args.force_rows = force_rows_known_ ? force_rows_.data() : nullptr;
+  args.row_tau = row_tau_known_ && !tau_field_.empty() ? row_tau_.data() : nullptr;
   args.uniform_fx = uniform_force_[0];
   args.uniform_fy = uniform_force_[1];
   detail::stream_collide(args);

@@ -14,6 +14,7 @@
 // per-node fields (force density, relaxation time) are allocated only when a
 // caller enables them, so a plain channel flow carries neither.
 #include <array>
+#include <cstdint>
 #include <new>
 #include <span>
 #include <vector>
@@ -69,16 +70,36 @@ class FluidLattice {
 
   // Per-node force density (immersed boundary, manufactured solutions). Allocated,
   // zeroed, on the first call to enable_force_field().
+  // The step skips the force term on rows known to hold no force: a zero force adds
+  // exactly zero, so the values are the same (docs/performance.md, "Quiet rows").
+  // force_x()/force_y() give write access anywhere, so after them every row counts as
+  // forced until the next clear_force_field(); a writer that records the rows it writes
+  // uses force_rows_writer() instead.
   void enable_force_field();
   bool has_force_field() const { return !force_x_.empty(); }
-  std::span<double> force_x() { return force_x_; }
-  std::span<double> force_y() { return force_y_; }
+  std::span<double> force_x();
+  std::span<double> force_y();
+  std::span<const double> force_x() const { return force_x_; }
+  std::span<const double> force_y() const { return force_y_; }
+  // Zeroes the force field (enabling it if needed; only the rows that may hold force)
+  // and marks every row as free of force.
+  void clear_force_field();
+  // Write access for a writer that sets rows[y] = 1 for every row y it writes.
+  struct ForceRowsWriter {
+    std::span<double> fx, fy;
+    std::span<std::uint8_t> rows;
+  };
+  ForceRowsWriter force_rows_writer();
 
   // Per-node relaxation time τ(x) (cell interiors). Initialised to collision().tau.
+  // A row of one τ is collided with that τ's rates, computed once per row (the same
+  // bits as per node). The mutable tau_field() forgets that summary until the writer
+  // calls refresh_tau_rows(); until then every row is collided node by node.
   void enable_tau_field();
   bool has_tau_field() const { return !tau_field_.empty(); }
-  std::span<double> tau_field() { return tau_field_; }
+  std::span<double> tau_field();
   std::span<const double> tau_field() const { return tau_field_; }
+  void refresh_tau_rows();
 
   // One fused stream–collide update of every node.
   void step();
@@ -139,6 +160,10 @@ class FluidLattice {
   mutable Storage natural_copy_;  // what populations() returns
   mutable long natural_copy_step_ = -1;  // steps_done_ when gathered; −1: stale
   std::vector<double> force_x_, force_y_, tau_field_;
+  std::vector<std::uint8_t> force_rows_;  // 1: the row may hold force (when force_rows_known_)
+  bool force_rows_known_ = false;
+  std::vector<double> row_tau_;  // the row's one τ, 0 where τ varies (when row_tau_known_)
+  bool row_tau_known_ = false;
   std::array<double, 2> uniform_force_{0.0, 0.0};
   std::array<double, 2> applied_force_{0.0, 0.0};  // uniform force of the last step
   long steps_done_ = 0;

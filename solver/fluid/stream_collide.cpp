@@ -163,42 +163,49 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
   general(g.nx - 1);
 }
 
-template <AaStep Step, CollisionModel Model, bool TauField, bool HasForce, bool ForceField>
-void run_kernel(const KernelArgs& a) {
-  const Grid g = a.grid;
-  NodeInputs in;
-  in.tau = a.tau_field;
-  in.fx = a.force_x;
-  in.fy = a.force_y;
-  in.uniform_fx = a.uniform_fx;
-  in.uniform_fy = a.uniform_fy;
-  in.magic = a.collision.trt_magic;
-  in.uniform_rates = rates_for(Model, a.collision.tau, a.collision.trt_magic);
-#pragma omp parallel for schedule(static) if (g.worth_threading())
-  for (int y = 0; y < g.ny; ++y) update_row<Step, Model, TauField, HasForce, ForceField>(a, in, y);
+// Row y with the kernel variant its inputs need: τ node by node only where the row's τ
+// varies, the force field only on rows that may hold force ("quiet rows",
+// docs/performance.md). A skipped zero force or a row's one τ gives the same values.
+template <AaStep Step, CollisionModel Model>
+void update_row_variant(const KernelArgs& a, const NodeInputs& in, int y, bool tau, bool field, bool force) {
+  if (tau) {
+    if (field) return update_row<Step, Model, true, true, true>(a, in, y);
+    if (force) return update_row<Step, Model, true, true, false>(a, in, y);
+    return update_row<Step, Model, true, false, false>(a, in, y);
+  }
+  if (field) return update_row<Step, Model, false, true, true>(a, in, y);
+  if (force) return update_row<Step, Model, false, true, false>(a, in, y);
+  return update_row<Step, Model, false, false, false>(a, in, y);
 }
 
 template <AaStep Step, CollisionModel Model>
-void dispatch_fields(const KernelArgs& a) {
-  const bool tau = a.tau_field != nullptr;
-  const bool field = a.force_x != nullptr;
-  const bool force = field || a.uniform_fx != 0.0 || a.uniform_fy != 0.0;
-  if (tau) {
-    if (field) return run_kernel<Step, Model, true, true, true>(a);
-    if (force) return run_kernel<Step, Model, true, true, false>(a);
-    return run_kernel<Step, Model, true, false, false>(a);
+void run_kernel(const KernelArgs& a) {
+  const Grid g = a.grid;
+  NodeInputs base;
+  base.tau = a.tau_field;
+  base.fx = a.force_x;
+  base.fy = a.force_y;
+  base.uniform_fx = a.uniform_fx;
+  base.uniform_fy = a.uniform_fy;
+  base.magic = a.collision.trt_magic;
+  base.uniform_rates = rates_for(Model, a.collision.tau, a.collision.trt_magic);
+  const bool uniform_force = a.uniform_fx != 0.0 || a.uniform_fy != 0.0;
+#pragma omp parallel for schedule(static) if (g.worth_threading())
+  for (int y = 0; y < g.ny; ++y) {
+    const bool field = a.force_x != nullptr && (a.force_rows == nullptr || a.force_rows[y] != 0);
+    const bool tau = a.tau_field != nullptr && (a.row_tau == nullptr || a.row_tau[y] == 0.0);
+    NodeInputs in = base;
+    if (a.tau_field != nullptr && !tau) in.uniform_rates = rates_for(Model, a.row_tau[y], a.collision.trt_magic);
+    update_row_variant<Step, Model>(a, in, y, tau, field, field || uniform_force);
   }
-  if (field) return run_kernel<Step, Model, false, true, true>(a);
-  if (force) return run_kernel<Step, Model, false, true, false>(a);
-  return run_kernel<Step, Model, false, false, false>(a);
 }
 
 template <AaStep Step>
 void dispatch_model(const KernelArgs& a) {
   switch (a.collision.model) {
-    case CollisionModel::bgk: return dispatch_fields<Step, CollisionModel::bgk>(a);
-    case CollisionModel::trt: return dispatch_fields<Step, CollisionModel::trt>(a);
-    case CollisionModel::regularized: return dispatch_fields<Step, CollisionModel::regularized>(a);
+    case CollisionModel::bgk: return run_kernel<Step, CollisionModel::bgk>(a);
+    case CollisionModel::trt: return run_kernel<Step, CollisionModel::trt>(a);
+    case CollisionModel::regularized: return run_kernel<Step, CollisionModel::regularized>(a);
   }
 }
 

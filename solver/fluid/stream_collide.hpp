@@ -17,6 +17,7 @@
 // Every slot is read and written by exactly one node per step, so both are in place,
 // race-free on any number of threads, and give the bits of a two-lattice pull kernel.
 #include <cstddef>
+#include <cstdint>
 
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
@@ -44,8 +45,10 @@ struct KernelArgs {
   CollisionConfig collision;
   BoundaryConfig boundaries;
   const double* tau_field = nullptr;  // optional τ(x)
+  const double* row_tau = nullptr;    // with τ(x): per row its one τ, or 0 where τ varies; null: per node
   const double* force_x = nullptr;    // optional F(x)
   const double* force_y = nullptr;
+  const std::uint8_t* force_rows = nullptr;  // with F(x): 0 for a row that holds no force; null: all may
   double uniform_fx = 0.0, uniform_fy = 0.0;
 };
 

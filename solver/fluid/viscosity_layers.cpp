@@ -18,6 +18,7 @@ void apply_viscosity_layers(FluidLattice& lattice, std::span<const ViscosityLaye
     for (int y = 0; y < g.ny; ++y)
       for (int x = 0; x < g.nx; ++x)
         if (layer.covers(x, y)) tau[g.index(x, y)] = layer.tau;
+  lattice.refresh_tau_rows();
 }
 
 }  // namespace erythro::fluid

@@ -81,13 +81,17 @@ void interpolate_impl(const geometry::Domain& d, std::span<const double> X, std:
 }  // namespace
 
 void Transfer::spread(std::span<const double> X, std::span<const double> Y, std::span<const double> Fx,
-                      std::span<const double> Fy, std::span<double> fx, std::span<double> fy) {
+                      std::span<const double> Fy, std::span<double> fx, std::span<double> fy,
+                      std::span<std::uint8_t> rows_written) {
   const std::size_t M = X.size();
   if (Y.size() != M || Fx.size() != M || Fy.size() != M) {
     throw std::invalid_argument("ib::Transfer::spread: marker arrays differ in size");
   }
   if (fx.size() != domain_.grid.size() || fy.size() != domain_.grid.size()) {
     throw std::invalid_argument("ib::Transfer::spread: force field size does not match the grid");
+  }
+  if (!rows_written.empty() && rows_written.size() != static_cast<std::size_t>(domain_.grid.ny)) {
+    throw std::invalid_argument("ib::Transfer::spread: row flags do not match the grid");
   }
   check_finite(X, Y);
   dispatch(kernel_, [&](auto k) {
@@ -129,7 +133,8 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
       double* rowy = fy.data() + d.grid.index(0, y);
       for (int a = 0; a < W; ++a) {
         const int b = bucket_of(y - a);
-        if (b < 0 || b >= nb) continue;
+        if (b < 0 || b >= nb || bucket_start_[b] == bucket_start_[b + 1]) continue;
+        if (!rows_written.empty()) rows_written[static_cast<std::size_t>(y)] = 1;
         for (int q = bucket_start_[b]; q < bucket_start_[b + 1]; ++q) {
           const std::size_t m = static_cast<std::size_t>(order_[q]);
           const double gx = Fx[m] * wy_[m * W + a], gy = Fy[m] * wy_[m * W + a];

@@ -16,6 +16,7 @@
 // offset, then marker index). No two threads write the same node and every node
 // sums its terms in the same order for ANY thread count: the result is bitwise
 // independent of OMP_NUM_THREADS. Interpolation is parallel over markers (reads only).
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -32,10 +33,12 @@ class Transfer {
   const geometry::Domain& domain() const { return domain_; }
 
   // Adds the spread marker forces (Fx, Fy) at (X, Y) to the node force density
-  // (fx, fy), each of size grid.size(). Throws std::invalid_argument on size
+  // (fx, fy), each of size grid.size(), and sets rows_written[y] = 1 for every row y
+  // it adds to (if given, size ny). Throws std::invalid_argument on size
   // mismatch and std::domain_error naming the marker if a position is not finite.
   void spread(std::span<const double> X, std::span<const double> Y, std::span<const double> Fx,
-              std::span<const double> Fy, std::span<double> fx, std::span<double> fy);
+              std::span<const double> Fy, std::span<double> fx, std::span<double> fy,
+              std::span<std::uint8_t> rows_written = {});
 
   // Writes the interpolated velocity (Ux, Uy) of every marker from node fields (ux, uy).
   void interpolate(std::span<const double> X, std::span<const double> Y, std::span<const double> ux,

@@ -8,11 +8,24 @@
 #include <filesystem>
 #include <set>
 
+#include <sys/resource.h>
+
 #include "common/build_info.hpp"
 #include "io/atomic_file.hpp"
 #include "io/h5.hpp"
 
 namespace erythro::io {
+namespace {
+// User + system CPU time of this process so far, all threads: a case's CPU cost, which a
+// loaded machine does not inflate as it does the wall time (and wall × cores ≥ CPU shows
+// how well the case used its cores).
+double process_cpu_seconds() {
+  rusage u{};
+  if (getrusage(RUSAGE_SELF, &u) != 0) return 0.0;
+  const auto seconds = [](const timeval& t) { return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec); };
+  return seconds(u.ru_utime) + seconds(u.ru_stime);
+}
+}  // namespace
 
 std::string to_string(Comparison comparison) {
   switch (comparison) {
@@ -145,7 +158,8 @@ void ResultRecord::write(const std::string& path) const {
                            {"compiler", build_info::compiler()},
                            {"compile_flags", build_info::compile_flags()},
                            {"created_utc", utc_now()},
-                           {"wall_time_s", wall_time_s_}});
+                           {"wall_time_s", wall_time_s_},
+                           {"cpu_time_s", process_cpu_seconds()}});
 
     h5::Handle params = h5::create_group(root, "parameters");
     for (const auto& [key, value] : parameters_) write_value_attr(params.id(), key, value);

@@ -5,7 +5,7 @@
 // Layout (schema_version 1):
 //   /                 attrs case, family, requirement, reference, verdict ("pass"|"fail"),
 //                     git_revision, compiler, compile_flags, created_utc, wall_time_s,
-//                     schema_version
+//                     cpu_time_s (the process's user + system time when written), schema_version
 //   /parameters       attrs: case-wide parameters (number or string)
 //   /metrics/<name>   attrs value, expected, tolerance, comparison, tolerance_reason,
 //                     description, unit, verdict

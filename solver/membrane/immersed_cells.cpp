@@ -44,11 +44,7 @@ void ImmersedCells::compute_forces() {
   }
 }
 
-void ImmersedCells::clear_force_field(fluid::FluidLattice& lattice) {
-  lattice.enable_force_field();
-  std::fill(lattice.force_x().begin(), lattice.force_x().end(), 0.0);
-  std::fill(lattice.force_y().begin(), lattice.force_y().end(), 0.0);
-}
+void ImmersedCells::clear_force_field(fluid::FluidLattice& lattice) { lattice.clear_force_field(); }
 
 void ImmersedCells::spread_forces(fluid::FluidLattice& lattice) {
   clear_force_field(lattice);
@@ -56,7 +52,8 @@ void ImmersedCells::spread_forces(fluid::FluidLattice& lattice) {
 }
 
 void ImmersedCells::add_spread_forces(fluid::FluidLattice& lattice) {
-  transfer_.spread(x_, y_, fx_, fy_, lattice.force_x(), lattice.force_y());
+  const fluid::FluidLattice::ForceRowsWriter field = lattice.force_rows_writer();
+  transfer_.spread(x_, y_, fx_, fy_, field.fx, field.fy, field.rows);
 }
 
 void ImmersedCells::move_markers(std::span<const double> ux, std::span<const double> uy) {

@@ -25,6 +25,7 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
     lattice.enable_tau_field();
     record_fill(index_->update(polygons_from_cells()));
     index_->write_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);  // every node once
+    lattice.refresh_tau_rows();
   }
 }
 
@@ -47,6 +48,7 @@ void CellPhysics::refresh_viscosity(fluid::FluidLattice& lattice) {
   record_fill(index_->update(polygons_from_cells()));
   // Eq 27: τ(x) = ½ + 3[ν_in + (ν_ex − ν_in) I(x)], rewritten only where I changed.
   index_->write_changed_relaxation_times(lattice.tau_field(), nu_interior_, nu_exterior_);
+  lattice.refresh_tau_rows();  // the rows of one τ collide at the cost of a plain row
 }
 
 void CellPhysics::refresh_viscosity_timed(fluid::FluidLattice& lattice) {

@@ -73,7 +73,7 @@ inline Rates rates_for(double D, bool trt, double magic) {
 
 // The collision of one node (eqs T2–T4, T3 or T3'): g holds the streamed populations and
 // receives the post-collision ones; returns Σ_i g*_i in total and q_tot in q.
-template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor>
+template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor>
 [[gnu::always_inline]] inline void collide(const KernelArgs& a, std::size_t n, const Rates& uniform, double* g,
                                            double& total, double& q) {
   constexpr int Q = S::Q;
@@ -82,10 +82,13 @@ template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor>
   for (int i = 0; i < Q; ++i) m += g[i];
   double C = m;
   q = 0.0;
-  if constexpr (React) {
+  if constexpr (React && Decay) {
     const double k = a.decay[n];
     C = (m + 0.5 * a.source[n]) / (1.0 + 0.5 * k);  // eq T4 with the implicit sink
     q = a.source[n] - k * C;
+  } else if constexpr (React) {  // the same with k = 0 (x / 1 = x, s − 0 C = s: the same bits)
+    C = m + 0.5 * a.source[n];
+    q = a.source[n];
   }
   double ux = 0.0, uy = 0.0;
   if constexpr (Vel) {
@@ -100,7 +103,7 @@ template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor>
     total = t;
     return;
   }
-  const Rates r = DField ? rates_for(a.D[n], Trt, a.magic) : uniform;
+  const Rates r = DField ? Rates{a.omega[n], a.omega_plus[n]} : uniform;
   if constexpr (!Trt) {
     const double omega = r.omega;
     const double src_pref = (1.0 - 0.5 * omega) * q;
@@ -135,21 +138,24 @@ template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor>
   total = t;
 }
 
-// Σ v[0..len) with four interleaved partial sums (fixed order: deterministic).
-inline double row_sum(const double* v, int len, bool absolute) {
+// Σ v[0..len) (or Σ |v|) with four interleaved partial sums (fixed order: deterministic;
+// the four sums are one vector's lanes).
+template <bool Absolute>
+inline double row_sum(const double* v, int len) {
   double s[4] = {0.0, 0.0, 0.0, 0.0};
   int k = 0;
   for (; k + 4 <= len; k += 4) {
-    for (int j = 0; j < 4; ++j) s[j] += absolute ? std::fabs(v[k + j]) : v[k + j];
+#pragma GCC unroll 4
+    for (int j = 0; j < 4; ++j) s[j] += Absolute ? std::fabs(v[k + j]) : v[k + j];
   }
-  for (; k < len; ++k) s[0] += absolute ? std::fabs(v[k]) : v[k];
+  for (; k < len; ++k) s[0] += Absolute ? std::fabs(v[k]) : v[k];
   return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
 // Interior nodes n0 … n0+len−1 of one row: Q restrict source and destination
 // streams, no branches, so the loop vectorises along x (as the fluid kernel; named
 // pointers rather than arrays, which GCC would not vectorise).
-template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor>
+template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor>
 void interior_span(const KernelArgs& a, const double* const* src, double* const* out, std::size_t n0, int len,
                    const Rates& rates, double* __restrict total, double* __restrict qtot) {
   constexpr int Q = S::Q;
@@ -187,7 +193,8 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
       f[7 % Q] = s7[k];
       f[8 % Q] = s8[k];
     }
-    collide<S, Vel, DField, React, Trt, Tensor>(a, n0 + static_cast<std::size_t>(k), rates, f, total[k], qtot[k]);
+    collide<S, Vel, DField, React, Decay, Trt, Tensor>(a, n0 + static_cast<std::size_t>(k), rates, f, total[k],
+                                                       qtot[k]);
     o0[k] = f[0];
     o1[k] = f[1];
     o2[k] = f[2];
@@ -202,7 +209,7 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
   }
 }
 
-template <class S, bool Vel, bool DField, bool React, bool Trt, bool Tensor = false>
+template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor = false>
 void run(const KernelArgs& a) {
   constexpr int Q = S::Q;
   const Grid g = a.grid;
@@ -219,8 +226,8 @@ void run(const KernelArgs& a) {
         double f[Q];
         for (int i = 0; i < Q; ++i) f[i] = pull<S>(g, a.boundaries, a.src, x, y, i, boundary);
         const std::size_t n = g.index(x, y);
-        collide<S, Vel, DField, React, Trt, Tensor>(a, n, rates, f, total[static_cast<std::size_t>(x)],
-                                       qtot[static_cast<std::size_t>(x)]);
+        collide<S, Vel, DField, React, Decay, Trt, Tensor>(a, n, rates, f, total[static_cast<std::size_t>(x)],
+                                                           qtot[static_cast<std::size_t>(x)]);
         for (int i = 0; i < Q; ++i) a.dst[i * N + n] = f[i];
       };
       if (y == 0 || y == g.ny - 1 || g.nx < 3) {
@@ -234,40 +241,49 @@ void run(const KernelArgs& a) {
           s[i] = a.src + i * N + g.index(1 - S::cx[i], y - S::cy[i]);
           o[i] = a.dst + i * N + n0;
         }
-        interior_span<S, Vel, DField, React, Trt, Tensor>(a, s, o, n0, g.nx - 2, rates, total.data() + 1,
-                                                          qtot.data() + 1);
+        interior_span<S, Vel, DField, React, Decay, Trt, Tensor>(a, s, o, n0, g.nx - 2, rates, total.data() + 1,
+                                                                 qtot.data() + 1);
         general(g.nx - 1);
       }
       const auto r = static_cast<std::size_t>(y);
-      a.row_source[r] = row_sum(qtot.data(), g.nx, false);
+      a.row_source[r] = row_sum<false>(qtot.data(), g.nx);
       a.row_boundary[r] = boundary;
-      a.row_amount[r] = row_sum(total.data(), g.nx, false);
-      a.row_scale[r] = row_sum(total.data(), g.nx, true);
+      a.row_amount[r] = row_sum<false>(total.data(), g.nx);
+      a.row_scale[r] = row_sum<true>(total.data(), g.nx);
     }
   }
 }
 
-template <class S, bool Vel, bool DField, bool React>
+template <class S, bool Vel, bool DField, bool React, bool Decay>
 void with_collision(const KernelArgs& a) {
-  return a.trt ? run<S, Vel, DField, React, true>(a) : run<S, Vel, DField, React, false>(a);
+  return a.trt ? run<S, Vel, DField, React, Decay, true>(a) : run<S, Vel, DField, React, Decay, false>(a);
+}
+
+// Reaction: none, a source alone, or a source and a sink.
+template <class S, bool Vel, bool DField>
+void with_reaction(const KernelArgs& a) {
+  if (a.source == nullptr) return with_collision<S, Vel, DField, false, false>(a);
+  if (a.decay == nullptr) return with_collision<S, Vel, DField, true, false>(a);
+  return with_collision<S, Vel, DField, true, true>(a);
 }
 
 // Tensor diffusivity: D2Q5 with TRT only (checked by TransportLattice::step).
+template <bool Vel>
+void tensor_with_reaction(const KernelArgs& a) {
+  if (a.source == nullptr) return run<D2Q5, Vel, true, false, false, true, true>(a);
+  if (a.decay == nullptr) return run<D2Q5, Vel, true, true, false, true, true>(a);
+  return run<D2Q5, Vel, true, true, true, true, true>(a);
+}
+
 void dispatch_tensor(const KernelArgs& a) {
-  const bool vel = a.ux != nullptr, react = a.source != nullptr;
-  if (vel) return react ? run<D2Q5, true, true, true, true, true>(a) : run<D2Q5, true, true, false, true, true>(a);
-  return react ? run<D2Q5, false, true, true, true, true>(a) : run<D2Q5, false, true, false, true, true>(a);
+  return a.ux != nullptr ? tensor_with_reaction<true>(a) : tensor_with_reaction<false>(a);
 }
 
 template <class S>
 void dispatch(const KernelArgs& a) {
-  const bool vel = a.ux != nullptr, dfield = a.D != nullptr, react = a.source != nullptr;
-  if (vel) {
-    if (dfield) return react ? with_collision<S, true, true, true>(a) : with_collision<S, true, true, false>(a);
-    return react ? with_collision<S, true, false, true>(a) : with_collision<S, true, false, false>(a);
-  }
-  if (dfield) return react ? with_collision<S, false, true, true>(a) : with_collision<S, false, true, false>(a);
-  return react ? with_collision<S, false, false, true>(a) : with_collision<S, false, false, false>(a);
+  const bool vel = a.ux != nullptr, dfield = a.omega != nullptr;
+  if (vel) return dfield ? with_reaction<S, true, true>(a) : with_reaction<S, true, false>(a);
+  return dfield ? with_reaction<S, false, true>(a) : with_reaction<S, false, false>(a);
 }
 
 }  // namespace
@@ -276,6 +292,17 @@ void stream_collide(const KernelArgs& args) {
   if (args.Dxx != nullptr) return dispatch_tensor(args);
   if (args.stencil == Stencil::d2q5) return dispatch<D2Q5>(args);
   return dispatch<D2Q9>(args);
+}
+
+void relaxation_rates(std::span<const double> D, bool trt, double magic, std::vector<double>& omega,
+                      std::vector<double>& omega_plus) {
+  omega.resize(D.size());
+  omega_plus.resize(D.size());
+  for (std::size_t n = 0; n < D.size(); ++n) {
+    const Rates r = rates_for(D[n], trt, magic);  // what the collision computed node by node
+    omega[n] = r.omega;
+    omega_plus[n] = r.omega_plus;
+  }
 }
 
 }  // namespace erythro::transport::detail

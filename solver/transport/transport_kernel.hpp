@@ -1,6 +1,8 @@
 #pragma once
 // The fused pull stream–collide kernel of the transport lattice (internal).
 #include <cstddef>
+#include <span>
+#include <vector>
 
 #include "lattice/grid.hpp"
 #include "transport/stencils.hpp"
@@ -18,13 +20,15 @@ struct KernelArgs {
   double uniform_D = 0.0;
   bool trt = false;    // collision: BGK (T3) or TRT with magic parameter Λ (T3')
   double magic = 0.25;
-  const double* D = nullptr;       // optional per-node D
+  // optional per-node D, as the relaxation rates it sets (relaxation_rates below)
+  const double* omega = nullptr;       // ω = ω⁻ (TRT)
+  const double* omega_plus = nullptr;  // ω⁺ (TRT; = ω for BGK)
   // optional per-node diffusivity tensor (D2Q5 TRT only, eq T8); replaces D when set
   const double* Dxx = nullptr;
   const double* Dyy = nullptr;
   const double* Dxy = nullptr;
-  const double* source = nullptr;  // optional q and k (both or neither)
-  const double* decay = nullptr;
+  const double* source = nullptr;  // optional q
+  const double* decay = nullptr;   // optional k (only with q; null: k = 0)
   const double* ux = nullptr;  // optional velocity (both or neither)
   const double* uy = nullptr;
   // Per-row accumulators (size ny): Σ q_tot, boundary inflow, Σ Σ_i g*_i, Σ |Σ_i g*_i|.
@@ -35,6 +39,10 @@ struct KernelArgs {
 };
 
 void stream_collide(const KernelArgs& args);
+
+// The relaxation rates of the collision at each node of a per-node D (resized to D's size).
+void relaxation_rates(std::span<const double> D, bool trt, double magic, std::vector<double>& omega,
+                      std::vector<double>& omega_plus);
 
 // Value streamed into node (x, y) along direction i (boundary rules of
 // transport_lattice.hpp; a bottom/top side takes precedence at corners, as in the

@@ -114,6 +114,7 @@ void TransportLattice::set_uniform_diffusivity(double D) {
   if (!(D > 0.0)) throw std::invalid_argument("TransportLattice: diffusivity must be positive (tau > 1/2)");
   uniform_D_ = D;
   if (!D_field_.empty()) std::fill(D_field_.begin(), D_field_.end(), D);
+  rates_stale_ = true;
 }
 
 void TransportLattice::set_collision(CollisionModel c) {
@@ -121,10 +122,12 @@ void TransportLattice::set_collision(CollisionModel c) {
     throw std::invalid_argument("TransportLattice: the TRT magic parameter must be positive");
   }
   collision_ = c;
+  rates_stale_ = true;
 }
 
 std::span<double> TransportLattice::diffusivity() {
   if (D_field_.empty()) D_field_.assign(grid_.size(), uniform_D_);
+  rates_stale_ = true;
   return D_field_;
 }
 
@@ -151,6 +154,7 @@ std::span<double> TransportLattice::source() {
 
 std::span<double> TransportLattice::decay_rate() {
   source();
+  has_decay_ = true;
   return decay_;
 }
 
@@ -183,7 +187,14 @@ void TransportLattice::step() {
   a.uniform_D = uniform_D_;
   a.trt = collision_.kind == Collision::trt;
   a.magic = collision_.magic;
-  a.D = D_field_.empty() ? nullptr : D_field_.data();
+  if (!D_field_.empty()) {
+    if (rates_stale_) {
+      detail::relaxation_rates(D_field_, a.trt, a.magic, omega_, omega_plus_);
+      rates_stale_ = false;
+    }
+    a.omega = omega_.data();
+    a.omega_plus = omega_plus_.data();
+  }
   if (!Dxx_.empty()) {
     if (stencil_ != Stencil::d2q5 || collision_.kind != Collision::trt) {
       throw std::logic_error("TransportLattice: the diffusivity tensor needs D2Q5 and the TRT collision");
@@ -193,7 +204,7 @@ void TransportLattice::step() {
     a.Dxy = Dxy_.data();
   }
   a.source = source_.empty() ? nullptr : source_.data();
-  a.decay = decay_.empty() ? nullptr : decay_.data();
+  a.decay = has_decay_ ? decay_.data() : nullptr;
   a.ux = ux_.empty() ? nullptr : ux_.data();
   a.uy = uy_.empty() ? nullptr : uy_.data();
   a.row_source = row_source_.data();

@@ -115,7 +115,9 @@ class TransportLattice {
   void set_collision(CollisionModel c);
   const CollisionModel& collision() const { return collision_; }
 
-  // Per-node D: allocated (filled with the uniform value) on the first call.
+  // Per-node D: allocated (filled with the uniform value) on the first call. The step
+  // collides with relaxation rates computed from it once and kept until the next call
+  // (or a change of the uniform D or the collision): write it before the next step.
   std::span<double> diffusivity();
   bool has_diffusivity_field() const { return !D_field_.empty(); }
 
@@ -133,7 +135,8 @@ class TransportLattice {
 
   // Per-node source q (amount per node per step, i.e. concentration per step) and
   // first-order sink rate k (per step, implicit): q_tot = q − k C. Allocated, zero,
-  // on the first call of either; the caller rewrites them between steps.
+  // on the first call of either; the caller rewrites them between steps. Until the
+  // first call of decay_rate() the step leaves the sink out (k = 0 exactly: the same bits).
   std::span<double> source();
   std::span<double> decay_rate();
   bool has_reaction() const { return !source_.empty(); }
@@ -182,6 +185,9 @@ class TransportLattice {
   CollisionModel collision_{};
   std::vector<double> g_, g_next_, C_;
   std::vector<double> D_field_, source_, decay_, ux_, uy_;
+  std::vector<double> omega_, omega_plus_;  // relaxation rates of D_field_ (eq T3')
+  bool rates_stale_ = true;                 // D_field_, D or Λ changed since they were computed
+  bool has_decay_ = false;                  // decay_rate() was handed out
   std::vector<double> Dxx_, Dyy_, Dxy_;  // optional tensor (eq T8)
   std::vector<double> row_source_, row_boundary_, row_amount_, row_scale_;
   MassBalance balance_;
