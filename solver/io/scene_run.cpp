@@ -1,5 +1,6 @@
 #include "io/scene_run.hpp"
 
+#include "io/checkpoint.hpp"
 #include "io/run_writer.hpp"
 
 namespace erythro::io {
@@ -8,6 +9,9 @@ SceneRunResult run_scene(scene::Scene scene, const scene::LatticeSetup& setup, c
                          const std::vector<sim::RunObserver*>& observers,
                          const std::function<void(sim::Simulation&)>& configure) {
   sim::Simulation simulation(std::move(scene), setup);
+  simulation.set_checkpoint_writer([&out_dir, &text = simulation.scene().source_text](long step, const StateRecord& s) {
+    write_checkpoint(out_dir, text, step, s);  // when output.checkpoint_interval_* asks
+  });
   if (configure) configure(simulation);
   RunWriter writer(out_dir);
   sim::ObserverList list;
