@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
@@ -77,43 +78,56 @@ void copy_frames(hid_t previous, hid_t file, const std::string& name, long step)
   }
 }
 
-// run.xdmf for every frame of `file` (fields and cells), as the run writer would have written it.
-void rewrite_xdmf(hid_t file, const std::string& h5_path, const std::string& xdmf_path) {
+// The fields of every frame in the run writer's order: density, the species in scene order
+// (/metadata species), velocity.
+XdmfGrid xdmf_grid(hid_t file) {
   h5::Handle grid = h5::open_group(file, "grid");
   XdmfGrid g;
   g.nx = static_cast<int>(h5::read_attr_double(grid.id(), "nx"));
   g.ny = static_cast<int>(h5::read_attr_double(grid.id(), "ny"));
   g.spacing = h5::read_attr_double(grid.id(), "spacing_um");
   g.origin_x = g.origin_y = 0.5 * g.spacing;
-  std::map<long, XdmfFrame> frames;
   h5::Handle fields = h5::open_group(file, "fields");
-  for (const std::string& name : h5::list(fields.id())) {
+  const std::vector<std::string> frames = h5::list(fields.id());
+  if (frames.empty()) return g;
+  h5::Handle first = h5::open_group(fields.id(), frames.front());
+  std::vector<std::string> scalars{"density"};
+  h5::Handle meta = h5::open_group(file, "metadata");
+  if (h5::has_attr(meta.id(), "species")) {
+    std::stringstream species(h5::read_attr_string(meta.id(), "species"));
+    for (std::string name; std::getline(species, name, ',');) scalars.push_back(name);
+  }
+  for (const std::string& name : scalars)
+    if (h5::exists(first.id(), name)) g.scalar_fields.push_back(name);
+  if (h5::exists(first.id(), "velocity")) g.vector_fields.push_back("velocity");
+  return g;
+}
+
+// run.xdmf for every frame of `file` (fields and cells), as the run writer writes it.
+void rewrite_xdmf(hid_t file, const std::string& h5_path, const std::string& xdmf_path) {
+  std::map<long, XdmfFrame> frames;
+  auto frame_of = [&](hid_t group, const std::string& name) -> XdmfFrame& {
     XdmfFrame& f = frames[std::stol(name)];
-    f.fields_group = "/fields/" + name;
-    h5::Handle frame = h5::open_group(fields.id(), name);
+    h5::Handle frame = h5::open_group(group, name);
     f.step = std::stol(name);
     f.time_s = h5::read_attr_double(frame.id(), "time_s");
-    if (!g.scalar_fields.empty() || !g.vector_fields.empty()) continue;
-    for (const std::string& field : h5::list(frame.id())) {
-      std::vector<hsize_t> dims;
-      h5::read_dataset(frame.id(), field, &dims);
-      (dims.size() == 3 ? g.vector_fields : g.scalar_fields).push_back(field);
-    }
-  }
+    return f;
+  };
+  h5::Handle fields = h5::open_group(file, "fields");
+  for (const std::string& name : h5::list(fields.id())) frame_of(fields.id(), name).fields_group = "/fields/" + name;
   if (h5::exists(file, "cells")) {
     h5::Handle cells = h5::open_group(file, "cells");
     for (const std::string& name : h5::list(cells.id())) {
-      XdmfFrame& f = frames[std::stol(name)];
-      h5::Handle frame = h5::open_group(cells.id(), name);
-      f.step = std::stol(name);
-      f.time_s = h5::read_attr_double(frame.id(), "time_s");
+      XdmfFrame& f = frame_of(cells.id(), name);
       f.cells_group = "/cells/" + name;
+      h5::Handle frame = h5::open_group(cells.id(), name);
       f.markers = static_cast<long>(h5::read_dataset(frame.id(), "cell").size());
     }
   }
   std::vector<XdmfFrame> list;
   for (const auto& [step, f] : frames) list.push_back(f);
-  write_text_atomically(xdmf_path, make_xdmf(std::filesystem::path(h5_path).filename().string(), g, list));
+  const std::string h5_name = std::filesystem::path(h5_path).filename().string();
+  write_text_atomically(xdmf_path, make_xdmf(h5_name, xdmf_grid(file), list));
 }
 
 }  // namespace

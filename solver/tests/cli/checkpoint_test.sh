@@ -13,7 +13,8 @@ pass() { checks=$((checks + 1)); echo "ok   $1"; }
 fail() { checks=$((checks + 1)); failures=$((failures + 1)); echo "FAIL $1"; }
 run() { "$ERYTHRO" run --quiet "$@" > /dev/null; }
 
-# same NAME A B: the fields, cells and diagnostics of two run files are bitwise equal.
+# same NAME A B: the fields, cells and diagnostics of two run files are bitwise equal, and
+# their XDMF indexes identical.
 same() {
   local name=$1 a=$2 b=$3 group out
   for group in /fields /cells /diagnostics; do
@@ -23,6 +24,7 @@ same() {
     fi
   done
   pass "$name: fields, cells and diagnostics bitwise equal"
+  if cmp -s "${a%.h5}.xdmf" "${b%.h5}.xdmf"; then pass "$name: run.xdmf identical"; else fail "$name: run.xdmf differs"; fi
 }
 
 # restart NAME SCENE N K [--set ...]: N steps uninterrupted; K steps with a checkpoint at K,
