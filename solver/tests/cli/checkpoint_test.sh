@@ -40,11 +40,13 @@ restart() {
   same "$name" "$name-full/run.h5" "$name/run.h5"
 }
 
+# K even and odd (the AA pattern's two layouts), between two index-field rebuilds (every 3
+# steps) and between two transport steps (every 50).
 restart fluid "$SRC/scenes/poiseuille.toml" 400 150 --set output.fields_interval_steps=100
-restart cells "$SRC/scenes/capsule_shear.toml" 400 170 --set output.fields_interval_steps=100 \
+restart cells "$SRC/scenes/capsule_shear.toml" 400 171 --set output.fields_interval_steps=100 \
   --set output.diagnostics_interval_steps=10 --set membrane.interior_viscosity_cP=6.0 \
   --set membrane.index_update_interval=3
-restart cells_aggregation "$SRC/verification/aggregation/doublet.toml" 300 130 \
+restart cells_aggregation "$SRC/verification/aggregation/doublet.toml" 300 131 \
   --set output.fields_interval_steps=100 --set output.diagnostics_interval_steps=10
 RESTART_THREADS=1 restart transport_cells "$SRC/solver/tests/cli/checkpoint/transport_cells.toml" 600 320
 restart transport_no_fluid "$SRC/scenes/rbc_deoxygenation.toml" 300 110 --set output.fields_interval_steps=100 \
