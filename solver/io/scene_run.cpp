@@ -9,11 +9,14 @@ SceneRunResult run_scene(scene::Scene scene, const scene::LatticeSetup& setup, c
                          const std::vector<sim::RunObserver*>& observers,
                          const std::function<void(sim::Simulation&)>& configure) {
   sim::Simulation simulation(std::move(scene), setup);
-  simulation.set_checkpoint_writer([&out_dir, &text = simulation.scene().source_text](long step, const StateRecord& s) {
-    write_checkpoint(out_dir, text, step, s);  // when output.checkpoint_interval_* asks
-  });
   if (configure) configure(simulation);
   RunWriter writer(out_dir);
+  // When output.checkpoint_interval_* asks: run.h5 holds every sample before the
+  // checkpoint's step before the checkpoint exists (a restart carries them over).
+  simulation.set_checkpoint_writer([&](long step, const StateRecord& state) {
+    writer.flush();
+    write_checkpoint(out_dir, simulation.scene().source_text, step, state);
+  });
   sim::ObserverList list;
   list.add(writer);
   for (sim::RunObserver* o : observers) list.add(*o);
