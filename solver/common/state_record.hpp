@@ -5,6 +5,7 @@
 // Integers are kept as doubles, exact below 2^53 (step counts, node indices, flags), so one
 // kind of array serves every module and the file needs one dataset type.
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <span>
 #include <string>

@@ -33,12 +33,13 @@ void write_file(const std::string& path, const std::string& scene_text, long ste
   for (const auto& [name, text] : state.texts()) h5::write_attr(texts.id(), name, text);
 }
 
+// A 1-D attribute of variable-length strings (h5::write_attr of a vector of strings).
 std::vector<std::string> read_string_list_attr(hid_t obj, const std::string& name) {
   h5::Handle attr(H5Aopen(obj, name.c_str(), H5P_DEFAULT), H5Aclose);
-  h5::Handle space(H5Aget_space(attr.id()), H5Sclose);
+  h5::Handle space(attr.valid() ? H5Aget_space(attr.id()) : -1, H5Sclose);
   h5::Handle type(H5Tcopy(H5T_C_S1), H5Tclose);
-  H5Tset_size(type.id(), H5T_VARIABLE);
-  H5Tset_cset(type.id(), H5T_CSET_UTF8);
+  if (!space.valid() || H5Tset_size(type.id(), H5T_VARIABLE) < 0 || H5Tset_cset(type.id(), H5T_CSET_UTF8) < 0)
+    throw OutputError("HDF5: cannot read attribute '" + name + "'");
   std::vector<char*> raw(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space.id())));
   if (!raw.empty() && H5Aread(attr.id(), type.id(), raw.data()) < 0)
     throw OutputError("HDF5: cannot read attribute '" + name + "'");
