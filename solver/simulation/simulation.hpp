@@ -10,6 +10,10 @@
 // manufactured source written into a field before the fluid step) and add_probe (a
 // diagnostic of one's own), both before run(). Mutable access to the modules is meant
 // for setting their state before run() (an initial field, a τ field).
+//
+// Checkpoints (docs/architecture.md "Checkpoints and restart"): with a checkpoint writer
+// set, run() hands it the state of every module at the steps the scene asks for;
+// restore() continues from such a state.
 #include <functional>
 #include <memory>
 #include <optional>
