@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "aggregation/morse.hpp"
+#include "common/state_record.hpp"
 #include "geometry/domain.hpp"
 
 namespace erythro::membrane {
@@ -77,6 +78,12 @@ class MorseAggregation {
 
   // |F_m| of the aggregation force of the last add_forces call, per marker.
   std::span<const double> force_magnitude() const { return magnitude_; }
+  // Checkpoint (common/state_record.hpp): those magnitudes, the one thing kept between
+  // steps (read by the contact diagnostics of the state after a step).
+  void save_state(StateRecord& record, const std::string& prefix) const { record.put(prefix + "force_magnitude", magnitude_); }
+  void restore_state(const StateRecord& record, const std::string& prefix) {
+    magnitude_ = record.get(prefix + "force_magnitude");
+  }
 
   const MorseParameters& parameters() const { return morse_.parameters(); }
   const geometry::Domain& domain() const { return domain_; }

@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "app/progress.hpp"
+#include "app/restart.hpp"
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/baseline_compare.hpp"
@@ -52,14 +54,25 @@ void prepare_output_folder(const std::string& dir, bool force) {
 
 int run_command(const RunOptions& options) {
   return guarded([&] {
-    scene::Scene scene = scene::load_scene(options.scene_path, options.overrides);
+    if (options.scene_path.empty() && options.restart_dir.empty())
+      throw InputError("run: give a scene file, or --restart DIR to continue a run");
+    std::optional<Restart> restart;
+    if (!options.restart_dir.empty()) restart.emplace(options);
+    scene::Scene scene = restart ? restart->take_scene() : scene::load_scene(options.scene_path, options.overrides);
     const scene::LatticeSetup setup = scene::derive_lattice(scene);
     const std::string out_dir =
-        options.out_dir.empty() ? (fs::path("out") / fs::path(options.scene_path).stem()).string() : options.out_dir;
-    prepare_output_folder(out_dir, options.force);
+        restart ? restart->out_dir()
+        : options.out_dir.empty() ? (fs::path("out") / fs::path(options.scene_path).stem()).string()
+                                  : options.out_dir;
+    // Continuing in the interrupted run's folder replaces its run.h5 (set aside, its history kept).
+    const bool continues_in_place = restart && restart->set_aside_interrupted_run();
+    prepare_output_folder(out_dir, options.force || continues_in_place);
 
     ProgressDisplay progress(options.quiet);
-    const io::SceneRunResult run = io::run_scene(std::move(scene), setup, out_dir, {&progress});
+    const io::SceneRunResult run =
+        io::run_scene(std::move(scene), setup, out_dir, {&progress}, restart ? restart->restore() : nullptr);
+    if (restart) std::cout << "restarted at step " << restart->step() << "; history "
+                           << restart->carry_over_history(run.h5_path, run.xdmf_path) << "\n";
     std::cout << "results: " << run.h5_path << "\n" << "fields:  " << run.xdmf_path << "\n";
     if (run.summary.status == sim::RunStatus::stopped) std::cout << "stopped: " << run.summary.diagnosis << "\n";
     if (run.summary.status == sim::RunStatus::diverged) {

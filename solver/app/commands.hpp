@@ -12,6 +12,7 @@ struct RunOptions {
   std::vector<std::string> overrides;
   bool force = false;   // overwrite an existing run in out_dir
   bool quiet = false;
+  std::string restart_dir;  // --restart: continue the run of this folder (app/restart.hpp)
 };
 
 int run_command(const RunOptions& options);

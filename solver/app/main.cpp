@@ -17,11 +17,13 @@ int main(int argc, char** argv) {
 
   app::RunOptions run;
   auto* run_cmd = cli.add_subcommand("run", "Run a scene and write OUT/run.h5 and OUT/run.xdmf");
-  run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)")->required();
+  run_cmd->add_option("scene", run.scene_path, "Scene file (TOML); optional with --restart");
   run_cmd->add_option("--out", run.out_dir, "Output folder (default: out/<scene name>)");
   run_cmd->add_option("--set", run.overrides, "Override a scene key: --set fluid.tau=0.8 (repeatable)");
   run_cmd->add_flag("--force", run.force, "Overwrite an earlier run in the output folder");
   run_cmd->add_flag("--quiet", run.quiet, "No progress display");
+  run_cmd->add_option("--restart", run.restart_dir,
+                      "Continue the run whose output folder DIR holds a checkpoint (docs/cli.md)");
 
   std::string check_scene;
   std::vector<std::string> check_overrides;

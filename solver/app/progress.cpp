@@ -22,8 +22,10 @@ void ProgressDisplay::on_progress(long step, long total, double mlups) {
   if (quiet_ || total <= 0) return;
   const auto now = std::chrono::steady_clock::now();
   const double elapsed = std::chrono::duration<double>(now - start_).count();
+  if (first_step_ < 0) first_step_ = step - 1;  // 0, or a restart's checkpoint step
   const double fraction = static_cast<double>(step) / static_cast<double>(total);
-  const double eta = fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
+  const double done = static_cast<double>(step - first_step_) / static_cast<double>(total - first_step_);
+  const double eta = done > 0.0 ? elapsed * (1.0 - done) / done : 0.0;
   char eta_text[32];
   format_duration(eta, eta_text, sizeof eta_text);
   if (terminal_) {

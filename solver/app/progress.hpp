@@ -17,6 +17,7 @@ class ProgressDisplay : public sim::RunObserver {
   bool quiet_;
   bool terminal_;
   long next_percent_ = 10;
+  long first_step_ = -1;  // the step the run started from (ETA from the steps since)
   std::chrono::steady_clock::time_point start_, last_draw_;
 };
 

@@ -133,6 +133,37 @@ void FluidLattice::step() {
   ++steps_done_;
 }
 
+void FluidLattice::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "raw_populations", f_);
+  r.put_scalar(prefix + "streamed", streamed_ ? 1.0 : 0.0);
+  r.put(prefix + "uniform_force", uniform_force_);
+  r.put(prefix + "applied_force", applied_force_);
+  r.put_scalar(prefix + "steps_done", static_cast<double>(steps_done_));
+  if (has_force_field()) {
+    r.put(prefix + "force_x", force_x_);
+    r.put(prefix + "force_y", force_y_);
+  }
+  if (has_tau_field()) r.put(prefix + "tau", tau_field_);
+}
+
+void FluidLattice::restore_state(const StateRecord& r, const std::string& prefix) {
+  r.copy_to(prefix + "raw_populations", f_);
+  streamed_ = r.scalar(prefix + "streamed") != 0.0;
+  natural_copy_step_ = -1;
+  r.copy_to(prefix + "uniform_force", uniform_force_);
+  r.copy_to(prefix + "applied_force", applied_force_);
+  steps_done_ = static_cast<long>(r.scalar(prefix + "steps_done"));
+  if (r.has(prefix + "force_x")) {
+    enable_force_field();
+    r.copy_to(prefix + "force_x", force_x_);
+    r.copy_to(prefix + "force_y", force_y_);
+  }
+  if (r.has(prefix + "tau")) {
+    enable_tau_field();
+    r.copy_to(prefix + "tau", tau_field_);
+  }
+}
+
 void FluidLattice::mark_natural() {
   streamed_ = false;
   natural_copy_step_ = -1;  // populations() gathers afresh

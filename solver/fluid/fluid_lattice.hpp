@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "common/health.hpp"
+#include "common/state_record.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
 #include "lattice/grid.hpp"
@@ -132,6 +133,12 @@ class FluidLattice {
   std::span<const double> populations() const;
   // Replaces every population ([q * N + n], size 9N), e.g. a non-equilibrium start.
   void set_populations(std::span<const double> populations);
+
+  // Checkpoint (common/state_record.hpp): the stored populations as they lie (padding and
+  // AA layout included, so the next step is the same bits), the layout parity, the force
+  // and τ fields, the forces of the last step and the step count, under `prefix`.
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
 
  private:
   using Storage = std::vector<double, detail::CacheLineAllocator<double>>;

@@ -100,6 +100,28 @@ const FillReport& IndexField::update(std::span<const geometry::Polygon> cells) {
   return report_;
 }
 
+void IndexField::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "index", index_);
+  r.put(prefix + "mark", mark_);
+  r.put(prefix + "owner", owner_);
+  r.put(prefix + "candidate", candidate_);
+  r.put(prefix + "dirty", dirty_);
+}
+
+void IndexField::restore_state(const StateRecord& r, const std::string& prefix) {
+  const std::size_t n = index_.size();
+  r.copy_to(prefix + "index", index_);
+  auto ints = [&](const char* name, auto& out) {
+    const std::vector<double>& v = r.get(prefix + name, n);
+    std::transform(v.begin(), v.end(), out.begin(), [](double d) { return static_cast<std::decay_t<decltype(out[0])>>(d); });
+  };
+  ints("mark", mark_);
+  ints("owner", owner_);
+  ints("candidate", candidate_);
+  dirty_ = r.get_as<std::size_t>(prefix + "dirty");
+  previous_dirty_.clear();
+}
+
 void IndexField::check_polygon(const geometry::Polygon& p, int cell) const {
   if (p.size() < 3 || p.y.size() != p.x.size())
     throw InputError("interior: cell " + std::to_string(cell) + " has " + std::to_string(p.size()) +

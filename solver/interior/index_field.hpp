@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "common/error.hpp"
+#include "common/state_record.hpp"
 #include "geometry/domain.hpp"
 #include "geometry/polygon.hpp"
 #include "interior/edge_table.hpp"
@@ -96,6 +97,12 @@ class IndexField {
   // after the previous update (write the full field once, after the first update).
   // O(band + interior) instead of O(grid).
   void write_changed_relaxation_times(std::span<double> tau, double nu_in, double nu_ex) const;
+
+  // Checkpoint (common/state_record.hpp), under `prefix`: I, the node marks and the nodes
+  // the last update changed, which the next update resets and rewrites τ on (the rest is
+  // scratch, rebuilt by every update).
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
 
  private:
   struct CellStats {

@@ -63,6 +63,9 @@ class RunWriter : public sim::RunObserver {
 
   // Closes the file with status "aborted: <reason>" and moves it into place.
   void abort(const std::string& reason);
+  // Writes the buffered samples and flushes the file: before a checkpoint, so that a run
+  // killed after it has every sample before the checkpoint's step on disk.
+  void flush() { flush_samples(); }
 
   std::string h5_path() const;
   std::string xdmf_path() const;

@@ -1,5 +1,6 @@
 #include "io/scene_run.hpp"
 
+#include "io/checkpoint.hpp"
 #include "io/run_writer.hpp"
 
 namespace erythro::io {
@@ -10,6 +11,12 @@ SceneRunResult run_scene(scene::Scene scene, const scene::LatticeSetup& setup, c
   sim::Simulation simulation(std::move(scene), setup);
   if (configure) configure(simulation);
   RunWriter writer(out_dir);
+  // When output.checkpoint_interval_* asks: run.h5 holds every sample before the
+  // checkpoint's step before the checkpoint exists (a restart carries them over).
+  simulation.set_checkpoint_writer([&](long step, const StateRecord& state) {
+    writer.flush();
+    write_checkpoint(out_dir, simulation.scene().source_text, step, state);
+  });
   sim::ObserverList list;
   list.add(writer);
   for (sim::RunObserver* o : observers) list.add(*o);

@@ -138,6 +138,38 @@ void ImmersedCells::wrap_periodic() {
   }
 }
 
+void ImmersedCells::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "x", x_);
+  r.put(prefix + "y", y_);
+  r.put(prefix + "fx", fx_);
+  r.put(prefix + "fy", fy_);
+  r.put(prefix + "ux", ux_);
+  r.put(prefix + "uy", uy_);
+  for (int c = 0; c < cell_count(); ++c) {
+    const std::string rest = prefix + std::to_string(c) + ".rest_";
+    r.put(rest + "length", cells_[c].rest.length);
+    r.put(rest + "dual", cells_[c].rest.dual);
+    r.put(rest + "turning", cells_[c].rest.turning);
+    r.put_scalar(rest + "area", cells_[c].rest.area);
+  }
+}
+
+void ImmersedCells::restore_state(const StateRecord& r, const std::string& prefix) {
+  r.copy_to(prefix + "x", x_);
+  r.copy_to(prefix + "y", y_);
+  r.copy_to(prefix + "fx", fx_);
+  r.copy_to(prefix + "fy", fy_);
+  r.copy_to(prefix + "ux", ux_);
+  r.copy_to(prefix + "uy", uy_);
+  for (int c = 0; c < cell_count(); ++c) {
+    const std::string rest = prefix + std::to_string(c) + ".rest_";
+    r.copy_to(rest + "length", cells_[c].rest.length);
+    r.copy_to(rest + "dual", cells_[c].rest.dual);
+    r.copy_to(rest + "turning", cells_[c].rest.turning);
+    cells_[c].rest.area = r.scalar(rest + "area");
+  }
+}
+
 Energy ImmersedCells::energy(int c) const { return membrane_energy(cells_[c].model, cells_[c].rest, x(c), y(c)); }
 
 double ImmersedCells::max_marker_speed() const {

@@ -13,6 +13,7 @@
 #include <span>
 #include <vector>
 
+#include "common/state_record.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "geometry/polygon.hpp"
 #include "ib/transfer.hpp"
@@ -89,6 +90,12 @@ class ImmersedCells {
 
   Energy energy(int c) const;
   double max_marker_speed() const;
+
+  // Checkpoint (common/state_record.hpp), under `prefix`: per marker its position, force
+  // and velocity; per cell its rest shape. Restoring needs the same cells and marker counts
+  // (the cells of the same scene).
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
   const ib::Transfer& transfer() const { return transfer_; }
 
  private:

@@ -106,6 +106,10 @@ struct OutputSpec {
   // Also sample the diagnostics at every one of the first this many steps (the start of a
   // transient); 0: only every diagnostics_interval_steps.
   long dense_diagnostics_steps = 0;
+  // Checkpoints (erythro run --restart, docs/cli.md): every this many steps and/or
+  // after this much wall time (s); 0: off.
+  long checkpoint_interval_steps = 0;
+  double checkpoint_interval_s = 0.0;
 };
 
 // [[stop_when]]: ends a run (status "stopped") when a diagnostics series (any name written

@@ -244,6 +244,20 @@ std::vector<KeySpec> make_keys() {
        .bound = non_negative,
        .when_absent = literal("0"),
        .meaning = "Also sample the diagnostics at every one of the first this many steps (the start of a transient)"},
+      {.path = "output.checkpoint_interval_steps",
+       .kind = Kind::integer,
+       .unit = "steps",
+       .bound = non_negative,
+       .when_absent = literal("0"),
+       .meaning = "Steps between checkpoints (OUT/checkpoint.h5, for `erythro run --restart OUT`; docs/cli.md); "
+                  "0: none by step count"},
+      {.path = "output.checkpoint_interval_s",
+       .kind = Kind::number,
+       .unit = "s (wall time)",
+       .bound = non_negative,
+       .when_absent = literal("0"),
+       .meaning = "Wall-clock seconds between checkpoints (written at the first step after each interval); "
+                  "0: none by wall time"},
       // [[stop_when]] entries: the schema path drops the index.
       {.path = "stop_when.series",
        .kind = Kind::string,

@@ -469,6 +469,8 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.output.fields = r.string_list("output.fields");
   s.output.extremes_interval_steps = r.integer("output.extremes_interval_steps");
   s.output.dense_diagnostics_steps = r.integer("output.dense_diagnostics_steps");
+  s.output.checkpoint_interval_steps = r.integer("output.checkpoint_interval_steps");
+  s.output.checkpoint_interval_s = r.number("output.checkpoint_interval_s");
   read_stop_when(r, s);
 
   s.limits.min_tau_margin = r.number("limits.min_tau_margin");

@@ -118,6 +118,31 @@ void CellPhysics::refresh_viscosity_beside_forces(fluid::FluidLattice& lattice) 
   if (forces_error) std::rethrow_exception(forces_error);
 }
 
+void CellPhysics::save_state(StateRecord& r, const std::string& prefix) const {
+  cells_.save_state(r, prefix + "markers.");
+  if (index_) index_->save_state(r, prefix + "index_field.");
+  if (aggregation_) {
+    aggregation_->save_state(r, prefix + "aggregation.");
+    const aggregation::AggregationStats& a = aggregation_stats_;
+    r.put(prefix + "aggregation.stats", std::vector<double>{static_cast<double>(a.pairs), a.energy, a.max_force});
+  }
+  r.put(prefix + "fill_history", std::vector<double>{static_cast<double>(fill_history_.updates),
+                                                     fill_history_.max_area_mismatch,
+                                                     static_cast<double>(fill_history_.max_fallback_cells)});
+}
+
+void CellPhysics::restore_state(const StateRecord& r, const std::string& prefix) {
+  cells_.restore_state(r, prefix + "markers.");
+  if (index_) index_->restore_state(r, prefix + "index_field.");
+  if (aggregation_) {
+    aggregation_->restore_state(r, prefix + "aggregation.");
+    const std::vector<double>& a = r.get(prefix + "aggregation.stats", 3);
+    aggregation_stats_ = {static_cast<std::size_t>(a[0]), a[1], a[2]};
+  }
+  const std::vector<double>& h = r.get(prefix + "fill_history", 3);
+  fill_history_ = {static_cast<long>(h[0]), h[1], static_cast<int>(h[2])};
+}
+
 void CellPhysics::register_stages(TimeLoop& loop, fluid::FluidLattice& lattice) {
   if (index_ && index_beside_forces()) {
     loop.add(Phase::forces, "forces_and_index_field", [this, &lattice](long step) {

@@ -64,6 +64,12 @@ class CellPhysics {
   };
   const FillHistory& fill_history() const { return fill_history_; }
 
+  // Checkpoint (common/state_record.hpp), under `prefix`: the cells, the index field and
+  // the fill history (the τ field it wrote is the fluid's), the aggregation's force
+  // magnitudes and statistics of the last step (its forces are recomputed every step).
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
+
  private:
   bool refresh_due(long step) const { return index_ && step > 0 && step % index_interval_ == 0; }
   void refresh_viscosity(fluid::FluidLattice& lattice);

@@ -79,4 +79,18 @@ double HbCell::advance(const transport::HbParameters& hb, HbCoupling coupling, s
   return released;
 }
 
+void HbCell::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "hb", std::vector<double>{S_, S0_, kappa_, P_prev_, r_prev_, first_ ? 1.0 : 0.0});
+}
+
+void HbCell::restore_state(const StateRecord& r, const std::string& prefix) {
+  const std::vector<double>& v = r.get(prefix + "hb", 6);
+  S_ = v[0];
+  S0_ = v[1];
+  kappa_ = v[2];
+  P_prev_ = v[3];
+  r_prev_ = v[4];
+  first_ = v[5] != 0.0;
+}
+
 }  // namespace erythro::sim

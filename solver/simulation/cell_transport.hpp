@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "common/state_record.hpp"
 #include "geometry/domain.hpp"
 #include "geometry/polygon.hpp"
 #include "transport/hb_kinetics.hpp"
@@ -52,6 +53,9 @@ class HbCell {
                  const CellNodes& nodes, double dt);
   double saturation() const { return S_; }
   double initial_saturation() const { return S0_; }
+  // Checkpoint (common/state_record.hpp), under `prefix`: S, S0, κ and the predictor's memory.
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
 
  private:
   double S_ = 0.0, S0_ = 0.0;

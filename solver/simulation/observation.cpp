@@ -133,6 +133,22 @@ void Observation::output_fields(long step, const fluid::Moments* moments) {
   observer_.on_transport_fields(step, f);
 }
 
+void Observation::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "steady_previous_ux", previous_ux_);
+  r.put(prefix + "steady_previous_uy", previous_uy_);
+  for (std::size_t i = 0; i < stop_rules_.size(); ++i)
+    stop_rules_[i].save_state(r, prefix + "stop_when_" + std::to_string(i) + ".");
+  for (std::size_t i = 0; i < probes_.size(); ++i) probes_[i]->save_state(r, prefix + "probe_" + std::to_string(i) + ".");
+}
+
+void Observation::restore_state(const StateRecord& r, const std::string& prefix) {
+  previous_ux_ = r.get(prefix + "steady_previous_ux");
+  previous_uy_ = r.get(prefix + "steady_previous_uy");
+  for (std::size_t i = 0; i < stop_rules_.size(); ++i)
+    stop_rules_[i].restore_state(r, prefix + "stop_when_" + std::to_string(i) + ".");
+  for (std::size_t i = 0; i < probes_.size(); ++i) probes_[i]->restore_state(r, prefix + "probe_" + std::to_string(i) + ".");
+}
+
 void Observation::observe(long step, bool final_state) {
   const auto& out = scene_.output;
   const auto& steady = scene_.run.steady_state;

@@ -42,6 +42,12 @@ class Observation {
   // Observes the state after `step` steps (`final_state`: the run's last step).
   void observe(long step, bool final_state);
 
+  // Checkpoint (common/state_record.hpp), under `prefix`: the steady-state detector's last
+  // velocity, the stop rules and every probe's memory (the output schedule itself is a
+  // function of the step).
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
+
  private:
   void sample(long step, const fluid::Moments* moments);
   void output_fields(long step, const fluid::Moments* moments);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "common/state_record.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "scene/units.hpp"
 #include "simulation/time_loop.hpp"
@@ -42,6 +43,11 @@ class Probe {
   virtual void sample(const ProbeContext& context, std::span<double> values) = 0;
   // Optional per-step work (e.g. an extreme over every step, not only the samples).
   virtual void register_stages(TimeLoop& /*loop*/) {}
+  // Checkpoint (common/state_record.hpp): what the probe carries from sample to sample
+  // (running extremes, continued angles, the previous sample), under `prefix`; nothing
+  // for a probe that only reads the current state.
+  virtual void save_state(StateRecord& /*record*/, const std::string& /*prefix*/) const {}
+  virtual void restore_state(const StateRecord& /*record*/, const std::string& /*prefix*/) {}
 };
 
 }  // namespace erythro::sim

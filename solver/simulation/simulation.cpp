@@ -7,7 +7,9 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/error.hpp"
 #include "fluid/initial_state.hpp"
+#include "simulation/checkpoint_schedule.hpp"
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
@@ -107,6 +109,34 @@ void Simulation::add_probe(std::unique_ptr<Probe> probe) {
   probes_.push_back(std::move(probe));
 }
 
+void Simulation::set_checkpoint_writer(CheckpointWriter writer) {
+  if (ran_) throw std::logic_error("Simulation::set_checkpoint_writer after run()");
+  checkpoint_writer_ = std::move(writer);
+}
+
+StateRecord Simulation::capture_state(long step, const Observation& observation) const {
+  StateRecord r;
+  r.put_scalar("step", static_cast<double>(step));
+  if (fluid_) fluid_->save_state(r, "fluid.");
+  if (cells_) cells_->save_state(r, "cells.");
+  if (transport_) transport_->save_state(r, "transport.");
+  observation.save_state(r, "observation.");
+  return r;
+}
+
+void Simulation::restore(StateRecord state) {
+  if (ran_) throw std::logic_error("Simulation::restore after run()");
+  const long step = static_cast<long>(state.scalar("step"));
+  if (step > setup_.total_steps)
+    throw InputError("the checkpoint holds step " + std::to_string(step) + ", past the end of the run (" +
+                     std::to_string(setup_.total_steps) + " steps): lengthen run.duration_s or run.steps");
+  if (fluid_) fluid_->restore_state(state, "fluid.");
+  if (cells_) cells_->restore_state(state, "cells.");
+  if (transport_) transport_->restore_state(state, "transport.");
+  start_step_ = step;
+  restored_ = std::move(state);
+}
+
 void Simulation::apply_initial_condition() {
   // The analytic flows of [initial] (fluid/initial_state.hpp); with initial.non_equilibrium
   // the populations after a collision at t = 0 (non-equilibrium part, Guo half force F(0)).
@@ -148,20 +178,33 @@ RunSummary Simulation::run(RunObserver& observer) {
   RunControl control;
   Observation observation(scene_, setup_, fluid_.get(), cells_.get(), transport_.get(), probes_, observer, control);
   observation.declare();
+  if (restored_) {
+    observation.restore_state(*restored_, "observation.");
+    restored_.reset();
+  }
 
   const long total = setup_.total_steps;
   const double nodes = static_cast<double>(setup_.grid.size());
   const auto start = clock::now();
   double mlups = 0.0;
+  // After the probes' own observe stages, before the observation: a restart observes the
+  // checkpoint's step exactly as the uninterrupted run did.
+  CheckpointSchedule checkpoints(scene_.output.checkpoint_interval_steps, scene_.output.checkpoint_interval_s);
+  if (checkpoint_writer_ && checkpoints.enabled())
+    loop_.add(Phase::observe, "checkpoint", [&](long step) {
+      if (!checkpoints.due(step + 1)) return;
+      checkpoint_writer_(step + 1, capture_state(step + 1, observation));
+      checkpoints.written();
+    });
   loop_.add(Phase::observe, "progress", [&](long step) {
     const double elapsed = std::chrono::duration<double>(clock::now() - start).count();
-    mlups = elapsed > 0.0 ? nodes * static_cast<double>(step + 1) / elapsed * 1e-6 : 0.0;
+    mlups = elapsed > 0.0 ? nodes * static_cast<double>(step + 1 - start_step_) / elapsed * 1e-6 : 0.0;
     observer.on_progress(step + 1, total, mlups);
   });
   loop_.add(Phase::observe, "observation", [&](long step) { observation.observe(step + 1, step + 1 == total); });
 
-  long step = 0;
-  observation.observe(0, total == 0);
+  long step = start_step_;
+  observation.observe(step, step == total);
   while (!control.stop && step < total) {
     try {
       loop_.run_step(step);

@@ -10,8 +10,16 @@
 // manufactured source written into a field before the fluid step) and add_probe (a
 // diagnostic of one's own), both before run(). Mutable access to the modules is meant
 // for setting their state before run() (an initial field, a τ field).
+//
+// Checkpoints (docs/architecture.md "Checkpoints and restart"): with a checkpoint writer
+// set, run() hands it the state of every module at the steps the scene asks for;
+// restore() continues from such a state.
+#include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
+
+#include "common/state_record.hpp"
 
 #include "fluid/fluid_lattice.hpp"
 #include "scene/scene.hpp"
@@ -23,6 +31,8 @@
 #include "simulation/transport_physics.hpp"
 
 namespace erythro::sim {
+
+class Observation;
 
 class Simulation {
  public:
@@ -38,6 +48,18 @@ class Simulation {
   void add_stage(Phase phase, std::string name, TimeLoop::Function function, long every = 1, long first = 0);
   // A probe of the caller's own; its series follow the built-in ones.
   void add_probe(std::unique_ptr<Probe> probe);
+
+  // Checkpoints (docs/cli.md "Checkpoints and restart"): `writer` receives the state after
+  // `step` steps whenever output.checkpoint_interval_steps or _s asks for one, taken before
+  // that step's observation (so a restart observes it as an uninterrupted run does). Set
+  // before run(); without a writer no checkpoint is taken.
+  using CheckpointWriter = std::function<void(long step, const StateRecord& state)>;
+  void set_checkpoint_writer(CheckpointWriter writer);
+  // Continues from a checkpoint of a simulation of the same scene: the modules take their
+  // state back now, the observation (probes, stop rules, steady-state detector) at the start
+  // of run(), which then goes on from the checkpoint's step. Call before run(). Throws
+  // InputError when the checkpoint lies past the run's end.
+  void restore(StateRecord state);
 
   const scene::Scene& scene() const { return scene_; }
   const scene::LatticeSetup& setup() const { return setup_; }
@@ -59,6 +81,7 @@ class Simulation {
   void apply_body_force(long step);
   void register_fluid_stages();
   void register_transport_stages();
+  StateRecord capture_state(long step, const Observation& observation) const;
 
   scene::Scene scene_;
   scene::LatticeSetup setup_;
@@ -70,6 +93,9 @@ class Simulation {
   TimeLoop loop_;
   std::vector<geometry::Polygon> moved_;  // scratch: the cells' polygons for the transport
   bool ran_ = false;
+  CheckpointWriter checkpoint_writer_;
+  long start_step_ = 0;                // the checkpoint's step after restore(), else 0
+  std::optional<StateRecord> restored_;  // kept for the observation until run() starts
 };
 
 }  // namespace erythro::sim

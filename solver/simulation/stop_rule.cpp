@@ -55,4 +55,18 @@ bool StopRule::check(long step, std::span<const double> row) {
   return triggered_at_ >= 0 && step >= triggered_at_ + spec_.after_steps;
 }
 
+void StopRule::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "steps", steps_);
+  r.put(prefix + "values", values_);
+  r.put_scalar(prefix + "triggered_at", static_cast<double>(triggered_at_));
+  r.put_text(prefix + "diagnosis", diagnosis_);
+}
+
+void StopRule::restore_state(const StateRecord& r, const std::string& prefix) {
+  steps_ = r.get_as<long>(prefix + "steps");
+  values_ = r.get(prefix + "values");
+  triggered_at_ = static_cast<long>(r.scalar(prefix + "triggered_at"));
+  diagnosis_ = r.text(prefix + "diagnosis");
+}
+
 }  // namespace erythro::sim

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/state_record.hpp"
 #include "scene/scene.hpp"
 #include "simulation/probe.hpp"
 
@@ -21,6 +22,10 @@ class StopRule {
   bool check(long step, std::span<const double> row);
   // "stop_when[0]: cell_0_taylor_deformation changed by 8.2e-05 < 0.0001 over 1000 steps at step 9000"
   const std::string& diagnosis() const { return diagnosis_; }
+  // Checkpoint (common/state_record.hpp), under `prefix`: the earlier samples, when the
+  // condition first held and the diagnosis.
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
 
  private:
   scene::StopWhenSpec spec_;

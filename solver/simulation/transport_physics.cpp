@@ -193,6 +193,35 @@ void TransportPhysics::step(std::span<const double> fluid_ux, std::span<const do
   }
 }
 
+void TransportPhysics::save_state(StateRecord& r, const std::string& prefix) const {
+  for (std::size_t i = 0; i < lattices_.size(); ++i) lattices_[i].save_state(r, prefix + std::to_string(i) + ".");
+  r.put_scalar(prefix + "cells", static_cast<double>(cells_.size()));
+  for (std::size_t c = 0; c < cells_.size(); ++c) {
+    const std::string cell = prefix + "cell_" + std::to_string(c) + ".";
+    r.put(cell + "x", cells_[c].x);
+    r.put(cell + "y", cells_[c].y);
+  }
+  for (std::size_t c = 0; c < hb_.size(); ++c) hb_[c].save_state(r, prefix + "cell_" + std::to_string(c) + ".");
+  r.put(prefix + "saturation", saturation_);
+  r.put(prefix + "initial_amount", initial_amount_);
+  r.put(prefix + "inflow", inflow_);
+}
+
+void TransportPhysics::restore_state(const StateRecord& r, const std::string& prefix) {
+  std::vector<geometry::Polygon> cells(static_cast<std::size_t>(r.scalar(prefix + "cells")));
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const std::string cell = prefix + "cell_" + std::to_string(c) + ".";
+    cells[c].x = r.get(cell + "x");
+    cells[c].y = r.get(cell + "y");
+  }
+  place_cells(cells);  // first: it rebuilds what depends on where the cells are
+  for (std::size_t i = 0; i < lattices_.size(); ++i) lattices_[i].restore_state(r, prefix + std::to_string(i) + ".");
+  for (std::size_t c = 0; c < hb_.size(); ++c) hb_[c].restore_state(r, prefix + "cell_" + std::to_string(c) + ".");
+  r.copy_to(prefix + "saturation", saturation_);
+  r.copy_to(prefix + "initial_amount", initial_amount_);
+  r.copy_to(prefix + "inflow", inflow_);
+}
+
 std::span<const double> TransportPhysics::readout(std::size_t i) const {
   const transport::TransportLattice& lat = lattices_[i];
   if (setup_.readout != "source_corrected") return lat.concentration();

@@ -73,6 +73,12 @@ class TransportPhysics {
   // every species, saturations within [0, 1].
   HealthReport check_health() const;
 
+  // Checkpoint (common/state_record.hpp), under `prefix`: every species lattice, the cells
+  // where they were last placed (restoring places them there again: interior nodes,
+  // diffusivity fields, membrane rule), their Hb state, the start amounts and the inflow.
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
+
  private:
   void apply_species_fields(std::size_t i);
   void apply_compartments();

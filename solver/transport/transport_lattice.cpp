@@ -243,6 +243,35 @@ double TransportLattice::source_corrected_concentration(std::size_t n) const {
   return C_[n] + source_offset_factor(n) * q_tot;  // eq T7
 }
 
+void TransportLattice::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "populations", g_);
+  r.put(prefix + "concentration", C_);
+  if (has_reaction()) {
+    r.put(prefix + "source", source_);
+    r.put(prefix + "decay_rate", decay_);
+  }
+  if (has_velocity()) {
+    r.put(prefix + "ux", ux_);
+    r.put(prefix + "uy", uy_);
+  }
+  const MassBalance& b = balance_;
+  r.put(prefix + "mass_balance", std::vector<double>{b.source, b.boundary_in, b.storage_change, b.amount, b.scale});
+  r.put_scalar(prefix + "steps_done", static_cast<double>(steps_done_));
+}
+
+void TransportLattice::restore_state(const StateRecord& r, const std::string& prefix) {
+  r.copy_to(prefix + "populations", g_);
+  r.copy_to(prefix + "concentration", C_);
+  if (r.has(prefix + "source")) {
+    r.copy_to(prefix + "source", source());
+    r.copy_to(prefix + "decay_rate", decay_rate());
+  }
+  if (r.has(prefix + "ux")) set_velocity(r.get(prefix + "ux"), r.get(prefix + "uy"));
+  const std::vector<double>& b = r.get(prefix + "mass_balance", 5);
+  balance_ = {b[0], b[1], b[2], b[3], b[4]};
+  steps_done_ = static_cast<long>(r.scalar(prefix + "steps_done"));
+}
+
 double TransportLattice::total_amount() const {
   double s = 0.0;
   for (double c : C_) s += c;

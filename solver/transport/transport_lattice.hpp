@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "common/health.hpp"
+#include "common/state_record.hpp"
 #include "lattice/grid.hpp"
 
 namespace erythro::transport {
@@ -176,6 +177,13 @@ class TransportLattice {
 
   std::span<const double> populations() const { return g_; }  // [i*N + n], post-collision
   std::span<double> populations() { return g_; }
+
+  // Checkpoint (common/state_record.hpp), under `prefix`: the populations, C of the last
+  // collision, the source and sink it used (the source may hold a lagged term: Hb release,
+  // face-flux correction), the velocity, the last mass balance and the step count. The
+  // diffusivity fields are the owner's to rebuild (TransportPhysics::place_cells).
+  void save_state(StateRecord& record, const std::string& prefix) const;
+  void restore_state(const StateRecord& record, const std::string& prefix);
 
  private:
   Grid grid_;

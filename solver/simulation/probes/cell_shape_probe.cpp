@@ -59,6 +59,36 @@ void CellShapeProbe::track_extremes() {
   }
 }
 
+void CellShapeProbe::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "scalars", std::vector<double>{first_ ? 1.0 : 0.0, static_cast<double>(state_.size()),
+                                                max_area_change_, max_edge_strain_});
+  for (std::size_t c = 0; c < state_.size(); ++c) {
+    const CellState& s = state_[c];
+    const std::string cell = prefix + std::to_string(c) + ".";
+    r.put(cell + "angles", std::vector<double>{s.theta, s.theta_raw, s.marker0_start});
+    r.put(cell + "phase", s.phase);
+    r.put(cell + "last", s.last);
+  }
+}
+
+void CellShapeProbe::restore_state(const StateRecord& r, const std::string& prefix) {
+  const std::vector<double>& v = r.get(prefix + "scalars", 4);
+  first_ = v[0] != 0.0;
+  state_.resize(static_cast<std::size_t>(v[1]));
+  max_area_change_ = v[2];
+  max_edge_strain_ = v[3];
+  for (std::size_t c = 0; c < state_.size(); ++c) {
+    CellState& s = state_[c];
+    const std::string cell = prefix + std::to_string(c) + ".";
+    const std::vector<double>& a = r.get(cell + "angles", 3);
+    s.theta = a[0];
+    s.theta_raw = a[1];
+    s.marker0_start = a[2];
+    s.phase = r.get(cell + "phase");
+    s.last = r.get(cell + "last");
+  }
+}
+
 void CellShapeProbe::register_stages(TimeLoop& loop) {
   if (extremes_interval_ <= 0) return;
   // Observe phase: the state after the step; every k steps from the first.

@@ -33,6 +33,8 @@ class CellShapeProbe : public Probe {
   void declare(std::vector<SeriesInfo>& series) const override;
   void sample(const ProbeContext& context, std::span<double> values) override;
   void register_stages(TimeLoop& loop) override;
+  void save_state(StateRecord& record, const std::string& prefix) const override;
+  void restore_state(const StateRecord& record, const std::string& prefix) override;
 
  private:
   void track_extremes();

@@ -17,6 +17,12 @@ class MarkerSpeedProbe : public Probe {
   void declare(std::vector<SeriesInfo>& series) const override;
   void sample(const ProbeContext& context, std::span<double> values) override;
   void register_stages(TimeLoop& loop) override;
+  void save_state(StateRecord& record, const std::string& prefix) const override {
+    record.put_scalar(prefix + "max_speed", max_speed_);
+  }
+  void restore_state(const StateRecord& record, const std::string& prefix) override {
+    max_speed_ = record.scalar(prefix + "max_speed");
+  }
 
  private:
   const CellPhysics& cells_;

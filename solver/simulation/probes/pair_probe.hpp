@@ -30,6 +30,15 @@ class PairProbe : public Probe {
   explicit PairProbe(const CellPhysics& cells);
   void declare(std::vector<SeriesInfo>& series) const override;
   void sample(const ProbeContext& context, std::span<double> values) override;
+  void save_state(StateRecord& record, const std::string& prefix) const override {
+    record.put(prefix + "angle", std::vector<double>{first_ ? 1.0 : 0.0, angle_, angle_raw_});
+  }
+  void restore_state(const StateRecord& record, const std::string& prefix) override {
+    const std::vector<double>& v = record.get(prefix + "angle", 3);
+    first_ = v[0] != 0.0;
+    angle_ = v[1];
+    angle_raw_ = v[2];
+  }
 
   // The fraction of the largest aggregation force above which a marker is in contact.
   static constexpr double kContactFraction = 0.012;

@@ -52,6 +52,16 @@ void TransportProbe::track_residuals() {
     worst_[i] = std::max(worst_[i], std::abs(transport_.lattice(i).mass_balance().relative_residual()));
 }
 
+void TransportProbe::save_state(StateRecord& r, const std::string& prefix) const {
+  r.put(prefix + "worst", worst_);
+  for (std::size_t i = 0; i < previous_.size(); ++i) r.put(prefix + "previous_" + std::to_string(i), previous_[i]);
+}
+
+void TransportProbe::restore_state(const StateRecord& r, const std::string& prefix) {
+  r.copy_to(prefix + "worst", worst_);
+  for (std::size_t i = 0; i < previous_.size(); ++i) previous_[i] = r.get(prefix + "previous_" + std::to_string(i));
+}
+
 void TransportProbe::register_stages(TimeLoop& loop) {
   loop.add(Phase::observe, "transport_residuals", [this](long) { track_residuals(); });
 }

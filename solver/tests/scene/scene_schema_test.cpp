@@ -90,6 +90,8 @@ const std::map<std::string, Accessor>& accessors() {
         {"output.fields", [](const Scene& s) -> Value { return s.output.fields; }},
         {"output.extremes_interval_steps", [](const Scene& s) -> Value { return s.output.extremes_interval_steps; }},
         {"output.dense_diagnostics_steps", [](const Scene& s) -> Value { return s.output.dense_diagnostics_steps; }},
+        {"output.checkpoint_interval_steps", [](const Scene& s) -> Value { return s.output.checkpoint_interval_steps; }},
+        {"output.checkpoint_interval_s", [](const Scene& s) -> Value { return s.output.checkpoint_interval_s; }},
         {"stop_when.min_steps", [](const Scene& s) -> Value { return s.stop_when.at(0).min_steps; }},
         {"stop_when.after_steps", [](const Scene& s) -> Value { return s.stop_when.at(0).after_steps; }},
         {"limits.min_tau_margin", [](const Scene& s) -> Value { return s.limits.min_tau_margin; }},
