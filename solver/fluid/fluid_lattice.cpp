@@ -157,10 +157,12 @@ void FluidLattice::restore_state(const StateRecord& r, const std::string& prefix
     enable_force_field();
     r.copy_to(prefix + "force_x", force_x_);
     r.copy_to(prefix + "force_y", force_y_);
+    force_rows_known_ = false;  // every row may hold force until the next clear
   }
   if (r.has(prefix + "tau")) {
     enable_tau_field();
     r.copy_to(prefix + "tau", tau_field_);
+    refresh_tau_rows();
   }
 }
 
