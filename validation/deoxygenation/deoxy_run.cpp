@@ -122,6 +122,16 @@ Result run(const Setup& s, const std::string& case_name, const std::string& labe
   return res;
 }
 
+std::vector<io::FieldPicture> transient_pictures(Setup s, double t_s, const std::string& case_name,
+                                                 const std::string& label) {
+  s.t_end_s = t_s;
+  vv::CaseRunOptions options;
+  options.pictures = true;
+  vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, scene_overrides(s)), case_name, label, options);
+  if (!r.ok()) throw std::runtime_error("deoxy::transient_pictures: the run diverged: " + r.summary.diagnosis);
+  return std::move(r.pictures);
+}
+
 vv::Curve read_reference(const std::string& path, int column) {
   std::ifstream in(path);
   if (!in) throw InputError("deoxy: cannot read the reference curve " + path + " (reference_rbc.py --study)");

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "common/calibration.hpp"
+#include "io/result_record.hpp"
 #include "transport/hb_kinetics.hpp"
 #include "transport/transport_lattice.hpp"
 
@@ -89,6 +90,11 @@ std::vector<std::string> scene_overrides(const Setup& s);
 // Runs the scene of s into <results>/runs/<case_name>/<label> (removed after it has been read
 // unless keep). Throws std::runtime_error with the monitor's diagnosis if the run diverged.
 Result run(const Setup& s, const std::string& case_name, const std::string& label, bool keep = false);
+
+// Field pictures for the report: the scene of s run to t_s (a moment of the transient) into
+// <results>/runs/<case_name>/<label>, O2 concentration with the membrane at that time.
+std::vector<io::FieldPicture> transient_pictures(Setup s, double t_s, const std::string& case_name,
+                                                 const std::string& label);
 
 // Time step for spacing h keeping D_lat = DΔt/h² of the base level: Δt = dt_at_0p2 (h/0.2 µm)².
 // dt_at_0p2 = 10 µs: the thesis point (τ_out = 2.6); 2.5 µs: τ_out = 1.025, τ_in = 0.678.
