@@ -8,6 +8,7 @@
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/baseline_compare.hpp"
+#include "io/output_folder.hpp"
 #include "io/scene_run.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
@@ -37,9 +38,11 @@ int guarded(Body&& body) {
   }
 }
 
-// Refuses to overwrite an earlier run unless forced; never deletes anything else.
+// With the folder's lock held: removes what a killed run left (and says so), and refuses
+// to overwrite an earlier run unless forced (the run writer then replaces run.h5 and
+// run.xdmf together when the run ends); never deletes anything else.
 void prepare_output_folder(const std::string& dir, bool force) {
-  io::ensure_writable_directory(dir);
+  for (const std::string& note : io::remove_stale_partials(dir, force)) std::cerr << "erythro: " << note << "\n";
   for (const char* name : {"run.h5", "run.xdmf"}) {
     const fs::path p = fs::path(dir) / name;
     if (fs::exists(p) && !force) {
@@ -56,6 +59,8 @@ int run_command(const RunOptions& options) {
     const scene::LatticeSetup setup = scene::derive_lattice(scene);
     const std::string out_dir =
         options.out_dir.empty() ? (fs::path("out") / fs::path(options.scene_path).stem()).string() : options.out_dir;
+    io::ensure_writable_directory(out_dir);
+    const io::OutputFolderLock lock(out_dir);  // held until the run's files are in place
     prepare_output_folder(out_dir, options.force);
 
     ProgressDisplay progress(options.quiet);
