@@ -1,5 +1,8 @@
 #include "app/commands.hpp"
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -12,6 +15,7 @@
 #include "io/scene_run.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
+#include "simulation/interrupt.hpp"
 #include "simulation/simulation.hpp"
 
 namespace erythro::app {
@@ -51,6 +55,24 @@ void prepare_output_folder(const std::string& dir, bool force) {
   }
 }
 
+// SIGINT (Ctrl-C) or SIGTERM during a run: the first asks the time loop to end the run
+// after the step in progress (status interrupted, run.h5 closed and in place); a second,
+// for a user who will not wait, exits at once, leaving run.h5.partial-<PID> for the next
+// run into the folder to remove.
+void on_interrupt_signal(int signal) {
+  if (sim::interrupt_signal() != 0) ::_exit(exit_code::interrupted_base + signal);
+  sim::request_interrupt(signal);
+}
+
+void install_interrupt_handlers() {
+  struct sigaction action = {};
+  action.sa_handler = on_interrupt_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;  // a write in progress resumes instead of failing with EINTR
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
 }  // namespace
 
 int run_command(const RunOptions& options) {
@@ -64,9 +86,14 @@ int run_command(const RunOptions& options) {
     prepare_output_folder(out_dir, options.force);
 
     ProgressDisplay progress(options.quiet);
+    install_interrupt_handlers();
     const io::SceneRunResult run = io::run_scene(std::move(scene), setup, out_dir, {&progress});
     std::cout << "results: " << run.h5_path << "\n" << "fields:  " << run.xdmf_path << "\n";
     if (run.summary.status == sim::RunStatus::stopped) std::cout << "stopped: " << run.summary.diagnosis << "\n";
+    if (run.summary.status == sim::RunStatus::interrupted) {
+      std::cerr << "erythro: " << run.summary.diagnosis << "; everything up to it is in " << run.h5_path << "\n";
+      return exit_code::interrupted_base + sim::interrupt_signal();
+    }
     if (run.summary.status == sim::RunStatus::diverged) {
       std::cerr << "erythro: " << run.summary.diagnosis << "\n"
                 << "erythro: everything up to the last healthy output is in " << run.h5_path << "\n";
