@@ -23,6 +23,13 @@ std::string frame_group_name(long step) {
   std::snprintf(name, sizeof name, "%010ld", step);
   return name;
 }
+
+// The `units` attribute of dataset `name` in `group`.
+void write_units(hid_t group, const std::string& name, const std::string& units) {
+  h5::Handle dataset = h5::open_dataset(group, name);
+  h5::write_attr(dataset.id(), "units", units);
+  dataset.close();
+}
 }  // namespace
 
 template <class Write>
@@ -193,7 +200,7 @@ void RunWriter::on_transport_fields(long step, const sim::TransportFields& f) {
     for (std::size_t i = 0; i < f.names.size(); ++i) {
       const std::vector<double> concentration(f.concentration[i].begin(), f.concentration[i].end());
       h5::write_dataset(frame.id(), f.names[i], concentration, shape);
-      h5::write_attr(h5::open_dataset(frame.id(), f.names[i]).id(), "units", std::string("uM"));
+      write_units(frame.id(), f.names[i], "uM");
     }
     frame.close();
     h5::flush(file_.id());
@@ -211,7 +218,7 @@ void RunWriter::on_fields(long step, const fluid::Moments& m) {
       std::vector<double> rho(m.rho.size());
       std::transform(m.rho.begin(), m.rho.end(), rho.begin(), [&](double r) { return r * s.density_kg_m3; });
       h5::write_dataset(frame.id(), "density", rho, shape);
-      h5::write_attr(h5::open_dataset(frame.id(), "density").id(), "units", std::string("kg/m^3"));
+      write_units(frame.id(), "density", "kg/m^3");
     }
     if (write_velocity_) {  // (ny, nx, 3): x, y and a zero z component (a vector in the x–y plane)
       const double to_um_s = s.velocity_m_s() * 1e6;
@@ -221,7 +228,7 @@ void RunWriter::on_fields(long step, const fluid::Moments& m) {
         u[3 * n + 1] = m.uy[n] * to_um_s;
       }
       h5::write_dataset(frame.id(), "velocity", u, {shape[0], shape[1], 3});
-      h5::write_attr(h5::open_dataset(frame.id(), "velocity").id(), "units", std::string("um/s"));
+      write_units(frame.id(), "velocity", "um/s");
     }
     frame.close();
     h5::flush(file_.id());
@@ -255,7 +262,7 @@ void RunWriter::on_cells(long step, const membrane::ImmersedCells& cells) {
     offsets.push_back(static_cast<long>(M));
     const hsize_t markers = M;
     h5::write_dataset(frame.id(), "positions", xy, {markers, 2});
-    h5::write_attr(h5::open_dataset(frame.id(), "positions").id(), "units", std::string("um"));
+    write_units(frame.id(), "positions", "um");
     h5::write_dataset(frame.id(), "offsets", offsets, {static_cast<hsize_t>(offsets.size())});
     h5::write_dataset(frame.id(), "edges", edges, {markers, 2});
     h5::write_dataset(frame.id(), "cell", cell, {markers});
