@@ -1,5 +1,8 @@
 #include "app/commands.hpp"
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -10,9 +13,11 @@
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/baseline_compare.hpp"
+#include "io/output_folder.hpp"
 #include "io/scene_run.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
+#include "simulation/interrupt.hpp"
 #include "simulation/simulation.hpp"
 
 namespace erythro::app {
@@ -39,15 +44,35 @@ int guarded(Body&& body) {
   }
 }
 
-// Refuses to overwrite an earlier run unless forced; never deletes anything else.
+// With the folder's lock held: removes what a killed run left (and says so), and refuses
+// to overwrite an earlier run unless forced (the run writer then replaces run.h5 and
+// run.xdmf together when the run ends); never deletes anything else.
 void prepare_output_folder(const std::string& dir, bool force) {
-  io::ensure_writable_directory(dir);
+  for (const std::string& note : io::remove_stale_partials(dir, force)) std::cerr << "erythro: " << note << "\n";
   for (const char* name : {"run.h5", "run.xdmf"}) {
     const fs::path p = fs::path(dir) / name;
     if (fs::exists(p) && !force) {
       throw OutputError("output '" + p.string() + "' already exists; use --force to overwrite it or --out to choose another folder");
     }
   }
+}
+
+// SIGINT (Ctrl-C) or SIGTERM during a run: the first asks the time loop to end the run
+// after the step in progress (status interrupted, run.h5 closed and in place); a second,
+// for a user who will not wait, exits at once, leaving run.h5.partial-<PID> for the next
+// run into the folder to remove.
+void on_interrupt_signal(int signal) {
+  if (sim::interrupt_signal() != 0) ::_exit(exit_code::interrupted_base + signal);
+  sim::request_interrupt(signal);
+}
+
+void install_interrupt_handlers() {
+  struct sigaction action = {};
+  action.sa_handler = on_interrupt_signal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;  // a write in progress resumes instead of failing with EINTR
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 }
 
 }  // namespace
@@ -64,17 +89,25 @@ int run_command(const RunOptions& options) {
         restart ? restart->out_dir()
         : options.out_dir.empty() ? (fs::path("out") / fs::path(options.scene_path).stem()).string()
                                   : options.out_dir;
-    // Continuing in the interrupted run's folder replaces its run.h5 (set aside, its history kept).
+    io::ensure_writable_directory(out_dir);
+    const io::OutputFolderLock lock(out_dir);  // held until the run's files are in place
+    // Continuing in the interrupted run's folder replaces its run.h5 (set aside, its history
+    // kept; before the stale partial files are removed: a killed run's history is one of them).
     const bool continues_in_place = restart && restart->set_aside_interrupted_run();
     prepare_output_folder(out_dir, options.force || continues_in_place);
 
     ProgressDisplay progress(options.quiet);
+    install_interrupt_handlers();
     const io::SceneRunResult run =
         io::run_scene(std::move(scene), setup, out_dir, {&progress}, restart ? restart->restore() : nullptr);
     if (restart) std::cout << "restarted at step " << restart->step() << "; history "
                            << restart->carry_over_history(run.h5_path, run.xdmf_path) << "\n";
     std::cout << "results: " << run.h5_path << "\n" << "fields:  " << run.xdmf_path << "\n";
     if (run.summary.status == sim::RunStatus::stopped) std::cout << "stopped: " << run.summary.diagnosis << "\n";
+    if (run.summary.status == sim::RunStatus::interrupted) {
+      std::cerr << "erythro: " << run.summary.diagnosis << "; everything up to it is in " << run.h5_path << "\n";
+      return exit_code::interrupted_base + sim::interrupt_signal();
+    }
     if (run.summary.status == sim::RunStatus::diverged) {
       std::cerr << "erythro: " << run.summary.diagnosis << "\n"
                 << "erythro: everything up to the last healthy output is in " << run.h5_path << "\n";

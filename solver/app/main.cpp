@@ -7,9 +7,11 @@
 #include "app/schema_command.hpp"
 #include "common/build_info.hpp"
 #include "common/error.hpp"
+#include "io/h5.hpp"
 
 int main(int argc, char** argv) {
   using namespace erythro;
+  io::h5::prepare_library();
   CLI::App cli{"erythro: red blood cells and NO/O2 transport in small arterioles (2D IB-LBM)"};
   cli.require_subcommand(0, 1);
   bool show_version = false;

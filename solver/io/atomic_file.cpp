@@ -18,17 +18,26 @@ std::string temporary_path_for(const std::string& final_path) {
 void commit_temporary(const std::string& final_path) {
   std::error_code ec;
   std::filesystem::rename(temporary_path_for(final_path), final_path, ec);
-  if (ec) throw OutputError("cannot move finished file into place at '" + final_path + "': " + ec.message());
+  if (ec) {
+    discard_temporary(final_path);
+    throw OutputError("cannot move finished file into place at '" + final_path + "': " + ec.message());
+  }
+}
+
+void discard_temporary(const std::string& final_path) noexcept {
+  std::error_code ignored;
+  std::filesystem::remove(temporary_path_for(final_path), ignored);
 }
 
 void write_text_atomically(const std::string& path, const std::string& text) {
   const std::string tmp = temporary_path_for(path);
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) throw OutputError("cannot write '" + tmp + "': " + std::strerror(errno));
-    out << text;
-    out.flush();
-    if (!out) throw OutputError("cannot write '" + tmp + "': " + std::strerror(errno));
+  std::ofstream out(tmp, std::ios::binary);
+  out << text;
+  out.close();  // the last bytes reach the disk here: a full disk may only show now
+  if (!out) {
+    const std::string reason = std::strerror(errno);
+    discard_temporary(path);
+    throw OutputError("cannot write '" + path + "': " + reason);
   }
   commit_temporary(path);
 }

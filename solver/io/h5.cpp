@@ -1,6 +1,8 @@
 #include "io/h5.hpp"
 
 #include <algorithm>
+#include <cstdlib>
+#include <utility>
 
 #include "common/error.hpp"
 
@@ -16,7 +18,27 @@ std::string object_name(hid_t obj) {
   return where + ":" + (n > 0 ? std::string(buffer) : std::string("?"));
 }
 
-[[noreturn]] void fail(const std::string& what) { throw OutputError("HDF5: " + what); }
+// The most specific entry of HDF5's error stack, which for a failed write holds the
+// system's reason: "... errno = 28, error message = 'No space left on device', ...".
+// Returns that reason, or the entry's whole description, or "" when the stack is empty.
+std::string innermost_error() {
+  std::string description;
+  auto first = [](unsigned depth, const H5E_error2_t* error, void* out) -> herr_t {
+    if (depth == 0 && error->desc) *static_cast<std::string*>(out) = error->desc;
+    return 0;
+  };
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, first, &description);
+  const std::string key = "error message = '";
+  const std::size_t begin = description.find(key);
+  if (begin == std::string::npos) return description;
+  const std::size_t end = description.find('\'', begin + key.size());
+  return description.substr(begin + key.size(), end - begin - key.size());
+}
+
+[[noreturn]] void fail(const std::string& what) {
+  const std::string reason = innermost_error();
+  throw OutputError("HDF5: " + what + (reason.empty() ? "" : ": " + reason));
+}
 
 hid_t check(hid_t id, const std::string& what) {
   if (id < 0) fail(what);
@@ -26,6 +48,31 @@ hid_t check(hid_t id, const std::string& what) {
 void check_status(herr_t status, const std::string& what) {
   if (status < 0) fail(what);
 }
+
+// The test hook ERYTHRO_FAULT_H5_WRITE_AFTER=N (h5.hpp): true for the N-th write of the
+// process and every later one, as on a disk that has filled up.
+bool write_fault_injected() {
+  static const long first_failing = [] {
+    const char* value = std::getenv("ERYTHRO_FAULT_H5_WRITE_AFTER");
+    return value ? std::atol(value) : 0L;
+  }();
+  static long writes = 0;
+  return first_failing > 0 && ++writes >= first_failing;
+}
+
+[[noreturn]] void fail_injected(const std::string& what) {
+  throw OutputError("HDF5: " + what + ": No space left on device (injected by ERYTHRO_FAULT_H5_WRITE_AFTER)");
+}
+
+// Runs `write` (an HDF5 call that writes, returning its status) unless the test hook
+// fails it first.
+template <class Write>
+void checked_write(Write&& write, const std::string& what) {
+  if (write_fault_injected()) fail_injected(what);
+  check_status(write(), what);
+}
+
+void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 }  // namespace
 
@@ -39,17 +86,35 @@ Handle& Handle::operator=(Handle&& other) noexcept {
   return *this;
 }
 
+void Handle::close() {
+  if (id_ < 0 || !closer_) return;
+  const std::string what = "cannot close " + object_name(id_);
+  const bool is_file = closer_ == &H5Fclose;
+  const hid_t id = std::exchange(id_, -1);
+  // The handle is released even when the close fails: HDF5 has given up on it.
+  const bool closed = closer_(id) >= 0;
+  if (is_file && write_fault_injected()) fail_injected(what);
+  if (!closed) fail(what);
+}
+
 void Handle::reset() {
   if (id_ >= 0 && closer_) closer_(id_);
   id_ = -1;
 }
 
-void silence_errors() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
+void prepare_library() {
+  H5dont_atexit();
+  silence_errors();
+}
 
 Handle create_file(const std::string& path) {
   silence_errors();
   return {check(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "cannot create file '" + path + "'"),
           H5Fclose};
+}
+
+void flush(hid_t file) {
+  checked_write([&] { return H5Fflush(file, H5F_SCOPE_GLOBAL); }, "cannot flush " + object_name(file));
 }
 
 Handle open_file_read(const std::string& path) {
@@ -68,17 +133,27 @@ Handle open_group(hid_t parent, const std::string& name) {
           H5Gclose};
 }
 
-bool exists(hid_t parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
-bool has_attr(hid_t obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
+bool exists(hid_t parent, const std::string& name) {
+  const htri_t found = H5Lexists(parent, name.c_str(), H5P_DEFAULT);
+  check_status(found, "cannot look for '" + name + "'");
+  return found > 0;
+}
+
+bool has_attr(hid_t obj, const std::string& name) {
+  const htri_t found = H5Aexists(obj, name.c_str());
+  check_status(found, "cannot look for attribute '" + name + "'");
+  return found > 0;
+}
 
 namespace {
 // Replaces attribute `name` of obj with `value` (of HDF5 type `type`, shape `space`).
 void write_attr_in(hid_t obj, const std::string& name, hid_t type, const Handle& space, const void* value) {
-  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  if (has_attr(obj, name)) check_status(H5Adelete(obj, name.c_str()), "cannot replace attribute '" + name + "'");
   Handle attr(check(H5Acreate2(obj, name.c_str(), type, space.id(), H5P_DEFAULT, H5P_DEFAULT),
                     "cannot create attribute '" + name + "' on " + object_name(obj)),
               H5Aclose);
-  check_status(H5Awrite(attr.id(), type, value), "cannot write attribute '" + name + "'");
+  checked_write([&] { return H5Awrite(attr.id(), type, value); }, "cannot write attribute '" + name + "'");
+  attr.close();
 }
 
 void write_scalar_attr(hid_t obj, const std::string& name, hid_t type, const void* value) {
@@ -155,9 +230,10 @@ void write_dataset(hid_t parent, const std::string& name, const std::vector<doub
                    "cannot create dataset '" + name + "' in " + object_name(parent)),
              H5Dclose);
   if (!data.empty()) {
-    check_status(H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-                 "cannot write dataset '" + name + "'");
+    checked_write([&] { return H5Dwrite(set.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()); },
+                  "cannot write dataset '" + name + "'");
   }
+  set.close();
 }
 
 void write_dataset(hid_t parent, const std::string& name, const std::vector<std::string>& data) {
@@ -170,9 +246,10 @@ void write_dataset(hid_t parent, const std::string& name, const std::vector<std:
   std::vector<const char*> pointers;
   for (const auto& s : data) pointers.push_back(s.c_str());
   if (!data.empty()) {
-    check_status(H5Dwrite(set.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()),
-                 "cannot write dataset '" + name + "'");
+    checked_write([&] { return H5Dwrite(set.id(), type.id(), H5S_ALL, H5S_ALL, H5P_DEFAULT, pointers.data()); },
+                  "cannot write dataset '" + name + "'");
   }
+  set.close();
 }
 
 void write_dataset(hid_t parent, const std::string& name, const std::vector<long>& data,
@@ -183,9 +260,10 @@ void write_dataset(hid_t parent, const std::string& name, const std::vector<long
              H5Dclose);
   static_assert(sizeof(long) == 8, "integer datasets are written as 64-bit");
   if (!data.empty()) {
-    check_status(H5Dwrite(set.id(), H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()),
-                 "cannot write dataset '" + name + "'");
+    checked_write([&] { return H5Dwrite(set.id(), H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, data.data()); },
+                  "cannot write dataset '" + name + "'");
   }
+  set.close();
 }
 
 Handle open_dataset(hid_t parent, const std::string& name) {
@@ -198,8 +276,10 @@ std::vector<double> read_dataset(hid_t parent, const std::string& name, std::vec
              H5Dclose);
   Handle space(check(H5Dget_space(set.id()), "dataspace"), H5Sclose);
   const int rank = H5Sget_simple_extent_ndims(space.id());
-  std::vector<hsize_t> shape(static_cast<std::size_t>(std::max(rank, 0)));
-  H5Sget_simple_extent_dims(space.id(), shape.data(), nullptr);
+  check_status(rank, "cannot read the shape of dataset '" + name + "'");
+  std::vector<hsize_t> shape(static_cast<std::size_t>(rank));
+  check_status(H5Sget_simple_extent_dims(space.id(), shape.data(), nullptr),
+               "cannot read the shape of dataset '" + name + "'");
   hsize_t count = 1;
   for (hsize_t d : shape) count *= d;
   std::vector<double> data(count);
@@ -230,8 +310,10 @@ void AppendableSeries::append(std::span<const double> values) {
   Handle file_space(check(H5Dget_space(dataset_.id()), "dataspace"), H5Sclose);
   check_status(H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, &offset, nullptr, &count, nullptr), "hyperslab");
   Handle mem_space(check(H5Screate_simple(1, &count, nullptr), "dataspace"), H5Sclose);
-  check_status(H5Dwrite(dataset_.id(), H5T_NATIVE_DOUBLE, mem_space.id(), file_space.id(), H5P_DEFAULT, values.data()),
-               "cannot append to series");
+  const auto write = [&] {
+    return H5Dwrite(dataset_.id(), H5T_NATIVE_DOUBLE, mem_space.id(), file_space.id(), H5P_DEFAULT, values.data());
+  };
+  checked_write(write, "cannot append to series " + object_name(dataset_.id()));
   size_ += values.size();
 }
 
@@ -241,7 +323,8 @@ std::vector<std::string> list(hid_t group) {
     static_cast<std::vector<std::string>*>(out)->emplace_back(name);
     return 0;
   };
-  H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names);
+  check_status(H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, nullptr, collect, &names),
+               "cannot list " + object_name(group));
   std::sort(names.begin(), names.end());
   return names;
 }

@@ -1,6 +1,12 @@
 #pragma once
 // Thin RAII wrappers over the HDF5 C API: just what erythro writes and reads.
-// Every failure throws OutputError naming the file and the object.
+// Every call that can fail is checked, closes and flushes included (a full disk often
+// shows only there): a failure throws OutputError naming the object and, where HDF5
+// says, the system's reason ("No space left on device").
+//
+// Test hook: with ERYTHRO_FAULT_H5_WRITE_AFTER=N in the environment, the N-th write
+// (dataset or attribute write, flush, file close) and every later one fail as if the
+// disk were full (docs/cli.md), so the tests can end a run's output at any point.
 #include <hdf5.h>
 
 #include <initializer_list>
@@ -25,6 +31,9 @@ class Handle {
   ~Handle() { reset(); }
   hid_t id() const { return id_; }
   bool valid() const { return id_ >= 0; }
+  // Closes now; throws OutputError when HDF5 cannot (e.g. the last metadata does not fit on disk).
+  void close();
+  // Closes, ignoring a failure: for clean-up after an error has already been reported.
   void reset();
 
  private:
@@ -33,6 +42,8 @@ class Handle {
 };
 
 Handle create_file(const std::string& path);  // truncates
+// Writes everything buffered for the file to disk (H5Fflush); throws OutputError.
+void flush(hid_t file);
 Handle open_file_read(const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 Handle open_group(hid_t parent, const std::string& name);
@@ -72,6 +83,7 @@ class AppendableSeries {
   void append(std::span<const double> values);  // one extension and one write for a block
   std::size_t size() const { return size_; }
   hid_t id() const { return dataset_.id(); }  // the dataset (for its attributes)
+  void close() { dataset_.close(); }          // writes its last chunks; throws OutputError
 
  private:
   Handle dataset_;
@@ -83,7 +95,10 @@ std::vector<std::string> list(hid_t group);
 // Names of the attributes of an object, in creation order.
 std::vector<std::string> attribute_names(hid_t obj);
 
-// Turns off HDF5's automatic error printing (errors become exceptions instead).
-void silence_errors();
+// Call first in main(), before any other HDF5 call: turns off HDF5's automatic error
+// printing (errors become exceptions instead) and its exit handler, which would try again
+// to close a file whose close failed (disk full) and crash the process at exit. Every file
+// is closed explicitly instead.
+void prepare_library();
 
 }  // namespace erythro::io::h5

@@ -144,89 +144,94 @@ void ResultRecord::add_run(std::map<std::string, Value> row, const std::string& 
 }
 
 void ResultRecord::write(const std::string& path) const {
-  const std::string tmp = temporary_path_for(path);
-  {
-    h5::Handle file = h5::create_file(tmp);
-    const hid_t root = file.id();
-    h5::write_attrs(root, {{"schema_version", 1L},
-                           {"case", case_name_},
-                           {"family", family_},
-                           {"requirement", requirement_},
-                           {"reference", reference_},
-                           {"verdict", passed() ? "pass" : "fail"},
-                           {"git_revision", build_info::git_revision()},
-                           {"compiler", build_info::compiler()},
-                           {"compile_flags", build_info::compile_flags()},
-                           {"created_utc", utc_now()},
-                           {"wall_time_s", wall_time_s_},
-                           {"cpu_time_s", process_cpu_seconds()}});
+  try {
+    h5::Handle file = h5::create_file(temporary_path_for(path));
+    {  // the groups below are closed at the end of this block, before the file
+      const hid_t root = file.id();
+      h5::write_attrs(root, {{"schema_version", 1L},
+                             {"case", case_name_},
+                             {"family", family_},
+                             {"requirement", requirement_},
+                             {"reference", reference_},
+                             {"verdict", passed() ? "pass" : "fail"},
+                             {"git_revision", build_info::git_revision()},
+                             {"compiler", build_info::compiler()},
+                             {"compile_flags", build_info::compile_flags()},
+                             {"created_utc", utc_now()},
+                             {"wall_time_s", wall_time_s_},
+                             {"cpu_time_s", process_cpu_seconds()}});
 
-    h5::Handle params = h5::create_group(root, "parameters");
-    for (const auto& [key, value] : parameters_) write_value_attr(params.id(), key, value);
+      h5::Handle params = h5::create_group(root, "parameters");
+      for (const auto& [key, value] : parameters_) write_value_attr(params.id(), key, value);
 
-    h5::Handle metrics = h5::create_group(root, "metrics");
-    for (const auto& m : metrics_) {
-      h5::Handle g = h5::create_group(metrics.id(), safe_name(m.name));
-      h5::write_attrs(g.id(), {{"value", m.value},
-                               {"expected", m.expected},
-                               {"tolerance", m.tolerance},
-                               {"comparison", to_string(m.comparison)},
-                               {"tolerance_reason", m.tolerance_reason},
-                               {"description", m.description},
-                               {"unit", m.unit},
-                               {"verdict", m.passed() ? "pass" : "fail"}});
-    }
+      h5::Handle metrics = h5::create_group(root, "metrics");
+      for (const auto& m : metrics_) {
+        h5::Handle g = h5::create_group(metrics.id(), safe_name(m.name));
+        h5::write_attrs(g.id(), {{"value", m.value},
+                                 {"expected", m.expected},
+                                 {"tolerance", m.tolerance},
+                                 {"comparison", to_string(m.comparison)},
+                                 {"tolerance_reason", m.tolerance_reason},
+                                 {"description", m.description},
+                                 {"unit", m.unit},
+                                 {"verdict", m.passed() ? "pass" : "fail"}});
+      }
 
-    write_runs(root, runs_);
+      write_runs(root, runs_);
 
-    h5::Handle conv = h5::create_group(root, "convergence");
-    for (const auto& s : convergence_) {
-      h5::Handle g = h5::create_group(conv.id(), safe_name(s.name));
-      h5::write_dataset(g.id(), "h", s.h);
-      h5::write_dataset(g.id(), "error", s.error);
-      h5::write_dataset(g.id(), "local_orders", s.local_orders);
-      h5::write_attrs(g.id(), {{"norm", s.norm},
-                               {"formal_order", s.formal_order},
-                               {"observed_order", s.observed_order},
-                               {"order_tolerance", s.order_tolerance},
-                               {"asymptotic", s.asymptotic ? 1L : 0L},
-                               {"asymptotic_rule", s.asymptotic_rule}});
-    }
+      h5::Handle conv = h5::create_group(root, "convergence");
+      for (const auto& s : convergence_) {
+        h5::Handle g = h5::create_group(conv.id(), safe_name(s.name));
+        h5::write_dataset(g.id(), "h", s.h);
+        h5::write_dataset(g.id(), "error", s.error);
+        h5::write_dataset(g.id(), "local_orders", s.local_orders);
+        h5::write_attrs(g.id(), {{"norm", s.norm},
+                                 {"formal_order", s.formal_order},
+                                 {"observed_order", s.observed_order},
+                                 {"order_tolerance", s.order_tolerance},
+                                 {"asymptotic", s.asymptotic ? 1L : 0L},
+                                 {"asymptotic_rule", s.asymptotic_rule}});
+      }
 
-    h5::Handle speed = h5::create_group(root, "speed_error");
-    for (const auto& s : speed_error_) {
-      h5::Handle g = h5::create_group(speed.id(), safe_name(s.name));
-      h5::write_dataset(g.id(), "wall_time_s", s.wall_time_s);
-      h5::write_dataset(g.id(), "error", s.error);
-      h5::write_dataset(g.id(), "label", s.label);
-    }
+      h5::Handle speed = h5::create_group(root, "speed_error");
+      for (const auto& s : speed_error_) {
+        h5::Handle g = h5::create_group(speed.id(), safe_name(s.name));
+        h5::write_dataset(g.id(), "wall_time_s", s.wall_time_s);
+        h5::write_dataset(g.id(), "error", s.error);
+        h5::write_dataset(g.id(), "label", s.label);
+      }
 
-    h5::Handle fields = h5::create_group(root, "fields");
-    for (const auto& f : fields_) {
-      h5::Handle g = h5::create_group(fields.id(), safe_name(f.name));
-      h5::write_dataset(g.id(), "data", f.data, {static_cast<hsize_t>(f.ny), static_cast<hsize_t>(f.nx)});
-      if (!f.x.empty()) h5::write_dataset(g.id(), "x", f.x);
-      if (!f.y.empty()) h5::write_dataset(g.id(), "y", f.y);
-      h5::write_attrs(g.id(), {{"title", f.title}, {"quantity", f.quantity}, {"unit", f.unit},
-                               {"xlabel", f.xlabel}, {"ylabel", f.ylabel}, {"name", f.name}});
-      if (!f.membranes.empty()) {
-        h5::Handle m = h5::create_group(g.id(), "membranes");
-        for (std::size_t k = 0; k < f.membranes.size(); ++k)
-          h5::write_dataset(m.id(), std::to_string(k), f.membranes[k], {f.membranes[k].size() / 2, 2});
+      h5::Handle fields = h5::create_group(root, "fields");
+      for (const auto& f : fields_) {
+        h5::Handle g = h5::create_group(fields.id(), safe_name(f.name));
+        h5::write_dataset(g.id(), "data", f.data, {static_cast<hsize_t>(f.ny), static_cast<hsize_t>(f.nx)});
+        if (!f.x.empty()) h5::write_dataset(g.id(), "x", f.x);
+        if (!f.y.empty()) h5::write_dataset(g.id(), "y", f.y);
+        h5::write_attrs(g.id(), {{"title", f.title}, {"quantity", f.quantity}, {"unit", f.unit},
+                                 {"xlabel", f.xlabel}, {"ylabel", f.ylabel}, {"name", f.name}});
+        if (!f.membranes.empty()) {
+          h5::Handle m = h5::create_group(g.id(), "membranes");
+          for (std::size_t k = 0; k < f.membranes.size(); ++k)
+            h5::write_dataset(m.id(), std::to_string(k), f.membranes[k], {f.membranes[k].size() / 2, 2});
+        }
+      }
+
+      h5::Handle scenes = h5::create_group(root, "scenes");
+      if (!scenes_.empty()) h5::write_dataset(scenes.id(), "texts", scenes_);
+
+      h5::Handle series = h5::create_group(root, "series");
+      for (const auto& s : series_) {
+        h5::Handle g = h5::create_group(series.id(), safe_name(s.name));
+        h5::write_dataset(g.id(), "x", s.x);
+        h5::write_dataset(g.id(), "y", s.y);
+        if (!s.y_reference.empty()) h5::write_dataset(g.id(), "y_reference", s.y_reference);
+        h5::write_attrs(g.id(), {{"title", s.title}, {"xlabel", s.xlabel}, {"ylabel", s.ylabel}});
       }
     }
-
-    h5::Handle scenes = h5::create_group(root, "scenes");
-    if (!scenes_.empty()) h5::write_dataset(scenes.id(), "texts", scenes_);
-
-    h5::Handle series = h5::create_group(root, "series");
-    for (const auto& s : series_) {
-      h5::Handle g = h5::create_group(series.id(), safe_name(s.name));
-      h5::write_dataset(g.id(), "x", s.x);
-      h5::write_dataset(g.id(), "y", s.y);
-      if (!s.y_reference.empty()) h5::write_dataset(g.id(), "y_reference", s.y_reference);
-      h5::write_attrs(g.id(), {{"title", s.title}, {"xlabel", s.xlabel}, {"ylabel", s.ylabel}});
-    }
+    file.close();  // checked: the last metadata reaches the disk here
+  } catch (...) {
+    discard_temporary(path);
+    throw;
   }
   commit_temporary(path);
 }

@@ -111,7 +111,8 @@ class ResultRecord {
   // A record passes when it has at least one metric and every metric passes.
   bool passed() const;
 
-  // Writes the record atomically (temporary name, then rename).
+  // Writes the record atomically (temporary name, then rename); on a failed write
+  // (disk full) throws OutputError and leaves neither the record nor its temporary.
   void write(const std::string& path) const;
   // Writes to results_dir()/<case>.h5 and returns that path.
   std::string write_to_results_dir() const;

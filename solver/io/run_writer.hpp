@@ -1,9 +1,15 @@
 #pragma once
 // Writes one run to OUT/run.h5 (+ OUT/run.xdmf): fields at the output interval,
-// diagnostics time series, metadata. The file is written under a temporary name,
-// flushed after every output, and renamed into place when the run ends, whatever
-// way it ends (completed, steady state, diverged, error): what was written
-// before the end is never lost.
+// diagnostics time series, metadata. The file is written under a temporary name
+// (run.h5.partial-<PID>); diagnostics reach the disk at least every kFlushSamples samples
+// or kFlushSeconds of wall time, everything at every field output. How it ends:
+//   - the run ends, however (completed, steady state, stopped, diverged, interrupted), or
+//     fails elsewhere (abort: status "aborted: <reason>"): the file is closed, renamed into
+//     place, and only then is run.xdmf written beside it, so the index never points at a
+//     missing file, and an earlier run's pair (--force) is replaced as a pair;
+//   - a write of its own fails (disk full, quota, a close that cannot flush): the
+//     temporary is removed, nothing is put in place (an earlier run's files stay as they
+//     were), and OutputError names the file. An unreadable file is never renamed into place.
 //
 // run.h5 layout:
 //   /metadata         attrs scene_text, scene_path, git_revision, compiler, compile_flags,
@@ -34,10 +40,11 @@
 //                     offsets (cells + 1) [int64 marker index]; edges (markers, 2) [int64]:
 //                     the closed polyline of each cell; cell (markers) [int64]: its cell;
 //                     attrs step, time_s, cells
-//   run.xdmf          the XDMF index of the fields and membranes (xdmf.hpp), appended at
-//                     every output
+//   run.xdmf          the XDMF index of the fields and membranes (xdmf.hpp), written when
+//                     run.h5 is in place
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,7 +68,8 @@ class RunWriter : public sim::RunObserver {
   void on_transport_fields(long step, const sim::TransportFields& fields) override;
   void on_finish(const sim::RunSummary& summary) override;
 
-  // Closes the file with status "aborted: <reason>" and moves it into place.
+  // Closes the file with status "aborted: <reason>" and moves it into place; does nothing
+  // when the writer has already finished (e.g. its own write failed and removed the file).
   void abort(const std::string& reason);
   // Writes the buffered samples and flushes the file: before a checkpoint, so that a run
   // killed after it has every sample before the checkpoint's step on disk.
@@ -71,8 +79,14 @@ class RunWriter : public sim::RunObserver {
   std::string xdmf_path() const;
 
  private:
+  // Runs `write`; if it throws, discards the file and throws OutputError naming it.
+  template <class Write>
+  void guarded(Write&& write);
   void close_and_commit();
-  void flush_samples();  // writes the buffered samples and flushes the file
+  void close_file();        // every handle, each close checked
+  void discard() noexcept;  // closes what it can and removes the temporary file
+  void write_xdmf();        // beside the committed run.h5
+  void flush_samples();     // writes the buffered samples and flushes the file
   h5::Handle frame_group(long step);  // /fields/<step>, created (and listed for XDMF) once
   // The XDMF frame of `step` being assembled (fields, cells); a new step commits the last.
   XdmfFrame& xdmf_frame(long step);
@@ -88,11 +102,12 @@ class RunWriter : public sim::RunObserver {
   std::vector<std::vector<double>> pending_;  // per series, samples not yet written
   std::size_t pending_samples_ = 0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
-  XdmfIndex xdmf_;
+  std::optional<XdmfGrid> xdmf_grid_;  // known from on_start
+  std::vector<XdmfFrame> xdmf_frames_;
   XdmfFrame frame_;
   bool has_frame_ = false;
   bool write_density_ = true, write_velocity_ = true;
-  bool committed_ = false;
+  bool finished_ = false;  // committed, or discarded after a failed write
 };
 
 }  // namespace erythro::io

@@ -1,14 +1,6 @@
 #include "io/xdmf.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 #include <sstream>
-
-#include "common/error.hpp"
-#include "io/atomic_file.hpp"
 
 namespace erythro::io {
 
@@ -68,24 +60,6 @@ std::string make_xdmf(const std::string& h5, const XdmfGrid& grid, const std::ve
   std::string text = xdmf_header();
   for (const auto& f : frames) text += xdmf_frame(h5, grid, f);
   return text + xdmf_footer();
-}
-
-XdmfIndex::XdmfIndex(std::string path, std::string h5_file_name, XdmfGrid grid)
-    : path_(std::move(path)), h5_file_name_(std::move(h5_file_name)), grid_(std::move(grid)) {
-  write_text_atomically(path_, xdmf_header() + xdmf_footer());
-  footer_offset_ = xdmf_header().size();
-}
-
-void XdmfIndex::append(const XdmfFrame& frame) {
-  const std::string text = xdmf_frame(h5_file_name_, grid_, frame) + xdmf_footer();
-  const int fd = ::open(path_.c_str(), O_WRONLY);
-  if (fd < 0) throw OutputError("cannot open " + path_ + ": " + std::strerror(errno));
-  const ssize_t n = ::pwrite(fd, text.data(), text.size(), static_cast<off_t>(footer_offset_));
-  const int write_errno = errno;
-  ::close(fd);
-  if (n != static_cast<ssize_t>(text.size()))
-    throw OutputError("cannot write " + path_ + ": " + (n < 0 ? std::strerror(write_errno) : "short write"));
-  footer_offset_ += text.size() - xdmf_footer().size();
 }
 
 }  // namespace erythro::io

@@ -5,7 +5,6 @@
 // plane; density and species as scalars, velocity as a 3-component vector) and, with
 // cells, the membranes (one closed polyline of edges per cell, a `cell` index per marker).
 // Paths inside are relative to the XDMF file, so the output folder can be moved.
-#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -32,22 +31,5 @@ std::string xdmf_footer();
 std::string xdmf_frame(const std::string& h5_file_name, const XdmfGrid& grid, const XdmfFrame& frame);
 // The whole index: header, every frame, footer.
 std::string make_xdmf(const std::string& h5_file_name, const XdmfGrid& grid, const std::vector<XdmfFrame>& frames);
-
-// Keeps OUT/run.xdmf current as frames are added, without rewriting its history: each
-// append writes the new frame and the footer in one write at the footer's place, so the
-// file is a complete document after every append (O(frame) per append, not O(run)).
-class XdmfIndex {
- public:
-  XdmfIndex() = default;
-  // Writes an index with no frames (atomically). Throws OutputError.
-  XdmfIndex(std::string path, std::string h5_file_name, XdmfGrid grid);
-  void append(const XdmfFrame& frame);
-  bool valid() const { return !path_.empty(); }
-
- private:
-  std::string path_, h5_file_name_;
-  XdmfGrid grid_;
-  std::size_t footer_offset_ = 0;
-};
 
 }  // namespace erythro::io

@@ -22,8 +22,9 @@ struct TransportFields {
 };
 
 // completed: ran every step; steady_state: run.steady_state met; stopped: a [[stop_when]]
-// rule met; diverged: the health monitor (or a module) stopped an unhealthy run.
-enum class RunStatus { completed, steady_state, stopped, diverged };
+// rule met; diverged: the health monitor (or a module) stopped an unhealthy run;
+// interrupted: a signal asked it to end (interrupt.hpp).
+enum class RunStatus { completed, steady_state, stopped, diverged, interrupted };
 std::string to_string(RunStatus status);
 
 struct RunSummary {

@@ -10,6 +10,7 @@
 #include "common/error.hpp"
 #include "fluid/initial_state.hpp"
 #include "simulation/checkpoint_schedule.hpp"
+#include "simulation/interrupt.hpp"
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
@@ -26,6 +27,7 @@ std::string to_string(RunStatus status) {
     case RunStatus::steady_state: return "steady_state";
     case RunStatus::stopped: return "stopped";
     case RunStatus::diverged: return "diverged";
+    case RunStatus::interrupted: return "interrupted";
   }
   return "?";
 }
@@ -206,6 +208,11 @@ RunSummary Simulation::run(RunObserver& observer) {
   long step = start_step_;
   observation.observe(step, step == total);
   while (!control.stop && step < total) {
+    if (const int signal = interrupt_signal(); signal != 0) {
+      control.end(RunStatus::interrupted,
+                  "interrupted by " + signal_name(signal) + " after step " + std::to_string(step));
+      break;
+    }
     try {
       loop_.run_step(step);
     } catch (const std::domain_error& e) {  // a marker velocity or position is not finite

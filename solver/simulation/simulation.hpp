@@ -38,8 +38,9 @@ class Simulation {
  public:
   Simulation(scene::Scene scene, scene::LatticeSetup setup);
 
-  // Runs to the end, to steady state, until a stop rule holds, or until the health
-  // monitor stops it. Never throws for divergence: the summary says so (status diverged).
+  // Runs to the end, to steady state, until a stop rule holds, until the health monitor
+  // stops it, or until an interrupt is requested (interrupt.hpp; checked before every
+  // step). Never throws for divergence: the summary says so (status diverged).
   // Call once.
   RunSummary run(RunObserver& observer);
 
