@@ -122,6 +122,12 @@ Handle open_file_read(const std::string& path) {
   return {check(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "cannot open file '" + path + "'"), H5Fclose};
 }
 
+Handle open_file_read_write(const std::string& path) {
+  silence_errors();
+  return {check(H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT), "cannot open file '" + path + "' for writing"),
+          H5Fclose};
+}
+
 Handle create_group(hid_t parent, const std::string& name) {
   return {check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
                 "cannot create group '" + name + "' in " + object_name(parent)),

@@ -45,6 +45,7 @@ Handle create_file(const std::string& path);  // truncates
 // Writes everything buffered for the file to disk (H5Fflush); throws OutputError.
 void flush(hid_t file);
 Handle open_file_read(const std::string& path);
+Handle open_file_read_write(const std::string& path);
 Handle create_group(hid_t parent, const std::string& name);
 Handle open_group(hid_t parent, const std::string& name);
 bool exists(hid_t parent, const std::string& name);         // a link (group, dataset)

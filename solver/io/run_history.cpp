@@ -13,13 +13,6 @@
 namespace erythro::io {
 namespace {
 
-h5::Handle open_file_read_write(const std::string& path) {
-  h5::silence_errors();
-  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  if (id < 0) throw OutputError("HDF5: cannot open '" + path + "' for writing");
-  return {id, H5Fclose};
-}
-
 // Replaces the 1-D chunked series `name` of `group` by `values` (its attributes stay).
 void rewrite_series(hid_t group, const std::string& name, const std::vector<double>& values) {
   h5::Handle dataset = h5::open_dataset(group, name);
@@ -134,7 +127,7 @@ void rewrite_xdmf(hid_t file, const std::string& h5_path, const std::string& xdm
 
 std::string carry_over_history(const std::string& previous_h5, const std::string& h5_path, const std::string& xdmf,
                                long checkpoint_step) {
-  h5::Handle file = open_file_read_write(h5_path);
+  h5::Handle file = h5::open_file_read_write(h5_path);
   const std::string start = "starts at the checkpoint (step " + std::to_string(checkpoint_step) + ")";
   std::string note = previous_h5.empty() ? start + ": no earlier run.h5" : "carried over from " + previous_h5;
   if (!previous_h5.empty()) {
