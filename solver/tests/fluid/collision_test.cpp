@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "fluid/collide_node.hpp"
@@ -124,4 +125,46 @@ TEST(FluidLattice, HealthScanReportsMaxSpeed) {
   EXPECT_EQ(bad.quantity, "mach");
   EXPECT_EQ(bad.node_x, 1);
   EXPECT_EQ(bad.node_y, 2);
+}
+
+// The fast health check gives the exact scan's report: max |u| is the largest hypot over
+// every node (bit for bit), also when many nodes tie within round-off of the largest |u|²,
+// and a state with one bad node reports the first one in row-major order.
+TEST(FluidLattice, HealthCheckEqualsTheExactScan) {
+  const Grid g{37, 23};
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-0.05, 0.05), angle(0.0, 6.283185307179586);
+  for (int trial = 0; trial < 50; ++trial) {
+    Moments m;
+    m.rho.assign(g.size(), 1.0);
+    m.ux.resize(g.size());
+    m.uy.resize(g.size());
+    const double speed = 0.04;
+    for (std::size_t n = 0; n < g.size(); ++n) {
+      if (trial % 2 == 0) {  // random velocities
+        m.ux[n] = u(rng);
+        m.uy[n] = u(rng);
+      } else {  // every node at the same |u| in another direction: ties within round-off
+        const double a = angle(rng);
+        m.ux[n] = speed * std::cos(a);
+        m.uy[n] = speed * std::sin(a);
+      }
+    }
+    double expected = 0.0;
+    for (std::size_t n = 0; n < g.size(); ++n) expected = std::max(expected, std::hypot(m.ux[n], m.uy[n]));
+    const HealthReport r = check_health(g, m, 0.3);
+    ASSERT_TRUE(r.healthy);
+    ASSERT_EQ(r.max_speed, expected) << "trial " << trial;
+  }
+  Moments m;
+  m.rho.assign(g.size(), 1.0);
+  m.ux.assign(g.size(), 0.0);
+  m.uy.assign(g.size(), 0.0);
+  m.uy[g.index(5, 9)] = std::numeric_limits<double>::quiet_NaN();
+  m.rho[g.index(30, 4)] = -1.0;
+  const HealthReport bad = check_health(g, m, 0.3);
+  EXPECT_FALSE(bad.healthy);
+  EXPECT_EQ(bad.quantity, "density");
+  EXPECT_EQ(bad.node_x, 30);
+  EXPECT_EQ(bad.node_y, 4);
 }
