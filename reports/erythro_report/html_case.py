@@ -49,11 +49,20 @@ def _metrics(r):
     return f"<h4>Metrics</h4><table class='full'><tr>{METRIC_HEAD}</tr>{rows}</table>"
 
 
+def _cpu_text(r):
+    """The case's CPU time and the cores it kept busy on average (CPU / wall)."""
+    if not (r.cpu_time_s > 0):
+        return "not recorded"
+    cores = f", {r.cpu_time_s / r.wall_time_s:.2f} cores on average" if r.wall_time_s > 0 else ""
+    return f"{fmt.number(r.cpu_time_s, 4)} s{cores}"
+
+
 def _meta(r):
     rows = [("Record", r.path), ("Git revision", r.git_revision), ("Compiler", r.compiler),
             ("Compile flags", r.compile_flags), ("Created (UTC)", r.created_utc),
             ("Wall time (record)", f"{fmt.number(r.wall_time_s, 4)} s"
              if r.wall_time_s > 0 else "not recorded"),
+            ("CPU time (record)", _cpu_text(r)),
             ("Time shown", f"{duration_text(r.time_s)} ({r.time_source or 'none'})"),
             ("Schema version", r.schema_version)]
     items = "".join(f"<dt>{esc(k)}</dt><dd>{esc(v) if v else '—'}</dd>" for k, v in rows)

@@ -98,6 +98,7 @@ class Record:
     created_utc: str
     wall_time_s: float
     schema_version: str
+    cpu_time_s: float  # user + system time of the case's process (NaN in older records)
     parameters: dict
     metrics: list
     runs: Runs
@@ -146,7 +147,7 @@ def _read_root(f, path):
         **_attrs(f, texts=("case", "family", "requirement", "reference", "verdict", "git_revision",
                            "compiler", "compile_flags", "created_utc", "schema_version",
                            "key_metric"),
-                 floats=("wall_time_s",)),
+                 floats=("wall_time_s", "cpu_time_s")),
         parameters=_read_parameters(f),
         metrics=[_read_metric(n, g) for n, g in _subgroups(f, "metrics")],
         runs=_read_runs(f, path),
