@@ -27,9 +27,9 @@ void write_cell_populations(hid_t meta, const scene::Scene& scene) {
     const scene::CellPopulationSpec& pop = scene.cell_populations[i];
     const scene::PopulationPlacement& placed = scene.population_placements[i];
     h5::Handle g = h5::create_group(group.id(), std::to_string(i));
+    if (pop.count) h5::write_attr(g.id(), "target_count", *pop.count);
+    if (pop.area_fraction) h5::write_attr(g.id(), "target_area_fraction", *pop.area_fraction);
     h5::write_attrs(g.id(), {{"seed", pop.seed},
-                             {"target", pop.count ? "count " + std::to_string(*pop.count)
-                                                  : "area_fraction " + std::to_string(*pop.area_fraction)},
                              {"area_fraction", placed.area_fraction},
                              {"first_cell", static_cast<long>(placed.first_cell)},
                              {"cell_count", static_cast<long>(placed.count)}});
