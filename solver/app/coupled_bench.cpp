@@ -162,7 +162,7 @@ void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
   record.set_parameter("coupled_steps_per_run", static_cast<double>(o.steps));
   record.set_parameter("coupled_pairs", static_cast<double>(o.pairs));
   std::printf("\ncoupled step: biconcave cells (%d markers, flood-fill interior 6 cP) at area fraction %.2f in a shear "
-              "box, h = %.2f um; %ld steps per run, %d pairs (fluid only, then coupled), medians\n",
+              "box, h = %.2f um; %ld steps per run, %d pair(s) (fluid only, then coupled), medians\n",
               kMarkers, kAreaFraction, kSpacingUm, o.steps, o.pairs);
   std::printf("%5s %9s %3s %6s %12s %12s %14s %14s %9s\n", "cells", "grid", "thr", "phi", "fluid-only", "coupled",
               "fluid w/ cells", "extra/cell", "grid ovh");

@@ -153,8 +153,10 @@ class Placer {
 }  // namespace
 
 SeedingDomain seeding_domain(const Scene& s) {
-  return {s.domain.size_um, {s.boundaries.left.type == "periodic", s.boundaries.bottom.type == "periodic"},
-          s.domain.spacing_um};
+  return {s.domain.size_um,
+          {s.boundaries.left.type == "periodic", s.boundaries.bottom.type == "periodic"},
+          s.domain.spacing_um,
+          std::max(2.0, s.limits.min_cell_gap) * s.domain.spacing_um};
 }
 
 Polygon cell_outline_um(const CellSpec& c, double spacing_um) {
@@ -184,7 +186,7 @@ bool polygons_closer_than(const Polygon& a, const Polygon& b, double dx, double 
 SeedingResult seed_population(const CellPopulationSpec& pop, const SeedingDomain& domain,
                               const std::vector<CellSpec>& existing) {
   SeedingResult result;
-  result.gap_um = pop.min_gap_um.value_or(2.0 * domain.spacing_um);
+  result.gap_um = pop.min_gap_um.value_or(domain.default_gap_um);
   Placer placer(domain, result.gap_um);
   for (const CellSpec& c : existing) placer.add(cell_outline_um(c, domain.spacing_um), c.center_um[0], c.center_um[1]);
 

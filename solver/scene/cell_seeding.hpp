@@ -20,10 +20,12 @@ namespace erythro::scene {
 struct SeedingDomain {
   std::array<double, 2> size_um{0.0, 0.0};
   std::array<bool, 2> periodic{true, true};  // x, y; a side that is not periodic is a wall
-  double spacing_um = 0.0;                    // h: the automatic marker count and default gap
+  double spacing_um = 0.0;                    // h: the automatic marker count
+  double default_gap_um = 0.0;                // the gap where a population gives no min_gap_um
 };
 
-// The domain of a parsed scene (its [domain] and [boundaries]).
+// The domain of a parsed scene (its [domain], [boundaries] and limits.min_cell_gap); the
+// default gap is 2 h, or limits.min_cell_gap h if larger (the set-up rejects closer cells).
 SeedingDomain seeding_domain(const Scene& scene);
 
 struct SeedingResult {
@@ -31,7 +33,7 @@ struct SeedingResult {
   long target = 0;              // cells asked for (count, or the area fraction's whole number)
   double cell_area_um2 = 0.0;   // of one cell's marker polygon
   double area_fraction = 0.0;   // reached: cells.size() · cell_area / domain area
-  double gap_um = 0.0;          // the gap used (min_gap_um, or its default 2 h)
+  double gap_um = 0.0;          // the gap used (min_gap_um, or the domain's default)
   bool reached() const { return static_cast<long>(cells.size()) == target; }
 };
 

@@ -54,7 +54,7 @@ void add_cell_population_keys(std::vector<KeySpec>& k) {
   k.push_back({.path = "cell_populations.min_gap_um",
                .unit = "µm",
                .bound = positive,
-               .when_absent = note("2 `domain.spacing_um`"),
+               .when_absent = note("2 h, or `limits.min_cell_gap` h if larger"),
                .rule = "≥ `limits.min_cell_gap` h",
                .meaning = "Smallest distance between the marker polygons of two cells (any cell of the scene, across "
                           "periodic sides) and between a polygon and a wall"});

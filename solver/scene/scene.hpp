@@ -174,7 +174,8 @@ struct CellPopulationSpec {
   // (2D haematocrit, rounded to a whole number of cells), or the number of cells.
   std::optional<double> area_fraction;
   std::optional<long> count;
-  std::optional<double> min_gap_um;  // smallest polygon–polygon and polygon–wall distance; absent: 2 h
+  std::optional<double> min_gap_um;  // smallest polygon–polygon and polygon–wall distance;
+                                     // absent: 2 h, or limits.min_cell_gap h if larger
   long seed = 1;                     // of the std::mt19937_64 that draws the positions
   long attempts_per_cell = 1000;     // draws of one cell before the target is declared unreachable
 };

@@ -605,7 +605,14 @@ void read_cell_populations(const Reader& r, Scene& s) {
       pop.area_fraction = r.number(p + "area_fraction");
     else
       pop.count = r.integer(p + "count");
-    if (r.has(p + "min_gap_um")) pop.min_gap_um = r.number(p + "min_gap_um");
+    if (r.has(p + "min_gap_um")) {
+      pop.min_gap_um = r.number(p + "min_gap_um");
+      const double set_up_gap = s.limits.min_cell_gap * s.domain.spacing_um;
+      if (*pop.min_gap_um < set_up_gap)
+        r.fail(*r.find(p + "min_gap_um"), p + "min_gap_um",
+               "is below limits.min_cell_gap × domain.spacing_um = " + format_number(set_up_gap) +
+                   " µm, the set-up's smallest distance between the markers of two cells");
+    }
     pop.seed = r.integer(p + "seed");
     pop.attempts_per_cell = r.integer(p + "attempts_per_cell");
 

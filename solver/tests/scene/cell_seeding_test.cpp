@@ -149,6 +149,9 @@ TEST(CellSeeding, AnUnreachableTargetNamesTheKeyTheValueAndTheFractionReached) {
   EXPECT_CONTAINS(message, "cell_populations[0].area_fraction' = 0.8");
   EXPECT_CONTAINS(message, "cannot be reached");
   EXPECT_CONTAINS(message, "(area fraction 0.");
+  const std::string close = population("radius_um = 3.0\ncount = 3\nmin_gap_um = 0.2");  // < 1 h
+  EXPECT_CONTAINS(error_of([&] { parse_scene(box(true) + close, "close.toml"); }),
+                  "cell_populations[0].min_gap_um' = 0.2 is below limits.min_cell_gap");
   const std::string both = population("radius_um = 3.0\narea_fraction = 0.1\ncount = 3");
   EXPECT_CONTAINS(error_of([&] { parse_scene(box(true) + both, "both.toml"); }), "give exactly one of them");
 }
