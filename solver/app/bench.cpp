@@ -27,6 +27,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "app/bench_metric.hpp"
+#include "app/coupled_bench.hpp"
 #include "common/error.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "io/result_record.hpp"
@@ -340,31 +342,46 @@ std::string tag(const StepConfig& c) {
 // The propagation pattern of FluidLattice::step(), for the table and the record.
 constexpr const char* kPattern = "AA, in place";
 
-io::Metric informative(std::string name, std::string description, std::string unit, double value) {
-  io::Metric m;
-  m.name = std::move(name);
-  m.description = std::move(description);
-  m.unit = std::move(unit);
-  m.value = value;
-  m.expected = 0.0;
-  m.comparison = io::Comparison::at_least;
-  m.tolerance_reason =
-      "informative: speed on a shared machine is never asserted; the metric only has to be a finite measurement";
-  return m;
-}
-
 struct Bandwidth {
   double plain = 0.0, streaming = 0.0;  // GB/s, read + write bytes
   double best() const { return std::max(plain, streaming); }
 };
 
 
+// The coupled step alone (--coupled-only), in a record of its own so that it does not
+// replace the fluid step's.
+int run_coupled_only(const BenchOptions& o) {
+  const auto start = Clock::now();
+  const std::string load_start = load_average();
+  io::ResultRecord record("benchmark.coupled", "benchmark");
+  record.set_requirement(
+      "Informative: measure the cost of the immersed cells per cell and time step, and the stages of the coupled "
+      "step, beside the fluid step of the same grid without cells.");
+  record.set_reference("none: a measurement of this code on this machine (docs/performance.md)");
+  record.set_parameter("cpu", cpu_model());
+  record.set_parameter("load_average_start", load_start);
+  record.set_parameter("omp_wait_policy", env_or("OMP_WAIT_POLICY", "default"));
+  run_coupled_bench(o.coupled, record);
+  const std::string load_end = load_average();
+  record.set_parameter("load_average_end", load_end);
+  record.set_wall_time(seconds_since(start));
+  std::printf("load average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
+  const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
+  std::printf("record: %s\n", path.c_str());
+  return record.passed() ? exit_code::ok : exit_code::runtime_failure;
+}
+
 int run_bench(BenchOptions o) {
+  o.coupled.threads = o.threads;
   if (o.quick) {
     o.sizes = {256, 1024};
     o.repeats = 3;
     o.sample_seconds = 0.05;
+    o.coupled.cells = {2, 8};
+    o.coupled.steps = 100;
+    o.coupled.pairs = 1;
   }
+  if (o.coupled_only) return run_coupled_only(o);
   const auto start_all = Clock::now();
   const std::string load_start = load_average();
   io::ResultRecord record("benchmark.fluid", "benchmark");
@@ -521,6 +538,8 @@ int run_bench(BenchOptions o) {
                                   p.fraction.median));
   }
 
+  run_coupled_bench(o.coupled, record);
+
   const std::string load_end = load_average();
   record.set_parameter("load_average_end", load_end);
   record.set_wall_time(seconds_since(start_all));
@@ -534,14 +553,23 @@ int run_bench(BenchOptions o) {
 }  // namespace
 
 CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
-  auto* cmd = cli.add_subcommand("bench", "Measure the fluid step (MLUPS) against the memory-bandwidth bound");
+  auto* cmd = cli.add_subcommand(
+      "bench", "Measure the fluid step (MLUPS) against the memory-bandwidth bound, and the coupled step per cell");
   cmd->add_option("--out", options.out, "Result record (default: $ERYTHRO_RESULTS_DIR/benchmark.fluid.h5)");
   cmd->add_option("--sizes", options.sizes, "Grid sizes n of the n x n grids")->check(CLI::Range(3, 16384));
   cmd->add_option("--threads", options.threads, "Thread counts")->check(CLI::Range(1, 1024));
   cmd->add_option("--repeats", options.repeats, "Timed samples per configuration")->check(CLI::Range(1, 1000));
   cmd->add_option("--sample-seconds", options.sample_seconds, "Minimum duration of one sample")
       ->check(CLI::Range(1e-3, 60.0));
-  cmd->add_flag("--quick", options.quick, "Smoke run: 256^2 and 1024^2, 3 short samples");
+  cmd->add_flag("--quick", options.quick, "Smoke run: 256^2 and 1024^2, 3 short samples; 2 and 8 cells, one pair");
+  cmd->add_flag("--coupled-only", options.coupled_only,
+                "Only the coupled step (cells in a shear box), into $ERYTHRO_RESULTS_DIR/benchmark.coupled.h5");
+  cmd->add_option("--cells", options.coupled.cells, "Cell counts of the coupled step (box sized for area fraction 0.3)")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--coupled-steps", options.coupled.steps, "Time steps of each coupled-step run")
+      ->check(CLI::Range(10, 1000000));
+  cmd->add_option("--coupled-pairs", options.coupled.pairs, "Fluid-only and coupled runs per configuration")
+      ->check(CLI::Range(1, 100));
   return cmd;
 }
 

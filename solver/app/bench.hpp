@@ -1,10 +1,13 @@
 #pragma once
 // `erythro bench`: throughput of FluidLattice::step() (MLUPS) measured against the
 // machine's memory-bandwidth bound, bound = copy bandwidth / 144 B per node update
-// (two D2Q9 double lattices: 72 B read + 72 B written). Informative only: nothing
+// (two D2Q9 double lattices: 72 B read + 72 B written); then the coupled step of a
+// suspension of cells, per cell and step (coupled_bench.hpp). Informative only: nothing
 // here asserts a speed. Method and figures: docs/performance.md.
 #include <string>
 #include <vector>
+
+#include "app/coupled_bench.hpp"
 
 namespace CLI {
 class App;
@@ -19,6 +22,8 @@ struct BenchOptions {
   int repeats = 7;              // timed samples per configuration (median, min, max reported)
   double sample_seconds = 0.2;  // minimum duration of one sample
   bool quick = false;           // 256² and 1024², 3 short samples: a smoke run
+  bool coupled_only = false;    // only the coupled step (coupled_bench.hpp), in benchmark.coupled
+  CoupledBenchOptions coupled;  // its threads are `threads`
 };
 
 // Declares the `bench` subcommand on `cli`, filling `options`.

@@ -18,6 +18,33 @@ namespace {
 constexpr const char* kH5Name = "run.h5";
 constexpr const char* kXdmfName = "run.xdmf";
 
+// /metadata/cell_populations/<i>: what [[cell_populations]] entry i placed (scene/cell_seeding.hpp),
+// so a run's cells can be traced to their seed without re-running the placement.
+void write_cell_populations(hid_t meta, const scene::Scene& scene) {
+  if (scene.cell_populations.empty()) return;
+  h5::Handle group = h5::create_group(meta, "cell_populations");
+  for (std::size_t i = 0; i < scene.cell_populations.size(); ++i) {
+    const scene::CellPopulationSpec& pop = scene.cell_populations[i];
+    const scene::PopulationPlacement& placed = scene.population_placements[i];
+    h5::Handle g = h5::create_group(group.id(), std::to_string(i));
+    if (pop.count) h5::write_attr(g.id(), "target_count", *pop.count);
+    if (pop.area_fraction) h5::write_attr(g.id(), "target_area_fraction", *pop.area_fraction);
+    h5::write_attrs(g.id(), {{"seed", pop.seed},
+                             {"area_fraction", placed.area_fraction},
+                             {"first_cell", static_cast<long>(placed.first_cell)},
+                             {"cell_count", static_cast<long>(placed.count)}});
+    std::vector<double> x, y, angle;
+    for (std::size_t c = placed.first_cell; c < placed.first_cell + placed.count; ++c) {
+      x.push_back(scene.cells[c].center_um[0]);
+      y.push_back(scene.cells[c].center_um[1]);
+      angle.push_back(scene.cells[c].angle_deg);
+    }
+    h5::write_attr(g.id(), "center_x_um", x);
+    h5::write_attr(g.id(), "center_y_um", y);
+    h5::write_attr(g.id(), "angle_deg", angle);
+  }
+}
+
 std::string frame_group_name(long step) {
   char name[32];
   std::snprintf(name, sizeof name, "%010ld", step);
@@ -111,6 +138,7 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
                                     {"morse_beta_lattice", a->beta},
                                     {"morse_cutoff_lattice", a->cutoff}});
     }
+    write_cell_populations(meta.id(), scene);
 
     h5::Handle grid = h5::create_group(root, "grid");
     const double h_um = setup.scales.length_m * 1e6;

@@ -1,10 +1,12 @@
 // [membrane] and [[cells]] → lattice units, and the cell set-up checks (units_detail.hpp).
 // Moduli: membrane/membrane_units.hpp; stability numbers: membrane/stability.hpp.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <vector>
 
 #include "aggregation/morse_units.hpp"
 #include "geometry/shapes.hpp"
@@ -72,6 +74,10 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
   const double h_um = s.domain.spacing_um;
   const int n[2] = {L.grid.nx, L.grid.ny};
   const bool periodic[2] = {!wall_bounded(s, 0), !wall_bounded(s, 1)};
+  // Each placed cell's centre and bounding radius (h): two cells whose bounding circles are
+  // at least limits.min_cell_gap apart (nearest images) cannot overlap, so the marker-by-marker
+  // check below is skipped for them (a suspension of many cells, [[cell_populations]]).
+  std::vector<std::array<double, 3>> bounds;
   for (std::size_t i = 0; i < s.cells.size(); ++i) {
     const CellSpec& c = s.cells[i];
     if (c.markers != 0 && c.markers < 8)
@@ -148,7 +154,13 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                       (a == 0 ? "left/right" : "bottom/top") + " wall, closer than " + num(s.limits.min_cell_gap) +
                       " h (limits.min_cell_gap; overlaps the wall): move it inward or shrink it");
     }
+    double reach = 0.0;
+    for (std::size_t p = 0; p < cell.shape.size(); ++p)
+      reach = std::max(reach, std::hypot(cell.shape.x[p] - centre[0], cell.shape.y[p] - centre[1]));
     for (std::size_t j = 0; j < M.cells.size(); ++j) {
+      const double apart = std::hypot(axis_gap(centre[0] - bounds[j][0], n[0], periodic[0]),
+                                      axis_gap(centre[1] - bounds[j][1], n[1], periodic[1]));
+      if (apart - reach - bounds[j][2] >= s.limits.min_cell_gap) continue;
       const geometry::Polygon& o = M.cells[j].shape;
       double closest = std::numeric_limits<double>::infinity();
       for (std::size_t p = 0; p < cell.shape.size(); ++p)
@@ -165,6 +177,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                                     num(s.limits.min_cell_gap) + " h (limits.min_cell_gap)") +
                       "; move them apart");
     }
+    bounds.push_back({centre[0], centre[1], reach});
     M.cells.push_back(std::move(cell));
   }
 

@@ -159,6 +159,35 @@ struct CellSpec {
   double prestretch = 1.0;
 };
 
+// [[cell_populations]]: many cells of one kind, placed at random by scene/cell_seeding.hpp
+// (random sequential addition: uniform centres and orientations, a candidate that comes
+// closer than min_gap_um to another cell's polygon or to a wall is drawn again). The parser
+// appends them to `cells` after the [[cells]] entries, so every later stage sees ordinary cells.
+// Every cell of a population shares the [membrane] model; only E_s may differ per population.
+struct CellPopulationSpec {
+  std::string shape = "circle";                   // as [[cells]] shape
+  double radius_um = 0.0;                         // circle, biconcave
+  std::array<double, 2> semi_axes_um{0.0, 0.0};   // ellipse
+  long markers = 0;                               // 0: automatic, as [[cells]] markers
+  std::optional<double> shear_modulus_dyn_cm;     // absent: [membrane] shear_modulus_dyn_cm
+  // Exactly one: the target area fraction of the domain covered by this population's cells
+  // (2D haematocrit, rounded to a whole number of cells), or the number of cells.
+  std::optional<double> area_fraction;
+  std::optional<long> count;
+  std::optional<double> min_gap_um;  // smallest polygon–polygon and polygon–wall distance;
+                                     // absent: 2 h, or limits.min_cell_gap h if larger
+  long seed = 1;                     // of the std::mt19937_64 that draws the positions
+  long attempts_per_cell = 1000;     // draws of one cell before the target is declared unreachable
+};
+
+// What the seeding placed (one per [[cell_populations]] entry): the cells
+// Scene::cells[first_cell, first_cell + count), recorded in run.h5 /metadata.
+struct PopulationPlacement {
+  std::size_t first_cell = 0;
+  std::size_t count = 0;
+  double area_fraction = 0.0;  // of the domain, by the cells' marker polygons
+};
+
 // [aggregation]: Morse aggregation between the membranes of different cells (docs/model.md
 // §4; docs/verification-aggregation.md). The strength is exactly one of: the
 // dimensionless surface energy De* = γ/E_S (the thesis's levels 1…5), the adhesion
@@ -284,6 +313,8 @@ struct Scene {
   LimitsSpec limits;
   std::optional<MembraneSpec> membrane;  // [membrane]; defaults apply when cells exist without it
   std::vector<CellSpec> cells;           // [[cells]]; empty: a fluid-only scene
+  std::vector<CellPopulationSpec> cell_populations;      // [[cell_populations]]
+  std::vector<PopulationPlacement> population_placements;  // one per population, set by the parser
   std::optional<AggregationSpec> aggregation;  // [aggregation] (needs cells and a fluid)
   std::optional<TransportSpec> transport;  // [transport]; absent: no transport
   std::vector<SpeciesSpec> species;        // [[species]] (needs [transport])

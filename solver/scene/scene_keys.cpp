@@ -11,6 +11,9 @@
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
 
 namespace erythro::scene::detail {
+
+void add_cell_population_keys(std::vector<KeySpec>& k);  // population_keys.cpp
+
 namespace {
 
 const Bound any{};
@@ -651,6 +654,7 @@ std::vector<KeySpec> make_keys() {
   };
   add_species_sides(k);
   add_boundary_sides(k);
+  add_cell_population_keys(k);
   return k;
 }
 
@@ -685,6 +689,9 @@ const std::vector<TableSpec>& known_tables() {
       {"limits", false, "Checks of the set-up before the run."},
       {"membrane", false, "Optional: one membrane model for every cell; used only with `[[cells]]`."},
       {"cells", true, "Optional, one entry per cell."},
+      {"cell_populations", true,
+       "Optional, one entry per population: many cells of one kind at random positions and orientations, "
+       "without overlap (after the `[[cells]]` entries)."},
       {"aggregation", false,
        "Optional: Morse aggregation between cells (needs cells and a fluid); exactly one of the three strengths."},
       {"transport", false, "Optional: NO/O2 transport, its coupling to the flow and its own time step."},

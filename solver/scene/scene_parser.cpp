@@ -23,6 +23,7 @@
 #include <system_error>
 
 #include "common/error.hpp"
+#include "scene/cell_seeding.hpp"
 #include "scene/scene_schema.hpp"
 
 namespace erythro::scene {
@@ -71,6 +72,7 @@ class Reader;
 void read_transport(const Reader& r, Scene& s);
 void read_stop_when(const Reader& r, Scene& s);
 void read_layers(const Reader& r, Scene& s);
+void read_cell_populations(const Reader& r, Scene& s);
 
 class Reader {
  public:
@@ -529,6 +531,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
       s.cells.push_back(c);
     }
   }
+  read_cell_populations(r, s);
   if (r.has("aggregation")) {
     AggregationSpec a;
     const char* strengths[] = {"aggregation.de_star", "aggregation.surface_energy_J_m2", "aggregation.pair_density_Pa"};
@@ -571,6 +574,61 @@ void read_layers(const Reader& r, Scene& s) {
     if (r.has(p + "x_um")) layer.x_um = r.vec2(p + "x_um");
     layer.viscosity_cP = r.number(p + "viscosity_cP");
     s.fluid.layers.push_back(layer);
+  }
+}
+
+// [[cell_populations]] (scene.hpp; docs/scenes.md): read, then placed among the cells read so
+// far (cell_seeding.hpp) and appended to them; a target the draws cannot reach is refused.
+void read_cell_populations(const Reader& r, Scene& s) {
+  const toml::node* populations = r.find("cell_populations");
+  if (!populations) return;
+  const std::size_t count = populations->as_array()->size();
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string p = "cell_populations[" + std::to_string(i) + "].";
+    const toml::node* entry = populations->as_array()->get(i);
+    CellPopulationSpec pop;
+    pop.shape = r.text(p + "shape");
+    const bool ellipse = pop.shape == "ellipse";
+    const std::string size_key = ellipse ? "semi_axes_um" : "radius_um";
+    const std::string wrong_key = ellipse ? "radius_um" : "semi_axes_um";
+    if (!r.has(p + size_key))
+      throw InputError(r.where(entry) + ": missing key '" + p + size_key + "' (required for shape = \"" + pop.shape +
+                       "\"; " + range_text(*find_key("cell_populations." + size_key)) + ")");
+    if (r.has(p + wrong_key))
+      r.fail(*r.find(p + wrong_key), p + wrong_key, "is not allowed with shape = \"" + pop.shape + "\" (give " + size_key + ")");
+    pop.radius_um = r.number(p + "radius_um", pop.radius_um);
+    pop.semi_axes_um = r.vec2(p + "semi_axes_um", pop.semi_axes_um);
+    pop.markers = r.integer(p + "markers", pop.markers);
+    if (r.has(p + "shear_modulus_dyn_cm")) pop.shear_modulus_dyn_cm = r.number(p + "shear_modulus_dyn_cm");
+    if (exactly_one(r, "cell_populations[" + std::to_string(i) + "]", "area_fraction", "count",
+                    "area_fraction in (0, 1); or count, an integer >= 1") == 0)
+      pop.area_fraction = r.number(p + "area_fraction");
+    else
+      pop.count = r.integer(p + "count");
+    if (r.has(p + "min_gap_um")) {
+      pop.min_gap_um = r.number(p + "min_gap_um");
+      const double set_up_gap = s.limits.min_cell_gap * s.domain.spacing_um;
+      if (*pop.min_gap_um < set_up_gap)
+        r.fail(*r.find(p + "min_gap_um"), p + "min_gap_um",
+               "is below limits.min_cell_gap × domain.spacing_um = " + format_number(set_up_gap) +
+                   " µm, the set-up's smallest distance between the markers of two cells");
+    }
+    pop.seed = r.integer(p + "seed");
+    pop.attempts_per_cell = r.integer(p + "attempts_per_cell");
+
+    const SeedingResult placed = seed_population(pop, seeding_domain(s), s.cells);
+    if (!placed.reached()) {
+      const std::string target_key = p + (pop.count ? "count" : "area_fraction");
+      r.fail(*r.find(target_key), target_key,
+             "cannot be reached: " + std::to_string(placed.cells.size()) + " of " + std::to_string(placed.target) +
+                 " cells placed (area fraction " + format_number(placed.area_fraction) + ") before " + p +
+                 "attempts_per_cell = " + std::to_string(pop.attempts_per_cell) +
+                 " random draws of the next cell all came closer than " + format_number(placed.gap_um) +
+                 " µm (min_gap_um) to a cell or a wall: lower the target or the gap, or enlarge the domain");
+    }
+    s.population_placements.push_back({s.cells.size(), placed.cells.size(), placed.area_fraction});
+    s.cells.insert(s.cells.end(), placed.cells.begin(), placed.cells.end());
+    s.cell_populations.push_back(pop);
   }
 }
 

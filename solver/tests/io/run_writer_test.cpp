@@ -74,3 +74,40 @@ TEST(RunWriter, AbortedRunKeepsWhatWasWritten) {
   EXPECT_EQ(io::h5::read_attr_string(mass, "units"), "kg/m");
   H5Dclose(mass);
 }
+
+TEST(RunWriter, RecordsTheCellPopulationsSeedAndPlacedCells) {
+  const auto dir = fresh_dir("erythro_writer_populations");
+  {
+    io::RunWriter w(dir.string());
+    scene::Scene scene;
+    scene.cells.resize(3);  // one cell of the file's own, then two of the population
+    scene.cells[1].center_um = {1.5, 2.5};
+    scene.cells[2].center_um = {3.5, 4.5};
+    scene.cells[2].angle_deg = 30.0;
+    scene::CellPopulationSpec pop;
+    pop.seed = 42;
+    pop.area_fraction = 0.3;
+    scene.cell_populations.push_back(pop);
+    scene.population_placements.push_back({1, 2, 0.25});
+    w.on_start(scene, small_setup());
+    w.on_finish(sim::RunSummary{});
+  }
+  auto file = io::h5::open_file_read((dir / "run.h5").string());
+  auto pop = io::h5::open_group(file.id(), "metadata/cell_populations/0");
+  EXPECT_EQ(io::h5::read_attr_double(pop.id(), "seed"), 42.0);
+  EXPECT_EQ(io::h5::read_attr_double(pop.id(), "target_area_fraction"), 0.3);
+  EXPECT_EQ(io::h5::read_attr_double(pop.id(), "area_fraction"), 0.25);
+  EXPECT_EQ(io::h5::read_attr_double(pop.id(), "first_cell"), 1.0);
+  EXPECT_EQ(io::h5::read_attr_double(pop.id(), "cell_count"), 2.0);
+  EXPECT_FALSE(io::h5::has_attr(pop.id(), "target_count"));
+  for (const auto& [name, expected] : {std::pair{"center_x_um", std::vector<double>{1.5, 3.5}},
+                                       std::pair{"center_y_um", std::vector<double>{2.5, 4.5}},
+                                       std::pair{"angle_deg", std::vector<double>{0.0, 30.0}}}) {
+    std::vector<double> values(2);
+    const hid_t attr = H5Aopen(pop.id(), name, H5P_DEFAULT);
+    ASSERT_GE(attr, 0) << name;
+    EXPECT_GE(H5Aread(attr, H5T_NATIVE_DOUBLE, values.data()), 0);
+    H5Aclose(attr);
+    EXPECT_EQ(values, expected) << name;
+  }
+}

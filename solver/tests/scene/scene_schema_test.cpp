@@ -49,6 +49,9 @@ below = 1.0
 [[cells]]
 radius_um = 3.0
 center_um = [10.0, 10.0]
+[[cell_populations]]
+radius_um = 2.0
+count = 1
 [aggregation]
 de_star = 1.0
 [transport]
@@ -75,6 +78,10 @@ const std::map<std::string, Accessor>& accessors() {
         {"body_force.frequency_Hz", [](const Scene& s) -> Value { return s.body_force->frequency_Hz; }},
         {"body_force.phase_rad", [](const Scene& s) -> Value { return s.body_force->phase_rad; }},
         {"initial.type", [](const Scene& s) -> Value { return s.initial.type; }},
+        {"cell_populations.shape", [](const Scene& s) -> Value { return s.cell_populations[0].shape; }},
+        {"cell_populations.seed", [](const Scene& s) -> Value { return s.cell_populations[0].seed; }},
+        {"cell_populations.attempts_per_cell",
+         [](const Scene& s) -> Value { return s.cell_populations[0].attempts_per_cell; }},
         {"initial.velocity_um_s", [](const Scene& s) -> Value { return s.initial.velocity_um_s; }},
         {"initial.non_equilibrium", [](const Scene& s) -> Value { return s.initial.non_equilibrium; }},
         {"run.steady_state.tolerance", [](const Scene& s) -> Value { return s.run.steady_state->tolerance; }},
@@ -241,6 +248,7 @@ TEST(SceneSchema, TheStructInitialisersAgreeWithTheSchema) {
   s.stop_when.emplace_back();
   s.membrane.emplace();
   s.cells.emplace_back();
+  s.cell_populations.emplace_back();
   s.aggregation.emplace();
   s.transport.emplace();
   s.species.emplace_back();

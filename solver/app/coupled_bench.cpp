@@ -1,0 +1,218 @@
+// The coupled-step section of `erythro bench` (coupled_bench.hpp). For each cell count N a
+// square shear box is sized so that N biconcave cells cover φ = 0.3 of it, with the fluid,
+// membrane and shear of scenes/rbc_suspension_shear.toml. The scene goes the product's way
+// (scene text → scene::parse_scene, which seeds the cells → derive_lattice → sim::Simulation,
+// as io::run_scene, without an output file), and the time loop's own stage timings
+// (RunSummary::stages) give the cost of each stage. Beside it, one after the other in the
+// same process, the same grid without cells (fluid only): the extra cost per cell and step
+// is (coupled step − fluid-only step)/N, and the grid-proportional overhead of the cells is
+// the fluid step with cells (forces, per-node τ of the interior) over the fluid-only one.
+#include "app/coupled_bench.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "app/bench_metric.hpp"
+#include "geometry/polygon.hpp"
+#include "io/result_record.hpp"
+#include "scene/cell_seeding.hpp"
+#include "scene/scene_parser.hpp"
+#include "scene/units.hpp"
+#include "simulation/simulation.hpp"
+
+namespace erythro::app {
+namespace {
+
+// The suspension of scenes/rbc_suspension_shear.toml (the dimensionless groups of
+// validation/rbc/rbc.toml at h = 0.15 µm).
+constexpr double kSpacingUm = 0.15;
+constexpr double kShearRatePerS = 3828.8986444262964;
+constexpr double kAreaFraction = 0.3;
+constexpr double kRadiusUm = 3.91;
+constexpr int kMarkers = 184;
+
+// The area of one cell's marker polygon.
+double cell_area_um2() {
+  scene::CellSpec c;
+  c.shape = "biconcave";
+  c.radius_um = kRadiusUm;
+  c.markers = kMarkers;
+  return std::abs(geometry::signed_area(scene::cell_outline_um(c, kSpacingUm)));
+}
+
+// Nodes along each side of the square box where `cells` cells cover kAreaFraction.
+int box_nodes(int cells) {
+  return static_cast<int>(std::ceil(std::sqrt(cells * cell_area_um2() / kAreaFraction) / kSpacingUm));
+}
+
+// The scene of an n × n box with `cells` cells (0: the fluid alone, without [membrane]);
+// health checked and diagnostics sampled once, at the last step.
+std::string scene_text(int n, int cells, long steps) {
+  const double side = n * kSpacingUm, wall_speed = 0.5 * kShearRatePerS * side;
+  std::ostringstream s;
+  s.precision(17);
+  s << "[domain]\nsize_um = [" << side << ", " << side << "]\nspacing_um = " << kSpacingUm << "\n"
+    << "[time]\ntau = 1.0\n[fluid]\ndensity_kg_m3 = 1025.0\nviscosity_cP = 1.2\n"
+    << "[boundaries.bottom]\ntype = \"moving_wall\"\nvelocity_um_s = [" << -wall_speed << ", 0.0]\n"
+    << "[boundaries.top]\ntype = \"moving_wall\"\nvelocity_um_s = [" << wall_speed << ", 0.0]\n"
+    << "[initial]\ntype = \"shear\"\n[run]\nsteps = " << steps << "\n"
+    << "[monitor]\ninterval_steps = " << steps << "\n"
+    << "[output]\nfields_interval_steps = 0\ndiagnostics_interval_steps = " << steps << "\n";
+  if (cells > 0)
+    s << "[membrane]\nlaw = \"neo_hookean\"\nshear_modulus_dyn_cm = 0.22973391866557774\n"
+      << "bending_modulus_dyn_cm = 1.3784035119934664e-10\narea_modulus_Pa = 5875.547791958511\n"
+      << "kernel = \"cosine4\"\ninterior_viscosity_cP = 6.0\ninterior_method = \"flood_fill\"\n"
+      << "[[cell_populations]]\nshape = \"biconcave\"\nradius_um = " << kRadiusUm << "\nmarkers = " << kMarkers
+      << "\ncount = " << cells << "\nseed = 1\n";
+  return s.str();
+}
+
+// A scene ready to be simulated (parsed, seeded, derived once per box: the set-up's overlap
+// check of 128 cells takes a while).
+struct Prepared {
+  scene::Scene scene;
+  scene::LatticeSetup setup;
+};
+
+Prepared prepare(int n, int cells, long steps) {
+  scene::Scene s = scene::parse_scene(scene_text(n, cells, steps), "bench_coupled_" + std::to_string(cells) + ".toml");
+  scene::LatticeSetup setup = scene::derive_lattice(s);
+  return {std::move(s), std::move(setup)};
+}
+
+class Silent : public sim::RunObserver {};
+
+// Seconds of each stage of one run, without the observe phase (progress, observation).
+struct Timed {
+  std::vector<std::pair<std::string, double>> stages;  // in the loop's order
+  double step_seconds = 0.0;                             // their sum / steps
+  double fluid_step_seconds = 0.0;
+};
+
+Timed time_run(const Prepared& p, long steps) {
+  sim::Simulation simulation(p.scene, p.setup);
+  Silent silent;
+  const sim::RunSummary summary = simulation.run(silent);
+  if (summary.status != sim::RunStatus::completed)
+    throw std::runtime_error("bench: the coupled-step run ended early (" + sim::to_string(summary.status) +
+                             "): " + summary.diagnosis);
+  Timed t;
+  for (const sim::StageTiming& stage : summary.stages) {
+    if (stage.phase == sim::Phase::observe) continue;
+    t.stages.emplace_back(stage.name, stage.seconds);
+    t.step_seconds += stage.seconds / static_cast<double>(steps);
+    if (stage.name == "fluid_step") t.fluid_step_seconds = stage.seconds / static_cast<double>(steps);
+  }
+  return t;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+struct Measurement {
+  double fluid_only_us = 0.0, coupled_us = 0.0, fluid_with_cells_us = 0.0;  // per step, medians over pairs
+  double extra_per_cell_us = 0.0, grid_overhead = 0.0;                      // medians over pairs
+  std::vector<std::pair<std::string, double>> stage_us;                     // per step, over all pairs
+};
+
+Measurement measure(const Prepared& coupled, const Prepared& fluid_only, int cells, const CoupledBenchOptions& o) {
+  std::vector<double> fluid_only_us, coupled_us, with_cells_us, extra, overhead;
+  std::map<std::string, double> stage_seconds;
+  Measurement m;
+  for (int pair = 0; pair < o.pairs; ++pair) {
+    const Timed f = time_run(fluid_only, o.steps);
+    const Timed c = time_run(coupled, o.steps);
+    fluid_only_us.push_back(1e6 * f.step_seconds);
+    coupled_us.push_back(1e6 * c.step_seconds);
+    with_cells_us.push_back(1e6 * c.fluid_step_seconds);
+    extra.push_back(1e6 * (c.step_seconds - f.step_seconds) / cells);
+    overhead.push_back(c.fluid_step_seconds / f.fluid_step_seconds);
+    for (const auto& [name, seconds] : c.stages) {
+      if (pair == 0) m.stage_us.emplace_back(name, 0.0);
+      stage_seconds[name] += seconds;
+    }
+  }
+  const double steps = static_cast<double>(o.steps) * o.pairs;
+  for (auto& [name, us] : m.stage_us) us = 1e6 * stage_seconds[name] / steps;
+  m.fluid_only_us = median(fluid_only_us);
+  m.coupled_us = median(coupled_us);
+  m.fluid_with_cells_us = median(with_cells_us);
+  m.extra_per_cell_us = median(extra);
+  m.grid_overhead = median(overhead);
+  return m;
+}
+
+}  // namespace
+
+void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
+  record.set_parameter("coupled_scene", std::string("scenes/rbc_suspension_shear.toml, box sized per cell count"));
+  record.set_parameter("coupled_area_fraction", kAreaFraction);
+  record.set_parameter("coupled_markers_per_cell", static_cast<double>(kMarkers));
+  record.set_parameter("coupled_steps_per_run", static_cast<double>(o.steps));
+  record.set_parameter("coupled_pairs", static_cast<double>(o.pairs));
+  std::printf("\ncoupled step: biconcave cells (%d markers, flood-fill interior 6 cP) at area fraction %.2f in a shear "
+              "box, h = %.2f um; %ld steps per run, %d pair(s) (fluid only, then coupled), medians\n",
+              kMarkers, kAreaFraction, kSpacingUm, o.steps, o.pairs);
+  std::printf("%5s %9s %3s %6s %12s %12s %14s %14s %9s\n", "cells", "grid", "thr", "phi", "fluid-only", "coupled",
+              "fluid w/ cells", "extra/cell", "grid ovh");
+  std::printf("%5s %9s %3s %6s %12s %12s %14s %14s %9s\n", "", "", "", "", "us/step", "us/step", "us/step",
+              "us/(cell step)", "");
+  std::vector<std::string> stage_lines;
+  for (int cells : o.cells) {
+    const int n = box_nodes(cells);
+    const Prepared coupled = prepare(n, cells, o.steps);
+    const Prepared fluid_only = prepare(n, 0, o.steps);
+    const double phi = cells * cell_area_um2() / (n * kSpacingUm * n * kSpacingUm);
+    for (int threads : o.threads) {
+      omp_set_num_threads(threads);
+      const Measurement m = measure(coupled, fluid_only, cells, o);
+      std::printf("%5d %4dx%-4d %3d %6.3f %12.1f %12.1f %14.1f %14.2f %9.3f\n", cells, n, n, threads, phi,
+                  m.fluid_only_us, m.coupled_us, m.fluid_with_cells_us, m.extra_per_cell_us, m.grid_overhead);
+      std::fflush(stdout);
+      std::ostringstream line;
+      line.precision(3);
+      line << std::fixed << "  " << cells << " cells, " << threads << " thr:";
+      std::map<std::string, io::Value> row{{"kind", std::string("coupled step")},
+                                                           {"cells", static_cast<double>(cells)},
+                                                           {"grid_n", static_cast<double>(n)},
+                                                           {"threads", static_cast<double>(threads)},
+                                                           {"area_fraction", phi},
+                                                           {"fluid_only_us_per_step", m.fluid_only_us},
+                                                           {"coupled_us_per_step", m.coupled_us},
+                                                           {"fluid_step_with_cells_us_per_step", m.fluid_with_cells_us},
+                                                           {"extra_us_per_cell_step", m.extra_per_cell_us},
+                                                           {"grid_overhead", m.grid_overhead}};
+      for (const auto& [name, us] : m.stage_us) {
+        // Cell stages per cell and step; the fluid step per step (it scales with the grid).
+        const bool grid_stage = name == "fluid_step" || name == "force_field_reset";
+        const double value = grid_stage ? us : us / cells;
+        line << " " << name << " " << value << (grid_stage ? " us" : " us/cell");
+        row[name + (grid_stage ? "_us_per_step" : "_us_per_cell_step")] = value;
+      }
+      stage_lines.push_back(line.str());
+      record.add_run(row);
+      const std::string tag = std::to_string(cells) + "_t" + std::to_string(threads);
+      record.add_metric(informative("coupled_extra_us_per_cell_step_" + tag,
+                                    "(coupled step - fluid-only step of the same grid) / cells, median over pairs",
+                                    "us", m.extra_per_cell_us));
+      record.add_metric(informative("coupled_grid_overhead_" + tag,
+                                    "fluid step with cells (forces, interior tau field) / fluid-only fluid step", "",
+                                    m.grid_overhead));
+    }
+  }
+  std::printf("stages (mean over all runs; cell stages per cell and step, fluid_step and force_field_reset per step):\n");
+  for (const std::string& l : stage_lines) std::printf("%s\n", l.c_str());
+}
+
+}  // namespace erythro::app

@@ -1,0 +1,23 @@
+#pragma once
+// The coupled-step section of `erythro bench` (issue 18): the cost of the immersed cells in
+// a suspension, per cell and step, beside the fluid step of the same grid without cells.
+// Informative only. Method and figures: docs/performance.md "The coupled step benchmark".
+#include <vector>
+
+namespace erythro::io {
+class ResultRecord;
+}
+
+namespace erythro::app {
+
+struct CoupledBenchOptions {
+  std::vector<int> cells{2, 8, 32, 128};  // cells per box; the box is sized for φ = 0.3
+  std::vector<int> threads{1, 2};
+  long steps = 300;  // time steps of each timed run
+  int pairs = 3;     // fluid-only and coupled runs, one after the other; medians reported
+};
+
+// Runs the section, prints its table and adds its runs and metrics to `record`.
+void run_coupled_bench(const CoupledBenchOptions& options, io::ResultRecord& record);
+
+}  // namespace erythro::app
