@@ -68,6 +68,13 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     reject(s, "membrane.interior_viscosity_cP = " + num(spec.interior_viscosity_cP.value_or(0.0)) +
                   " cP gives an interior relaxation time tau = " + num(M.interior_tau) + ", below the limit " +
                   num(0.5 + s.limits.min_tau_margin) + " (limits.min_tau_margin): raise it or raise time.tau");
+  if (mechanics && !(M.interior_tau <= s.limits.max_tau))
+    reject(s, "membrane.interior_viscosity_cP = " + num(spec.interior_viscosity_cP.value_or(0.0)) +
+                  " cP gives an interior relaxation time tau = " + num(M.interior_tau) + ", above the limit " +
+                  num(s.limits.max_tau) + " (limits.max_tau): lower it or lower time.tau");
+  if (mechanics && spec.interior_viscosity_cP)
+    check_trt_tau_minus(s, L, M.interior_tau,
+                        "the interior's, membrane.interior_viscosity_cP = " + num(*spec.interior_viscosity_cP) + " cP");
 
   const double h_um = s.domain.spacing_um;
   const int n[2] = {L.grid.nx, L.grid.ny};
@@ -76,6 +83,12 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     const CellSpec& c = s.cells[i];
     if (c.markers != 0 && c.markers < 8)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(c.markers) + " must be >= 8");
+    // The centre first: the shape placed far outside would lose its markers' spacing to round-off.
+    const double centre[2] = {c.center_um[0] / h_um, c.center_um[1] / h_um};
+    for (int a = 0; a < 2; ++a)
+      if (!(centre[a] >= 0.0 && centre[a] < n[a]))
+        reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm lies outside the domain " +
+                      vec(s.domain.size_um) + " µm");
     std::string size_key = cell_key(i, "radius_um"), size_shown = num(c.radius_um) + " µm";
     // The shape centred at the origin, its size divided by `shrink` (the rest shape of a
     // pre-stressed cell: shrink = prestretch).
@@ -90,10 +103,25 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       size_key = cell_key(i, "semi_axes_um");
       size_shown = vec(c.semi_axes_um) + " µm";
     }
-    // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16.
-    const int m = c.markers != 0 ? static_cast<int>(c.markers)
-                                 : std::max(16, static_cast<int>(std::ceil(geometry::perimeter(make(512)) * c.scale /
-                                                                            kAutoMarkerSpacing)));
+    // A membrane in a fluid longer than the domain's diagonal fits in no orientation: say so
+    // before its marker count and spacing are computed from a size that is a typo. (A fixed
+    // shape in a still medium may cover the whole domain: a uniform cell interior.)
+    const double longest_um =
+        2.0 * c.scale * (c.shape == "ellipse" ? std::max(c.semi_axes_um[0], c.semi_axes_um[1]) : c.radius_um);
+    const double diagonal_um = std::hypot(s.domain.size_um[0], s.domain.size_um[1]);
+    if (mechanics && longest_um > diagonal_um)
+      reject(s, "cell " + std::to_string(i) + " does not fit in the domain: " + size_key + " = " + size_shown +
+                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + ") spans " + num(longest_um) + " µm, more than the domain's diagonal " +
+                    num(diagonal_um) + " µm (domain.size_um = " + vec(s.domain.size_um) + " µm)");
+    // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16; no more than
+    // cells.markers allows (the schema's bound, 1e6).
+    const double auto_markers = std::ceil(geometry::perimeter(make(512)) * c.scale / kAutoMarkerSpacing);
+    if (c.markers == 0 && auto_markers > 1e6)
+      reject(s, "cell " + std::to_string(i) + " (" + size_key + " = " + size_shown + ", × " + cell_key(i, "scale") + " = " + num(c.scale) +
+                    ") would get " + num(auto_markers) + " markers at the automatic spacing of " +
+                    num(kAutoMarkerSpacing) + " h, more than 1e6 (the most " + cell_key(i, "markers") +
+                    " allows): make domain.spacing_um larger");
+    const int m = c.markers != 0 ? static_cast<int>(c.markers) : std::max(16, static_cast<int>(auto_markers));
     const geometry::Polygon base = make(m);
     CellSetup cell;
     cell.model = M.model;
@@ -116,7 +144,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     }
     if (cell.equivalent_radius < kMinCellRadius)
       reject(s, "resolution too coarse: cell " + std::to_string(i) + " has " + size_key + " = " + size_shown +
-                    " (× scale " + num(c.scale) + "), an equivalent radius √(A/π) of " + num(cell.equivalent_radius) +
+                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + "), an equivalent radius √(A/π) of " + num(cell.equivalent_radius) +
                     " h, below " + num(kMinCellRadius) + " h: enlarge the cell or make domain.spacing_um <= " +
                     num(h_um * cell.equivalent_radius / kMinCellRadius) + " µm");
     // Marker spacing matters for a membrane in a fluid (leaks, stiffness); a fixed shape in a
@@ -126,17 +154,12 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too few: markers are up to " +
                     num(cell.max_edge) + " h apart, more than " + num(max_spacing) +
                     " h (limits.max_marker_spacing; fluid leaks between markers): use markers >= " +
-                    std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / max_spacing))));
+                    num(std::ceil(m * cell.max_edge / max_spacing)));
     if (mechanics && cell.min_edge < kMinMarkerSpacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too many: markers are as close as " +
                     num(cell.min_edge) + " h, less than " + num(kMinMarkerSpacing) +
                     " h (over-resolved membrane, stiff and noisy): use markers <= " +
-                    std::to_string(static_cast<long>(std::floor(m * cell.min_edge / kMinMarkerSpacing))));
-    const double centre[2] = {c.center_um[0] / h_um, c.center_um[1] / h_um};
-    for (int a = 0; a < 2; ++a)
-      if (!(centre[a] >= 0.0 && centre[a] < n[a]))
-        reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm lies outside the domain " +
-                      vec(s.domain.size_um) + " µm");
+                    num(std::floor(m * cell.min_edge / kMinMarkerSpacing)));
     for (int a = 0; a < 2; ++a) {
       if (periodic[a]) continue;
       const auto& coords = a == 0 ? cell.shape.x : cell.shape.y;
@@ -181,13 +204,19 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       // D_e = γ/|J(d*)|); SI throughout, then the layer's own conversion.
       const aggregation::MorseParameters shape{1.0, p.r0_m, p.beta_per_m, p.cutoff_m};
       const double Es_N_m = spec.shear_modulus_dyn_cm * membrane::kDynPerCm;
+      if (a.de_star && !(Es_N_m > 0.0))
+        reject(s, "aggregation.de_star = " + num(*a.de_star) + " is γ/E_S, but membrane.shear_modulus_dyn_cm = " +
+                      num(spec.shear_modulus_dyn_cm) + " dyn/cm: give E_S > 0, or the strength as "
+                      "aggregation.surface_energy_J_m2 or aggregation.pair_density_Pa");
       if (a.pair_density_Pa) p.De_Pa = *a.pair_density_Pa;
       if (a.surface_energy_J_m2) p.De_Pa = aggregation::pair_density_for(*a.surface_energy_J_m2, shape);
       if (a.de_star) p.De_Pa = aggregation::pair_density_for_de_star(*a.de_star, Es_N_m, shape);
       M.aggregation = aggregation::to_lattice(p, ms);
       M.aggregation_flat_gap = aggregation::flat_contact(*M.aggregation).gap;
     } catch (const std::invalid_argument& e) {
-      reject(s, std::string("[aggregation]: ") + e.what());
+      reject(s, "[aggregation] with aggregation.zero_force_distance_um = " + num(a.zero_force_distance_um) +
+                    " µm, aggregation.decay_per_um = " + num(a.decay_per_um) + " /µm, aggregation.cutoff_um = " +
+                    num(p.cutoff_m * 1e6) + " µm: " + e.what());
     }
     for (int axis = 0; axis < 2; ++axis)
       if (periodic[axis] && M.aggregation->cutoff >= 0.5 * n[axis])
