@@ -12,6 +12,7 @@ struct RunOptions {
   std::vector<std::string> overrides;
   bool force = false;   // overwrite an existing run in out_dir
   bool quiet = false;
+  bool ignore_memory_check = false;  // run even if the estimated memory exceeds what is available
 };
 
 int run_command(const RunOptions& options);

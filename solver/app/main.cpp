@@ -22,6 +22,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--set", run.overrides, "Override a scene key: --set fluid.tau=0.8 (repeatable)");
   run_cmd->add_flag("--force", run.force, "Overwrite an earlier run in the output folder");
   run_cmd->add_flag("--quiet", run.quiet, "No progress display");
+  run_cmd->add_flag("--ignore-memory-check", run.ignore_memory_check,
+                    "Run even if the estimated memory exceeds the available memory");
 
   std::string check_scene;
   std::vector<std::string> check_overrides;
