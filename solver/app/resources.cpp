@@ -29,15 +29,16 @@ void check_run_resources(const scene::ResourceEstimate& estimate, const std::str
   if (available && need > *available && !ignore_memory_check) {
     const auto largest = std::max_element(estimate.memory.begin(), estimate.memory.end(),
                                           [](const auto& a, const auto& b) { return a.bytes < b.bytes; });
-    throw InputError(scene_path + ": the run needs about " + scene::format_bytes(need) + " of memory (an estimate; the largest part: " +
-                     largest->what + ", " + scene::format_bytes(largest->bytes) + "), more than the " +
+    throw InputError(scene_path + ": the run needs about " + scene::format_bytes(need) +
+                     " of memory (an estimate; the largest part: " + largest->what + ", " +
+                     scene::format_bytes(largest->bytes) + "), more than the " +
                      scene::format_bytes(*available) +
                      " available (MemAvailable, /proc/meminfo): coarsen domain.spacing_um or shrink domain.size_um "
                      "(`erythro check` shows the estimate), or pass --ignore-memory-check to run it anyway");
   }
   if (estimate.output_bytes() > kLargeOutputBytes)
-    warnings << "erythro: warning: " << scene_path << ": the run will write about " << scene::format_bytes(estimate.output_bytes())
-             << " to run.h5 (an estimate: " << estimate.field_snapshots
+    warnings << "erythro: warning: " << scene_path << ": the run will write about "
+             << scene::format_bytes(estimate.output_bytes()) << " to run.h5 (an estimate: " << estimate.field_snapshots
              << " field snapshots; `erythro check` shows the parts): raise output.fields_interval_steps or "
                 "output.diagnostics_interval_steps if that is not intended\n";
 }

@@ -111,16 +111,17 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     const double diagonal_um = std::hypot(s.domain.size_um[0], s.domain.size_um[1]);
     if (mechanics && longest_um > diagonal_um)
       reject(s, "cell " + std::to_string(i) + " does not fit in the domain: " + size_key + " = " + size_shown +
-                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + ") spans " + num(longest_um) + " µm, more than the domain's diagonal " +
-                    num(diagonal_um) + " µm (domain.size_um = " + vec(s.domain.size_um) + " µm)");
+                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + ") spans " + num(longest_um) +
+                    " µm, more than the domain's diagonal " + num(diagonal_um) + " µm (domain.size_um = " +
+                    vec(s.domain.size_um) + " µm)");
     // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16; no more than
     // cells.markers allows (the schema's bound, 1e6).
     const double auto_markers = std::ceil(geometry::perimeter(make(512)) * c.scale / kAutoMarkerSpacing);
     if (c.markers == 0 && auto_markers > 1e6)
-      reject(s, "cell " + std::to_string(i) + " (" + size_key + " = " + size_shown + ", × " + cell_key(i, "scale") + " = " + num(c.scale) +
-                    ") would get " + num(auto_markers) + " markers at the automatic spacing of " +
-                    num(kAutoMarkerSpacing) + " h, more than 1e6 (the most " + cell_key(i, "markers") +
-                    " allows): make domain.spacing_um larger");
+      reject(s, "cell " + std::to_string(i) + " (" + size_key + " = " + size_shown + ", × " + cell_key(i, "scale") +
+                    " = " + num(c.scale) + ") would get " + num(auto_markers) +
+                    " markers at the automatic spacing of " + num(kAutoMarkerSpacing) + " h, more than 1e6 (the most " +
+                    cell_key(i, "markers") + " allows): make domain.spacing_um larger");
     const int m = c.markers != 0 ? static_cast<int>(c.markers) : std::max(16, static_cast<int>(auto_markers));
     const geometry::Polygon base = make(m);
     CellSetup cell;
@@ -144,8 +145,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     }
     if (cell.equivalent_radius < kMinCellRadius)
       reject(s, "resolution too coarse: cell " + std::to_string(i) + " has " + size_key + " = " + size_shown +
-                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + "), an equivalent radius √(A/π) of " + num(cell.equivalent_radius) +
-                    " h, below " + num(kMinCellRadius) + " h: enlarge the cell or make domain.spacing_um <= " +
+                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + "), an equivalent radius √(A/π) of " +
+                    num(cell.equivalent_radius) + " h, below " + num(kMinCellRadius) +
+                    " h: enlarge the cell or make domain.spacing_um <= " +
                     num(h_um * cell.equivalent_radius / kMinCellRadius) + " µm");
     // Marker spacing matters for a membrane in a fluid (leaks, stiffness); a fixed shape in a
     // still medium is only a polygon (e.g. 800 markers for exact area fractions).

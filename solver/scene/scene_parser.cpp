@@ -552,7 +552,9 @@ Scene read_scene(const Reader& r, const std::string& origin) {
     if (r.has("aggregation.cutoff_um")) a.cutoff_um = cutoff;
     if (cutoff <= a.zero_force_distance_um)
       throw InputError(r.where_table("aggregation") + ": aggregation.cutoff_um = " + format_number(cutoff) + " µm" +
-                       (a.cutoff_um ? "" : " (r0 + 5/β, aggregation.decay_per_um = " + format_number(a.decay_per_um) + " /µm)") +
+                       (a.cutoff_um ? ""
+                                    : " (r0 + 5/β, aggregation.decay_per_um = " + format_number(a.decay_per_um) +
+                                          " /µm)") +
                        " must exceed aggregation.zero_force_distance_um = " +
                        format_number(a.zero_force_distance_um) + " µm (the potential is cut beyond r_c)");
     s.aggregation = a;

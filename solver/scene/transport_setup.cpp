@@ -76,7 +76,9 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
   const std::string sources =
       std::string(" (h: domain.spacing_um; Δt_T: ") +
       (spec.coupling == "none" ? "transport.time_step_s" : "transport.fluid_steps_per_step × the fluid's Δt") +
-      (L.has_fluid ? "; speed: the fluid's expected max speed" : spec.velocity_um_s ? "; speed: transport.velocity_um_s" : "") +
+      (L.has_fluid              ? "; speed: the fluid's expected max speed"
+       : spec.velocity_um_s     ? "; speed: transport.velocity_um_s"
+                                : "") +
       ")";
   const bool periodic_side[4] = {L.boundaries.left.type == fluid::SideType::periodic,
                                  L.boundaries.right.type == fluid::SideType::periodic,

@@ -316,7 +316,8 @@ LatticeSetup derive_lattice(const Scene& s) {
                    "; u_lattice = u Δt / h)";
     reject(s, "expected Mach number " + num(L.mach) + " exceeds limits.max_mach = " + num(s.limits.max_mach) +
                   ": the speed " + num(top.speed * L.scales.velocity_m_s() * 1e6) + " µm/s (" + num(top.speed) +
-                  " lattice = u Δt/h, Δt = " + num(dt) + " s from " + dt_source + ") is set by " + top.key + " = " + top.shown + (top.estimate ? " (estimate)" : "") +
+                  " lattice = u Δt/h, Δt = " + num(dt) + " s from " + dt_source + ") is set by " + top.key + " = " +
+                  top.shown + (top.estimate ? " (estimate)" : "") +
                   "; lower it by a factor " + num(1.0 / r) + smaller_dt + ", or refine domain.spacing_um");
   }
   // Re = u L / ν, L = wall-to-wall distance (the narrower one if both axes have walls);

@@ -67,7 +67,8 @@ struct MembraneSetup {
 inline constexpr double kMinCellRadius = 3.0;   // equivalent radius >= 3 h
 inline const double kMaxMarkerSpacing = LimitsSpec{}.max_marker_spacing; // default: every edge <= h (no leaks)
 inline constexpr double kMinMarkerSpacing = 0.3; // every edge >= 0.3 h (over-resolved markers stiffen)
-inline const double kMinCellGap = LimitsSpec{}.min_cell_gap;  // default: markers of two cells, or a marker and a wall, >= h apart
+// default: markers of two cells, or a marker and a wall, >= h apart
+inline const double kMinCellGap = LimitsSpec{}.min_cell_gap;
 inline constexpr double kAutoMarkerSpacing = 0.7; // cells.markers absent: perimeter / 0.7 h markers (>= 16)
 
 // One transported species in transport lattice units (h, Δt_T; concentrations in µM).
