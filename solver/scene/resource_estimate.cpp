@@ -84,7 +84,8 @@ ResourceEstimate estimate_resources(const Scene& s, const LatticeSetup& L) {
     for (const std::string& f : s.output.fields) per_snapshot += (f == "velocity" ? 3.0 : 1.0);
   if (L.transport) per_snapshot += static_cast<double>(L.transport->species.size());
   e.output.push_back({"fields", e.field_snapshots * per_snapshot * nodes * kDouble});
-  if (markers > 0.0) e.output.push_back({"cells", e.field_snapshots * 5.0 * markers * kDouble});
+  // Markers are written with the fluid's fields only (a still medium's cells do not move).
+  if (markers > 0.0 && L.has_fluid) e.output.push_back({"cells", e.field_snapshots * 5.0 * markers * kDouble});
 
   const double cells = L.membrane ? static_cast<double>(L.membrane->cells.size()) : 0.0;
   const double species = L.transport ? static_cast<double>(L.transport->species.size()) : 0.0;
