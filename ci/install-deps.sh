@@ -10,6 +10,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   python3 python3-numpy python3-scipy python3-matplotlib python3-h5py python3-sympy
   paraview python3-paraview   # the output test opens run.xdmf with ParaView's XDMF reader (pvbatch)
+  clang libomp-dev            # ci/fuzz.sh: libFuzzer is clang's; OpenMP for clang is libomp
 )
 # Optional: headless Chromium to look at the V&V report (reports/screenshot.sh).
 if [[ ${ERYTHRO_BROWSER:-0} == 1 ]]; then

@@ -16,7 +16,17 @@ if(ERYTHRO_SANITIZE)
   target_link_options(erythro_flags INTERFACE -fsanitize=address,undefined)
   # GCC's -Wmaybe-uninitialized gives false positives inside libstdc++ (std::regex,
   # std::function) under sanitizer instrumentation; the Release build keeps it.
-  target_compile_options(erythro_flags INTERFACE -Wno-maybe-uninitialized)
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(erythro_flags INTERFACE -Wno-maybe-uninitialized)
+  endif()
+endif()
+if(ERYTHRO_FUZZ)
+  # libFuzzer's coverage instrumentation in every library the target calls; the target
+  # itself links the fuzzer's main (solver/tests/fuzz). ci/fuzz.sh also sets ERYTHRO_SANITIZE.
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "ERYTHRO_FUZZ needs clang (libFuzzer): -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++")
+  endif()
+  target_compile_options(erythro_flags INTERFACE -fsanitize=fuzzer-no-link)
 endif()
 # Strict IEEE semantics: no -ffast-math, so round-off tests mean what they say, and no
 # floating-point contraction (a·b + c → fma): with contraction the compiler fuses

@@ -6,15 +6,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <optional>
 
 #include "app/progress.hpp"
+#include "app/resources.hpp"
 #include "app/restart.hpp"
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/baseline_compare.hpp"
 #include "io/output_folder.hpp"
 #include "io/scene_run.hpp"
+#include "scene/resource_estimate.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
 #include "simulation/interrupt.hpp"
@@ -39,6 +42,8 @@ int guarded(Body&& body) {
     return report(exit_code::bad_input, e.what());
   } catch (const OutputError& e) {
     return report(exit_code::output_failure, e.what());
+  } catch (const std::bad_alloc&) {  // e.g. a run started with --ignore-memory-check
+    return report(exit_code::runtime_failure, "out of memory (`erythro check` shows the run's estimated memory)");
   } catch (const std::exception& e) {
     return report(exit_code::runtime_failure, std::string("internal error: ") + e.what());
   }
@@ -85,6 +90,8 @@ int run_command(const RunOptions& options) {
     if (!options.restart_dir.empty()) restart.emplace(options);
     scene::Scene scene = restart ? restart->take_scene() : scene::load_scene(options.scene_path, options.overrides);
     const scene::LatticeSetup setup = scene::derive_lattice(scene);
+    check_run_resources(scene::estimate_resources(scene, setup), options.scene_path, options.ignore_memory_check,
+                        std::cerr);
     const std::string out_dir =
         restart ? restart->out_dir()
         : options.out_dir.empty() ? (fs::path("out") / fs::path(options.scene_path).stem()).string()
@@ -121,7 +128,8 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
   return guarded([&] {
     const scene::Scene scene = scene::load_scene(scene_path, overrides);
     const scene::LatticeSetup setup = scene::derive_lattice(scene);
-    std::cout << scene::format_lattice_report(scene, setup);
+    std::cout << scene::format_lattice_report(scene, setup)
+              << scene::format_resource_report(scene::estimate_resources(scene, setup));
     return exit_code::ok;
   });
 }

@@ -13,6 +13,7 @@ struct RunOptions {
   bool force = false;   // overwrite an existing run in out_dir
   bool quiet = false;
   std::string restart_dir;  // --restart: continue the run of this folder (app/restart.hpp)
+  bool ignore_memory_check = false;  // run even if the estimated memory exceeds what is available
 };
 
 int run_command(const RunOptions& options);

@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--quiet", run.quiet, "No progress display");
   run_cmd->add_option("--restart", run.restart_dir,
                       "Continue the run whose output folder DIR holds a checkpoint (docs/cli.md)");
+  run_cmd->add_flag("--ignore-memory-check", run.ignore_memory_check,
+                    "Run even if the estimated memory exceeds the available memory");
 
   std::string check_scene;
   std::vector<std::string> check_overrides;

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <vector>
@@ -32,6 +33,41 @@ bool inside(const geometry::Polygon& p, double px, double py) {
       in = !in;
   }
   return in;
+}
+
+// The smallest distance between a marker of `a` and one of `b` (nearest periodic image) when
+// it is below `within`, else +inf. The markers of `b` are binned in squares of side at least
+// max(within, h), so each marker of `a` searches the 3 × 3 squares around it: O(markers)
+// instead of O(markers²), which for two cells of 1e6 markers each kept `check` busy for hours.
+double closest_within(const geometry::Polygon& a, const geometry::Polygon& b, const int n[2], const bool periodic[2],
+                      double within) {
+  const double side = std::max(within, 1.0);
+  long count[2];  // squares across a periodic axis (they wrap round); 0: unbounded
+  double width[2];
+  for (int k = 0; k < 2; ++k) {
+    count[k] = periodic[k] ? std::max(1L, static_cast<long>(std::floor(n[k] / side))) : 0;
+    width[k] = periodic[k] ? static_cast<double>(n[k]) / static_cast<double>(count[k]) : side;
+  }
+  const auto square = [&](double v, int k) {
+    if (periodic[k]) v -= n[k] * std::floor(v / n[k]);  // into [0, n)
+    return static_cast<long>(std::floor(v / width[k]));
+  };
+  const auto wrap = [&](long i, int k) { return count[k] ? (i % count[k] + count[k]) % count[k] : i; };
+  std::map<std::pair<long, long>, std::vector<std::size_t>> bins;
+  for (std::size_t q = 0; q < b.size(); ++q) bins[{square(b.x[q], 0), square(b.y[q], 1)}].push_back(q);
+  double closest = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < a.size(); ++p) {
+    const long ix = square(a.x[p], 0), iy = square(a.y[p], 1);
+    for (long dx = -1; dx <= 1; ++dx)
+      for (long dy = -1; dy <= 1; ++dy) {
+        const auto bin = bins.find({wrap(ix + dx, 0), wrap(iy + dy, 1)});
+        if (bin == bins.end()) continue;
+        for (const std::size_t q : bin->second)
+          closest = std::min(closest, std::hypot(axis_gap(a.x[p] - b.x[q], n[0], periodic[0]),
+                                                 axis_gap(a.y[p] - b.y[q], n[1], periodic[1])));
+      }
+  }
+  return closest < within ? closest : std::numeric_limits<double>::infinity();
 }
 
 std::string cell_key(std::size_t i, const char* key) { return "cells[" + std::to_string(i) + "]." + key; }
@@ -70,6 +106,13 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     reject(s, "membrane.interior_viscosity_cP = " + num(spec.interior_viscosity_cP.value_or(0.0)) +
                   " cP gives an interior relaxation time tau = " + num(M.interior_tau) + ", below the limit " +
                   num(0.5 + s.limits.min_tau_margin) + " (limits.min_tau_margin): raise it or raise time.tau");
+  if (mechanics && !(M.interior_tau <= s.limits.max_tau))
+    reject(s, "membrane.interior_viscosity_cP = " + num(spec.interior_viscosity_cP.value_or(0.0)) +
+                  " cP gives an interior relaxation time tau = " + num(M.interior_tau) + ", above the limit " +
+                  num(s.limits.max_tau) + " (limits.max_tau): lower it or lower time.tau");
+  if (mechanics && spec.interior_viscosity_cP)
+    check_trt_tau_minus(s, L, M.interior_tau,
+                        "the interior's, membrane.interior_viscosity_cP = " + num(*spec.interior_viscosity_cP) + " cP");
 
   const double h_um = s.domain.spacing_um;
   const int n[2] = {L.grid.nx, L.grid.ny};
@@ -82,6 +125,12 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     const CellSpec& c = s.cells[i];
     if (c.markers != 0 && c.markers < 8)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(c.markers) + " must be >= 8");
+    // The centre first: the shape placed far outside would lose its markers' spacing to round-off.
+    const double centre[2] = {c.center_um[0] / h_um, c.center_um[1] / h_um};
+    for (int a = 0; a < 2; ++a)
+      if (!(centre[a] >= 0.0 && centre[a] < n[a]))
+        reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm lies outside the domain " +
+                      vec(s.domain.size_um) + " µm");
     std::string size_key = cell_key(i, "radius_um"), size_shown = num(c.radius_um) + " µm";
     // The shape centred at the origin, its size divided by `shrink` (the rest shape of a
     // pre-stressed cell: shrink = prestretch).
@@ -96,10 +145,26 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       size_key = cell_key(i, "semi_axes_um");
       size_shown = vec(c.semi_axes_um) + " µm";
     }
-    // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16.
-    const int m = c.markers != 0 ? static_cast<int>(c.markers)
-                                 : std::max(16, static_cast<int>(std::ceil(geometry::perimeter(make(512)) * c.scale /
-                                                                            kAutoMarkerSpacing)));
+    // A membrane in a fluid longer than the domain's diagonal fits in no orientation: say so
+    // before its marker count and spacing are computed from a size that is a typo. (A fixed
+    // shape in a still medium may cover the whole domain: a uniform cell interior.)
+    const double longest_um =
+        2.0 * c.scale * (c.shape == "ellipse" ? std::max(c.semi_axes_um[0], c.semi_axes_um[1]) : c.radius_um);
+    const double diagonal_um = std::hypot(s.domain.size_um[0], s.domain.size_um[1]);
+    if (mechanics && longest_um > diagonal_um)
+      reject(s, "cell " + std::to_string(i) + " does not fit in the domain: " + size_key + " = " + size_shown +
+                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + ") spans " + num(longest_um) +
+                    " µm, more than the domain's diagonal " + num(diagonal_um) + " µm (domain.size_um = " +
+                    vec(s.domain.size_um) + " µm)");
+    // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16; no more than
+    // cells.markers allows (the schema's bound, 1e6).
+    const double auto_markers = std::ceil(geometry::perimeter(make(512)) * c.scale / kAutoMarkerSpacing);
+    if (c.markers == 0 && auto_markers > 1e6)
+      reject(s, "cell " + std::to_string(i) + " (" + size_key + " = " + size_shown + ", × " + cell_key(i, "scale") +
+                    " = " + num(c.scale) + ") would get " + num(auto_markers) +
+                    " markers at the automatic spacing of " + num(kAutoMarkerSpacing) + " h, more than 1e6 (the most " +
+                    cell_key(i, "markers") + " allows): make domain.spacing_um larger");
+    const int m = c.markers != 0 ? static_cast<int>(c.markers) : std::max(16, static_cast<int>(auto_markers));
     const geometry::Polygon base = make(m);
     CellSetup cell;
     cell.model = M.model;
@@ -122,8 +187,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     }
     if (cell.equivalent_radius < kMinCellRadius)
       reject(s, "resolution too coarse: cell " + std::to_string(i) + " has " + size_key + " = " + size_shown +
-                    " (× scale " + num(c.scale) + "), an equivalent radius √(A/π) of " + num(cell.equivalent_radius) +
-                    " h, below " + num(kMinCellRadius) + " h: enlarge the cell or make domain.spacing_um <= " +
+                    " (× " + cell_key(i, "scale") + " = " + num(c.scale) + "), an equivalent radius √(A/π) of " +
+                    num(cell.equivalent_radius) + " h, below " + num(kMinCellRadius) +
+                    " h: enlarge the cell or make domain.spacing_um <= " +
                     num(h_um * cell.equivalent_radius / kMinCellRadius) + " µm");
     // Marker spacing matters for a membrane in a fluid (leaks, stiffness); a fixed shape in a
     // still medium is only a polygon (e.g. 800 markers for exact area fractions).
@@ -132,17 +198,12 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too few: markers are up to " +
                     num(cell.max_edge) + " h apart, more than " + num(max_spacing) +
                     " h (limits.max_marker_spacing; fluid leaks between markers): use markers >= " +
-                    std::to_string(static_cast<long>(std::ceil(m * cell.max_edge / max_spacing))));
+                    num(std::ceil(m * cell.max_edge / max_spacing)));
     if (mechanics && cell.min_edge < kMinMarkerSpacing)
       reject(s, "key '" + cell_key(i, "markers") + "' = " + std::to_string(m) + " is too many: markers are as close as " +
                     num(cell.min_edge) + " h, less than " + num(kMinMarkerSpacing) +
                     " h (over-resolved membrane, stiff and noisy): use markers <= " +
-                    std::to_string(static_cast<long>(std::floor(m * cell.min_edge / kMinMarkerSpacing))));
-    const double centre[2] = {c.center_um[0] / h_um, c.center_um[1] / h_um};
-    for (int a = 0; a < 2; ++a)
-      if (!(centre[a] >= 0.0 && centre[a] < n[a]))
-        reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm lies outside the domain " +
-                      vec(s.domain.size_um) + " µm");
+                    num(std::floor(m * cell.min_edge / kMinMarkerSpacing)));
     for (int a = 0; a < 2; ++a) {
       if (periodic[a]) continue;
       const auto& coords = a == 0 ? cell.shape.x : cell.shape.y;
@@ -162,11 +223,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                                       axis_gap(centre[1] - bounds[j][1], n[1], periodic[1]));
       if (apart - reach - bounds[j][2] >= s.limits.min_cell_gap) continue;
       const geometry::Polygon& o = M.cells[j].shape;
-      double closest = std::numeric_limits<double>::infinity();
-      for (std::size_t p = 0; p < cell.shape.size(); ++p)
-        for (std::size_t q = 0; q < o.size(); ++q)
-          closest = std::min(closest, std::hypot(axis_gap(cell.shape.x[p] - o.x[q], n[0], periodic[0]),
-                                                 axis_gap(cell.shape.y[p] - o.y[q], n[1], periodic[1])));
+      const double closest = closest_within(cell.shape, o, n, periodic, s.limits.min_cell_gap);
       const bool nested = inside(o, cell.shape.x[0], cell.shape.y[0]) || inside(cell.shape, o.x[0], o.y[0]);
       if (nested || closest < s.limits.min_cell_gap)
         reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm makes cell " +
@@ -194,13 +251,19 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       // D_e = γ/|J(d*)|); SI throughout, then the layer's own conversion.
       const aggregation::MorseParameters shape{1.0, p.r0_m, p.beta_per_m, p.cutoff_m};
       const double Es_N_m = spec.shear_modulus_dyn_cm * membrane::kDynPerCm;
+      if (a.de_star && !(Es_N_m > 0.0))
+        reject(s, "aggregation.de_star = " + num(*a.de_star) + " is γ/E_S, but membrane.shear_modulus_dyn_cm = " +
+                      num(spec.shear_modulus_dyn_cm) + " dyn/cm: give E_S > 0, or the strength as "
+                      "aggregation.surface_energy_J_m2 or aggregation.pair_density_Pa");
       if (a.pair_density_Pa) p.De_Pa = *a.pair_density_Pa;
       if (a.surface_energy_J_m2) p.De_Pa = aggregation::pair_density_for(*a.surface_energy_J_m2, shape);
       if (a.de_star) p.De_Pa = aggregation::pair_density_for_de_star(*a.de_star, Es_N_m, shape);
       M.aggregation = aggregation::to_lattice(p, ms);
       M.aggregation_flat_gap = aggregation::flat_contact(*M.aggregation).gap;
     } catch (const std::invalid_argument& e) {
-      reject(s, std::string("[aggregation]: ") + e.what());
+      reject(s, "[aggregation] with aggregation.zero_force_distance_um = " + num(a.zero_force_distance_um) +
+                    " µm, aggregation.decay_per_um = " + num(a.decay_per_um) + " /µm, aggregation.cutoff_um = " +
+                    num(p.cutoff_m * 1e6) + " µm: " + e.what());
     }
     for (int axis = 0; axis < 2; ++axis)
       if (periodic[axis] && M.aggregation->cutoff >= 0.5 * n[axis])

@@ -1,7 +1,6 @@
 // The key reference of docs/scenes.md (key_reference.hpp), written from the scene schema.
 #include "scene/key_reference.hpp"
 
-#include <cmath>
 #include <vector>
 
 #include "scene/scene_schema.hpp"
@@ -17,11 +16,12 @@ const char* const kIntro =
     "\n"
     "Types: *number* is a TOML float or integer (`2` is read as `2.0`). *integer* must be a TOML\n"
     "integer: `steps = 10.5` and `steps = 10.0` are both errors. *[a, b]* is an array of exactly two\n"
-    "numbers. Ranges: `(a, b]` excludes `a` and includes `b`. A default in `code` is the value a\n"
-    "missing key takes; a default in words says when the key is required or how its value follows\n"
-    "from other keys. A condition after the range involves other keys: the parser\n"
-    "(`solver/scene/scene_parser.cpp`) or the conversion to lattice units (`solver/scene/units.cpp`)\n"
-    "checks it.\n";
+    "numbers. Ranges: `(a, b]` excludes `a` and includes `b`. Every range is finite: ±1e30 is the\n"
+    "outer limit of any number, 1e-30 of a positive one and 1e12 of a step count (\"Error\n"
+    "messages\" below says why). A default in `code` is the value a missing key takes; a default in\n"
+    "words says when the key is required or how its value follows from other keys. A condition\n"
+    "after the range involves other keys: the parser (`solver/scene/scene_parser.cpp`) or the\n"
+    "conversion to lattice units (`solver/scene/units.cpp`) checks it.\n";
 
 // A table cell: '|' would end the cell.
 std::string cell(const std::string& text) {
@@ -45,14 +45,9 @@ std::string type_name(Kind kind) {
   return "?";
 }
 
-// "> 0", "≥ 1", "[1, 1e+06]", "(0, 1]", "finite".
+// "[1, 1e+06]", "(0.5, 1e+30]": every bound is finite on both sides (scene_schema.hpp).
 std::string bound_text(const Bound& b) {
-  const bool has_lo = std::isfinite(b.lo), has_hi = std::isfinite(b.hi);
-  if (has_lo && has_hi)
-    return (b.lo_open ? "(" : "[") + format_number(b.lo) + ", " + format_number(b.hi) + (b.hi_open ? ")" : "]");
-  if (has_lo) return (b.lo_open ? "> " : "≥ ") + format_number(b.lo);
-  if (has_hi) return (b.hi_open ? "< " : "≤ ") + format_number(b.hi);
-  return "finite";
+  return (b.lo_open ? "(" : "[") + format_number(b.lo) + ", " + format_number(b.hi) + (b.hi_open ? ")" : "]");
 }
 
 // The allowed values of a key on their own, then the rule involving other keys.
@@ -66,8 +61,7 @@ std::string allowed_text(const KeySpec& k) {
   } else if (k.kind == Kind::boolean) {
     s = "true, false";
   } else {
-    const bool bounded = std::isfinite(k.bound.lo) || std::isfinite(k.bound.hi);
-    s = (k.kind == Kind::vec2 && bounded ? "each " : "") + bound_text(k.bound);
+    s = (k.kind == Kind::vec2 ? "each " : "") + bound_text(k.bound);
   }
   if (k.rule.empty()) return s;
   return s == "any" ? k.rule : s + "; " + k.rule;

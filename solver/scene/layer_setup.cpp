@@ -32,6 +32,10 @@ std::vector<fluid::ViscosityLayer> derive_layers(const Scene& s, const LatticeSe
     if (!(layer.tau >= tau_min))
       reject(s, "key '" + key + "viscosity_cP' = " + num(spec.viscosity_cP) + " gives τ = " + num(layer.tau) +
                     ", below " + num(tau_min) + " (0.5 + limits.min_tau_margin): raise time.tau or the viscosity");
+    if (!(layer.tau <= s.limits.max_tau))
+      reject(s, "key '" + key + "viscosity_cP' = " + num(spec.viscosity_cP) + " gives τ = " + num(layer.tau) +
+                    ", above " + num(s.limits.max_tau) + " (limits.max_tau): lower time.tau or the viscosity");
+    check_trt_tau_minus(s, L, layer.tau, key + "viscosity_cP = " + num(spec.viscosity_cP) + " cP");
     out.push_back(layer);
   }
   return out;

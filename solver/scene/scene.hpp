@@ -282,6 +282,7 @@ struct HemoglobinSpec {
 
 struct LimitsSpec {
   double min_tau_margin = 0.005;   // reject τ < 0.5 + margin
+  double max_tau = 10.0;           // reject τ > this (the wall error grows as (τ − ½)²)
   double max_mach = 0.1;           // reject a set-up whose expected |u|/c_s exceeds this
   int min_nodes_across_channel = 4;  // reject a wall-bounded direction with fewer nodes
   // A membrane beyond the explicit-update stability estimate (membrane/stability.hpp):

@@ -16,10 +16,14 @@ void add_cell_population_keys(std::vector<KeySpec>& k);  // population_keys.cpp
 
 namespace {
 
-const Bound any{};
-const Bound positive{0.0, true};
+// Ranges of physical quantities (scene_schema.hpp: every range is finite on both sides).
+const Bound positive{kMinPositive, false};
 const Bound non_negative{0.0, false};
-const Bound at_least_one{1.0, false};
+// Step counts and periods: the longest run has 1e12 steps (units.cpp, run_steps), so no
+// count or period needs more.
+constexpr double kMaxSteps = 1e12;
+const Bound steps_at_least_one{1.0, false, kMaxSteps, false};
+const Bound steps_non_negative{0.0, false, kMaxSteps, false};
 
 // [[species]] left, right, bottom, top and their values.
 void add_species_sides(std::vector<KeySpec>& k) {
@@ -88,12 +92,12 @@ std::vector<KeySpec> make_keys() {
        .unit = "s",
        .bound = positive,
        .when_absent = note("exactly one of `step_s` and `tau` (neither with `transport.coupling = \"none\"`)"),
-       .rule = "τ from it ≥ 0.5 + `limits.min_tau_margin`",
+       .rule = "τ from it in [0.5 + `limits.min_tau_margin`, `limits.max_tau`]",
        .meaning = "Time step Δt of the fluid; τ follows from it"},
       {.path = "time.tau",
        .bound = Bound{0.5, true},
        .when_absent = note("exactly one of `step_s` and `tau` (neither with `transport.coupling = \"none\"`)"),
-       .rule = "≥ 0.5 + `limits.min_tau_margin`",
+       .rule = "in [0.5 + `limits.min_tau_margin`, `limits.max_tau`]",
        .meaning = "Relaxation time τ; Δt = (τ − ½) h² / (3ν) follows from it"},
       // [fluid]
       {.path = "fluid.density_kg_m3",
@@ -115,6 +119,7 @@ std::vector<KeySpec> make_keys() {
       {.path = "fluid.trt_magic",
        .bound = positive,
        .when_absent = literal("0.1875"),
+       .rule = "τ− = ½ + Λ/(τ − ½) ≥ 0.5 + `limits.min_tau_margin`",
        .meaning = "TRT magic parameter Λ = (τ+ − ½)(τ− − ½), 3/16 by default; used by `trt` only"},
       // [body_force]
       {.path = "body_force.density_N_m3",
@@ -165,13 +170,13 @@ std::vector<KeySpec> make_keys() {
        .unit = "cP",
        .bound = positive,
        .when_absent = note("required"),
-       .rule = "τ_layer ≥ 0.5 + `limits.min_tau_margin`",
+       .rule = "τ_layer in [0.5 + `limits.min_tau_margin`, `limits.max_tau`]",
        .meaning = "Dynamic viscosity in the layer"},
       // [run]
       {.path = "run.steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = at_least_one,
+       .bound = steps_at_least_one,
        .when_absent = note("exactly one of `steps` and `duration_s`"),
        .meaning = "Number of time steps"},
       {.path = "run.duration_s",
@@ -186,14 +191,14 @@ std::vector<KeySpec> make_keys() {
       {.path = "run.steady_state.check_interval_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = at_least_one,
+       .bound = steps_at_least_one,
        .when_absent = literal("100"),
        .meaning = "k, the number of steps between two checks"},
       // [monitor]
       {.path = "monitor.interval_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = at_least_one,
+       .bound = steps_at_least_one,
        .when_absent = literal("100"),
        .meaning = "Period of the health check during the run"},
       {.path = "monitor.max_mach",
@@ -219,13 +224,13 @@ std::vector<KeySpec> make_keys() {
       {.path = "output.fields_interval_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = non_negative,
+       .bound = steps_non_negative,
        .when_absent = literal("0"),
        .meaning = "Field snapshot period; 0: only the initial and final states"},
       {.path = "output.diagnostics_interval_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = non_negative,
+       .bound = steps_non_negative,
        .when_absent = literal("100"),
        .meaning = "Period of the scalar diagnostics; 0: only the initial and final values"},
       {.path = "output.fields",
@@ -237,14 +242,14 @@ std::vector<KeySpec> make_keys() {
       {.path = "output.extremes_interval_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = non_negative,
+       .bound = steps_non_negative,
        .when_absent = literal("0"),
        .meaning = "Cells: steps between updates of the running extremes (`cells_max_area_change`, "
                   "`cells_max_edge_strain`, `cells_max_marker_speed_um_s`); 0: only at the diagnostics samples"},
       {.path = "output.dense_diagnostics_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = non_negative,
+       .bound = steps_non_negative,
        .when_absent = literal("0"),
        .meaning = "Also sample the diagnostics at every one of the first this many steps (the start of a transient)"},
       {.path = "output.checkpoint_interval_steps",
@@ -280,27 +285,33 @@ std::vector<KeySpec> make_keys() {
       {.path = "stop_when.window_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = at_least_one,
+       .bound = steps_at_least_one,
        .when_absent = note("required with `change_below`"),
        .rule = "only with `change_below`",
        .meaning = "Steps between the two values `change_below` compares"},
       {.path = "stop_when.min_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = non_negative,
+       .bound = steps_non_negative,
        .when_absent = literal("0"),
        .meaning = "The condition is not checked before this many steps"},
       {.path = "stop_when.after_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = non_negative,
+       .bound = steps_non_negative,
        .when_absent = literal("0"),
        .meaning = "The run goes on for this many steps after the condition first holds"},
       // [limits]
       {.path = "limits.min_tau_margin",
        .bound = non_negative,
        .when_absent = literal("0.005"),
-       .meaning = "Reject τ < 0.5 + margin (the fluid, its layers and the cells' interior)"},
+       .meaning = "Reject τ < 0.5 + margin (the fluid, its layers and the cells' interior; TRT's τ− too)"},
+      {.path = "limits.max_tau",
+       .bound = Bound{0.5, true},
+       .when_absent = literal("10.0"),
+       .rule = "> 0.5 + `min_tau_margin`",
+       .meaning = "Reject τ > this (the fluid, its layers and the cells' interior): a large τ is a large Δt against "
+                  "the viscous time h²/ν, and BGK's bounce-back wall moves off its place as (τ − ½)² (docs/model.md)"},
       {.path = "limits.max_mach",
        .bound = positive,
        .when_absent = literal("0.1"),
@@ -364,7 +375,7 @@ std::vector<KeySpec> make_keys() {
        .unit = "cP",
        .bound = positive,
        .when_absent = note("the fluid's viscosity, and no index field"),
-       .rule = "the interior τ ≥ 0.5 + `limits.min_tau_margin`",
+       .rule = "the interior τ in [0.5 + `limits.min_tau_margin`, `limits.max_tau`]",
        .meaning = "Cytoplasm viscosity μ_in, set through the index field (RBC 6.0 cP, thesis §II.4)"},
       {.path = "membrane.interior_method",
        .kind = Kind::string,

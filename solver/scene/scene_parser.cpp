@@ -476,6 +476,13 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   read_stop_when(r, s);
 
   s.limits.min_tau_margin = r.number("limits.min_tau_margin");
+  s.limits.max_tau = r.number("limits.max_tau");
+  if (!(s.limits.max_tau > 0.5 + s.limits.min_tau_margin)) {  // blame the one the scene gives
+    const char* key = r.has("limits.max_tau") ? "limits.max_tau" : "limits.min_tau_margin";
+    r.fail(*r.find(key), key,
+           "leaves no τ allowed: limits.max_tau = " + format_number(s.limits.max_tau) +
+               " must exceed 0.5 + limits.min_tau_margin = " + format_number(0.5 + s.limits.min_tau_margin));
+  }
   s.limits.max_mach = r.number("limits.max_mach");
   s.limits.min_nodes_across_channel =
       static_cast<int>(r.integer("limits.min_nodes_across_channel"));
@@ -549,8 +556,11 @@ Scene read_scene(const Reader& r, const std::string& origin) {
     const double cutoff = r.number("aggregation.cutoff_um", a.zero_force_distance_um + 5.0 / a.decay_per_um);
     if (r.has("aggregation.cutoff_um")) a.cutoff_um = cutoff;
     if (cutoff <= a.zero_force_distance_um)
-      throw InputError(r.where_table("aggregation") + ": aggregation.cutoff_um = " + format_number(cutoff) +
-                       " µm must exceed aggregation.zero_force_distance_um = " +
+      throw InputError(r.where_table("aggregation") + ": aggregation.cutoff_um = " + format_number(cutoff) + " µm" +
+                       (a.cutoff_um ? ""
+                                    : " (r0 + 5/β, aggregation.decay_per_um = " + format_number(a.decay_per_um) +
+                                          " /µm)") +
+                       " must exceed aggregation.zero_force_distance_um = " +
                        format_number(a.zero_force_distance_um) + " µm (the potential is cut beyond r_c)");
     s.aggregation = a;
   }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <limits>
 
 namespace erythro::scene::detail {
 namespace {
@@ -56,18 +57,9 @@ std::string range_text(const KeySpec& k) {
   }
   if (k.kind == Kind::string) return "must be a string";
   if (k.kind == Kind::boolean) return "must be true or false";
-  const Bound& b = k.bound;
-  const bool has_lo = std::isfinite(b.lo), has_hi = std::isfinite(b.hi);
-  if (has_lo && has_hi) {
-    s = "must be in " + std::string(b.lo_open ? "(" : "[") + format_number(b.lo) + ", " +
-        format_number(b.hi) + (b.hi_open ? ")" : "]");
-  } else if (has_lo) {
-    s = std::string("must be ") + (b.lo_open ? "> " : ">= ") + format_number(b.lo);
-  } else if (has_hi) {
-    s = std::string("must be ") + (b.hi_open ? "< " : "<= ") + format_number(b.hi);
-  } else {
-    s = "must be finite";
-  }
+  const Bound& b = k.bound;  // always finite on both sides (scene_schema.hpp)
+  s = "must be in " + std::string(b.lo_open ? "(" : "[") + format_number(b.lo) + ", " + format_number(b.hi) +
+      (b.hi_open ? ")" : "]");
   if (k.kind == Kind::vec2) s = "each component " + s;
   if (!k.unit.empty()) s += " (" + k.unit + ")";
   return s;

@@ -4,7 +4,6 @@
 // parser takes its checks and defaults from it, and the key reference of docs/scenes.md
 // is generated from it (key_reference.hpp).
 #include <cmath>
-#include <limits>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -12,15 +11,21 @@
 
 namespace erythro::scene::detail {
 
-inline constexpr double inf = std::numeric_limits<double>::infinity();
+// Every number in a scene has a finite range on both sides, at widest |x| <= 1e30 in its key's
+// unit (and a positive quantity >= 1e-30, scene_keys.cpp): 30 orders of magnitude beyond any
+// physical scene, yet far inside a double's range (1e±308), so the conversions to lattice
+// units (products and quotients of a few keys) stay finite and non-zero, and the set-up
+// checks after them compare real numbers and blame the key that is wrong, not a derived one.
+inline constexpr double kMaxMagnitude = 1e30;
+inline constexpr double kMinPositive = 1e-30;
 
 enum class Kind { string, number, integer, vec2, string_list, boolean };
 
-// Allowed interval of a number (or of each element of a vec2).
+// Allowed interval of a number (or of each element of a vec2); NaN and ±inf never belong.
 struct Bound {
-  double lo = -inf;
+  double lo = -kMaxMagnitude;
   bool lo_open = false;  // true: lo itself is excluded
-  double hi = inf;
+  double hi = kMaxMagnitude;
   bool hi_open = false;
 
   bool contains(double v) const {

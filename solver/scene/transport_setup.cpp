@@ -72,6 +72,14 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
   const double u_max_um_s = L.has_fluid ? L.expected_max_speed * L.scales.velocity_m_s() * 1e6
                             : spec.velocity_um_s ? std::hypot((*spec.velocity_um_s)[0], (*spec.velocity_um_s)[1])
                                                  : 0.0;
+  // The keys behind h, Δt_T and the speed, for the messages: any of them may be the one off.
+  const std::string sources =
+      std::string(" (h: domain.spacing_um; Δt_T: ") +
+      (spec.coupling == "none" ? "transport.time_step_s" : "transport.fluid_steps_per_step × the fluid's Δt") +
+      (L.has_fluid              ? "; speed: the fluid's expected max speed"
+       : spec.velocity_um_s     ? "; speed: transport.velocity_um_s"
+                                : "") +
+      ")";
   const bool periodic_side[4] = {L.boundaries.left.type == fluid::SideType::periodic,
                                  L.boundaries.right.type == fluid::SideType::periodic,
                                  L.boundaries.bottom.type == fluid::SideType::periodic,
@@ -88,7 +96,7 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
         std::string all;
         for (const auto& p : problems) all += (all.empty() ? "" : "; ") + p;
         reject(s, "key '" + species_key(i, key) + "' = " + num(D) + " µm²/s with h = " + num(units.h_um) +
-                      " µm and Δt_T = " + num(units.dt_s) + " s: " + all);
+                      " µm and Δt_T = " + num(units.dt_s) + " s" + sources + ": " + all);
       }
     }
     out.diffusivity = units.diffusivity(sp.diffusivity_um2_s);

@@ -37,6 +37,10 @@ Grid make_grid(const Scene& s) {
     n[a] = std::max(1.0, std::round(ratio));
     whole = whole && std::abs(ratio - n[a]) <= 1e-6 * n[a];
   }
+  // The size first: a grid too large to run needs no advice on its spacing.
+  if (n[0] * n[1] > 2e9)
+    reject(s, "domain.size_um = " + vec(L) + " µm at domain.spacing_um = " + num(h) + " µm has " +
+                  num(n[0] * n[1]) + " nodes; at most 2e9 are supported");
   if (!whole) {
     // The spacing closest to h that divides both sizes (h' = Lx/Nx with Ly/h' whole).
     double best = 0.0;
@@ -51,7 +55,6 @@ Grid make_grid(const Scene& s) {
                   (best > 0.0 ? "nearest valid spacing is " + std::string(spacing) + " µm, or " : "") +
                   "set domain.size_um = " + vec({n[0] * h, n[1] * h}));
   }
-  if (n[0] * n[1] > 2e9) reject(s, "domain has " + num(n[0] * n[1]) + " nodes; at most 2e9 are supported");
   return Grid{static_cast<int>(n[0]), static_cast<int>(n[1])};
 }
 
@@ -140,8 +143,9 @@ fluid::BoundaryConfig make_boundaries(const Scene& s, double u_scale) {
 }
 
 // The run's length in steps of `dt`: run.steps, or ⌈duration / Δt⌉ (a ratio within
-// 1e-9 of a whole number is that number).
-long run_steps(const Scene& s, double dt) {
+// 1e-9 of a whole number is that number). `dt_source` names the keys Δt follows from, for
+// a duration too long: the step may be the one that is off (e.g. a huge viscosity at a given τ).
+long run_steps(const Scene& s, double dt, const std::string& dt_source) {
   if (s.run.steps.has_value() == s.run.duration_s.has_value())
     reject(s, "give exactly one of run.steps or run.duration_s");
   long steps = 0;
@@ -151,7 +155,7 @@ long run_steps(const Scene& s, double dt) {
     const double x = *s.run.duration_s / dt;
     if (!(x <= 1e12))
       reject(s, "run.duration_s = " + num(*s.run.duration_s) + " s is " + num(x) + " steps of Δt = " + num(dt) +
-                    " s; at most 1e12 steps are supported");
+                    " s (from " + dt_source + "); at most 1e12 steps are supported: shorten the run or enlarge Δt");
     const double r = std::round(x);
     steps = std::max(1L, static_cast<long>(std::abs(x - r) <= 1e-9 * x ? r : std::ceil(x)));
   }
@@ -193,7 +197,7 @@ LatticeSetup derive_still_medium(const Scene& s) {
                 "\"none\" builds none (use \"wall\")");
   }
   L.boundaries = make_boundaries(s, 0.0);
-  L.total_steps = run_steps(s, dt);
+  L.total_steps = run_steps(s, dt, "transport.time_step_s");
   if (!s.cells.empty()) L.membrane = derive_membrane(s, L, /*mechanics=*/false);
   L.transport = derive_transport(s, L);
   return L;
@@ -231,6 +235,16 @@ LatticeSetup derive_lattice(const Scene& s) {
     reject(s, "key 'time.step_s' = " + num(dt) + " s gives τ = " + num(tau) + ", below " + num(tau_min) + why +
                   ": time.step_s must be >= " + num(dt_min) + " s for this spacing and viscosity");
   }
+  if (!(tau <= s.limits.max_tau)) {  // the same two messages at the other end
+    const double tau_max = s.limits.max_tau;
+    const std::string why = " (limits.max_tau; a large τ is a large Δt against the viscous time h²/ν, and the walls' "
+                            "error grows as (τ − ½)²)";
+    if (s.time.tau)
+      reject(s, "key 'time.tau' = " + num(tau) + " is out of range: must be <= " + num(tau_max) + why);
+    const double dt_max = (tau_max - 0.5) * h * h / (3.0 * nu);
+    reject(s, "key 'time.step_s' = " + num(dt) + " s gives τ = " + num(tau) + ", above " + num(tau_max) + why +
+                  ": time.step_s must be <= " + num(dt_max) + " s for this spacing and viscosity");
+  }
   L.scales = UnitScales{h, dt, s.fluid.density_kg_m3};
   L.viscosity = (tau - 0.5) * d2q9::cs2;
 
@@ -240,6 +254,7 @@ LatticeSetup derive_lattice(const Scene& s) {
   if (!(s.fluid.trt_magic > 0.0)) reject(s, "fluid.trt_magic = " + num(s.fluid.trt_magic) + " must be > 0");
   L.collision.tau = tau;
   L.collision.trt_magic = s.fluid.trt_magic;
+  check_trt_tau_minus(s, L, tau, s.time.tau ? "time.tau" : "τ from time.step_s");
 
   // --- boundaries: u_lat = u Δt / h
   const double u_scale = 1e-6 * dt / h;  // µm/s → lattice
@@ -278,7 +293,11 @@ LatticeSetup derive_lattice(const Scene& s) {
   }
 
   // --- run length in fluid steps
-  L.total_steps = run_steps(s, dt);
+  // Where Δt comes from, for the messages about quantities it scales (steps, lattice speeds).
+  const std::string dt_source = s.time.tau ? "time.tau, domain.spacing_um, fluid.viscosity_cP and "
+                                             "fluid.density_kg_m3: Δt = (τ − ½) h²/(3ν)"
+                                           : "time.step_s";
+  L.total_steps = run_steps(s, dt, dt_source);
 
   // --- expected speed, Mach and Reynolds numbers
   const SpeedSource top = fastest(speed_sources(s, L));
@@ -297,7 +316,8 @@ LatticeSetup derive_lattice(const Scene& s) {
                    "; u_lattice = u Δt / h)";
     reject(s, "expected Mach number " + num(L.mach) + " exceeds limits.max_mach = " + num(s.limits.max_mach) +
                   ": the speed " + num(top.speed * L.scales.velocity_m_s() * 1e6) + " µm/s (" + num(top.speed) +
-                  " lattice) is set by " + top.key + " = " + top.shown + (top.estimate ? " (estimate)" : "") +
+                  " lattice = u Δt/h, Δt = " + num(dt) + " s from " + dt_source + ") is set by " + top.key + " = " +
+                  top.shown + (top.estimate ? " (estimate)" : "") +
                   "; lower it by a factor " + num(1.0 / r) + smaller_dt + ", or refine domain.spacing_um");
   }
   // Re = u L / ν, L = wall-to-wall distance (the narrower one if both axes have walls);

@@ -61,11 +61,14 @@ struct MembraneSetup {
   double aggregation_flat_gap = 0.0;  // flat-contact equilibrium gap d* (h), shown by `check`
 };
 
-// Fixed set-up rules for cells (docs/scenes.md "Checks done by units.cpp"), in h.
+// Fixed set-up rules for cells (docs/scenes.md "Checks done by units.cpp"), in h. The two
+// defaults read from LimitsSpec are const, not constexpr: LimitsSpec holds a std::string,
+// which clang 14 cannot build at compile time with GCC 12's library (the fuzzing build).
 inline constexpr double kMinCellRadius = 3.0;   // equivalent radius >= 3 h
-inline constexpr double kMaxMarkerSpacing = LimitsSpec{}.max_marker_spacing; // default: every edge <= h (no leaks)
+inline const double kMaxMarkerSpacing = LimitsSpec{}.max_marker_spacing; // default: every edge <= h (no leaks)
 inline constexpr double kMinMarkerSpacing = 0.3; // every edge >= 0.3 h (over-resolved markers stiffen)
-inline constexpr double kMinCellGap = LimitsSpec{}.min_cell_gap;  // default: markers of two cells, or a marker and a wall, >= h apart
+// default: markers of two cells, or a marker and a wall, >= h apart
+inline const double kMinCellGap = LimitsSpec{}.min_cell_gap;
 inline constexpr double kAutoMarkerSpacing = 0.7; // cells.markers absent: perimeter / 0.7 h markers (>= 16)
 
 // One transported species in transport lattice units (h, Δt_T; concentrations in µM).

@@ -31,6 +31,20 @@ inline bool wall_bounded(const Scene& s, int axis) {
   return axis == 0 ? is_wall(s.boundaries.left) : is_wall(s.boundaries.bottom);
 }
 
+// TRT relaxes the odd moments with τ− = ½ + Λ/(τ − ½), which tends to ½ (vanishing
+// relaxation of the fluxes, unstable) as Λ shrinks or τ grows: τ− must keep the margin τ
+// keeps. `tau_source` names what sets τ (the fluid's, a layer's or the cells' interior τ).
+inline void check_trt_tau_minus(const Scene& s, const LatticeSetup& L, double tau, const std::string& tau_source) {
+  if (L.collision.model != fluid::CollisionModel::trt) return;
+  const double magic = L.collision.trt_magic, tau_minus = fluid::trt_tau_minus(tau, magic);
+  const double tau_min = 0.5 + s.limits.min_tau_margin;
+  if (tau_minus >= tau_min && tau_minus > 0.5) return;
+  reject(s, "fluid.collision = \"trt\" with fluid.trt_magic Λ = " + num(magic) + " and τ = " + num(tau) + " (" +
+                tau_source + ") gives τ− = ½ + Λ/(τ − ½) = " + num(tau_minus) + ", below " + num(tau_min) +
+                " (0.5 + limits.min_tau_margin; τ− → ½ leaves the fluxes unrelaxed, unstable): raise fluid.trt_magic "
+                "to >= " + num((tau_min - 0.5) * (tau - 0.5)) + " or lower τ");
+}
+
 // [membrane] and [[cells]] → lattice moduli, placed marker polygons and the stability
 // estimate. Rules (docs/scenes.md): equivalent radius >= kMinCellRadius h, marker
 // spacing in [kMinMarkerSpacing, limits.max_marker_spacing] h, markers >= limits.min_cell_gap h

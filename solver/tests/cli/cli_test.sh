@@ -131,6 +131,24 @@ if cmp -s stale.md "$SRC/docs/scenes.md"; then echo "ok   schema_write_restores_
 printf '# no markers\n' > unmarked.md
 expect schema_no_markers 2 'no generated section' -- "$ERYTHRO" schema --check unmarked.md
 
+# Resources before running (docs/cli.md): `check` prints the estimated memory and output;
+# `run` refuses a 1.9e9-node domain that cannot fit in memory, cleanly (exit 2, not an internal
+# error or bad_alloc, and no output folder), and warns about 1e6 field snapshots before it
+# starts (here the earlier run in run1 then stops it, exit 4, so nothing runs).
+expect resources_check 0 'memory \(estimate\)' -- "$ERYTHRO" check "$SCENE"
+HUGE=(--set 'domain.size_um=[47500, 40000]' --set domain.spacing_um=1)
+expect huge_domain_check 0 'memory \(estimate\) +[0-9.]+ GB' -- "$ERYTHRO" check "$SCENE" "${HUGE[@]}"
+if (( $(awk '/^MemAvailable:/ {print int($2 / 1048576)}' /proc/meminfo) < 200 )); then  # GiB
+  expect huge_domain_refused 2 'poiseuille.toml: the run needs about [0-9.]+ GB of memory.*--ignore-memory-check' -- \
+    "$ERYTHRO" run "$SCENE" "${HUGE[@]}" --out huge --quiet
+  checks=$((checks + 1)); if [[ -e huge ]]; then echo "FAIL huge_domain_refused: created output"; failures=$((failures+1)); else echo "ok   huge_domain_no_output"; fi
+else
+  echo "skip huge_domain_refused: this machine has 200 GiB or more available"
+fi
+expect large_output_warns 4 'warning: .*taylor_green.toml: the run will write about [0-9.]+ GB.*1e\+06 field snapshots' -- \
+  "$ERYTHRO" run "$SRC/scenes/taylor_green.toml" --set run.steps=1000000 --set output.fields_interval_steps=1 \
+  --out run1 --quiet
+
 no_partials no_partial_files
 
 echo "$((checks - failures)) passed, $failures failed"

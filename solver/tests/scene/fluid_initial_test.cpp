@@ -153,7 +153,7 @@ TEST(FluidLayers, ParsedConvertedAndWrittenPerNode) {
 }
 
 TEST(FluidLayers, BadLayersAreRejected) {
-  EXPECT_CONTAINS(error_of([&] { parse(layered, {"fluid.layers[0].viscosity_cP=-1"}); }), "must be > 0 (cP)");
+  EXPECT_CONTAINS(error_of([&] { parse(layered, {"fluid.layers[0].viscosity_cP=-1"}); }), "must be in [1e-30, 1e+30] (cP)");
   EXPECT_CONTAINS(error_of([&] { parse(channel + "[[fluid.layers]]\nviscosity_cP = 3.0\n"); }),
                   "missing key 'fluid.layers[0].y_um'");
   EXPECT_CONTAINS(error_of([&] { parse(layered + "[[fluid.layers]]\ny_um = [0, 1]\nviscosty_cP = 2\n"); }),

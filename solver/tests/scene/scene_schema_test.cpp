@@ -102,6 +102,7 @@ const std::map<std::string, Accessor>& accessors() {
         {"stop_when.min_steps", [](const Scene& s) -> Value { return s.stop_when.at(0).min_steps; }},
         {"stop_when.after_steps", [](const Scene& s) -> Value { return s.stop_when.at(0).after_steps; }},
         {"limits.min_tau_margin", [](const Scene& s) -> Value { return s.limits.min_tau_margin; }},
+        {"limits.max_tau", [](const Scene& s) -> Value { return s.limits.max_tau; }},
         {"limits.max_mach", [](const Scene& s) -> Value { return s.limits.max_mach; }},
         {"limits.min_nodes_across_channel",
          [](const Scene& s) -> Value { return static_cast<long>(s.limits.min_nodes_across_channel); }},
