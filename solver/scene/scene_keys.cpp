@@ -255,7 +255,7 @@ std::vector<KeySpec> make_keys() {
       {.path = "output.checkpoint_interval_steps",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = non_negative,
+       .bound = steps_non_negative,
        .when_absent = literal("0"),
        .meaning = "Steps between checkpoints (OUT/checkpoint.h5, for `erythro run --restart OUT`; docs/cli.md); "
                   "0: none by step count"},
