@@ -78,6 +78,12 @@ expect force_overwrite 0 'results: ' -- "$ERYTHRO" run "$SCENE" --out run1 --qui
 # naming step, node and quantity, exit code 3, and a valid file holding the healthy part.
 expect diverged 3 'diverged at step [0-9]+: (mach|velocity_x|velocity_y|density) = .* at node \([0-9]+, [0-9]+\)' -- \
   "$ERYTHRO" run "$SCENE" --out diverged --quiet --set monitor.max_mach=3e-5 --set monitor.interval_steps=10
+# A membrane torn by a shear far beyond its capillary number (issue 17: this once completed
+# with NaN in its diagnostics) stops at the cell health check, exit code 3.
+CAPSULE="$SRC/scenes/capsule_shear.toml"
+expect torn_membrane 3 'diverged at step [0-9]+: cell 0 (edge strain|area change) = .* exceeds the limit' -- \
+  "$ERYTHRO" run "$CAPSULE" --out torn --quiet --set run.steps=600 \
+  --set 'boundaries.top.velocity_um_s=[5e5,0]' --set 'boundaries.bottom.velocity_um_s=[-5e5,0]'
 # The regression comparer accepts an identical rerun and catches a small change of
 # the discretisation (τ moved by 1e-4), naming the quantity that moved.
 TG="$SRC/scenes/regression/taylor_green.toml"
