@@ -10,9 +10,10 @@
 #include <vector>
 
 #include "aggregation/morse_units.hpp"
-#include "geometry/shapes.hpp"
+#include "geometry/grid_polygon.hpp"
 #include "lattice/d2q9.hpp"
 #include "membrane/membrane_units.hpp"
+#include "scene/cell_shape.hpp"
 #include "scene/units_detail.hpp"
 
 namespace erythro::scene::detail {
@@ -22,17 +23,6 @@ namespace {
 double axis_gap(double d, int n, bool periodic) {
   if (periodic) d -= n * std::round(d / n);
   return d;
-}
-
-// Even-odd rule: is (px, py) inside polygon p?
-bool inside(const geometry::Polygon& p, double px, double py) {
-  bool in = false;
-  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-    if ((p.y[i] > py) != (p.y[j] > py) &&
-        px < (p.x[j] - p.x[i]) * (py - p.y[i]) / (p.y[j] - p.y[i]) + p.x[i])
-      in = !in;
-  }
-  return in;
 }
 
 // The smallest distance between a marker of `a` and one of `b` (nearest periodic image) when
@@ -134,13 +124,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     std::string size_key = cell_key(i, "radius_um"), size_shown = num(c.radius_um) + " µm";
     // The shape centred at the origin, its size divided by `shrink` (the rest shape of a
     // pre-stressed cell: shrink = prestretch).
-    const auto make = [&](int count, double shrink = 1.0) {
-      if (c.shape == "circle") return geometry::circle(count, c.radius_um / h_um / shrink);
-      if (c.shape == "ellipse")
-        return geometry::ellipse(count, c.semi_axes_um[0] / h_um / shrink, c.semi_axes_um[1] / h_um / shrink);
-      if (c.shape == "biconcave") return geometry::biconcave(count, c.radius_um / h_um / shrink);
-      reject(s, "key '" + cell_key(i, "shape") + "' = \"" + c.shape + "\" is not one of \"circle\", \"ellipse\", \"biconcave\"");
-    };
+    const auto make = [&](int count, double shrink = 1.0) { return cell_shape_at_origin(c, count, h_um, shrink); };
     if (c.shape == "ellipse") {
       size_key = cell_key(i, "semi_axes_um");
       size_shown = vec(c.semi_axes_um) + " µm";
@@ -158,7 +142,7 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                     vec(s.domain.size_um) + " µm)");
     // markers = 0 (key absent): perimeter / kAutoMarkerSpacing, at least 16; no more than
     // cells.markers allows (the schema's bound, 1e6).
-    const double auto_markers = std::ceil(geometry::perimeter(make(512)) * c.scale / kAutoMarkerSpacing);
+    const double auto_markers = automatic_marker_count(c, h_um);
     if (c.markers == 0 && auto_markers > 1e6)
       reject(s, "cell " + std::to_string(i) + " (" + size_key + " = " + size_shown + ", × " + cell_key(i, "scale") +
                     " = " + num(c.scale) + ") would get " + num(auto_markers) +
@@ -224,7 +208,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       if (apart - reach - bounds[j][2] >= s.limits.min_cell_gap) continue;
       const geometry::Polygon& o = M.cells[j].shape;
       const double closest = closest_within(cell.shape, o, n, periodic, s.limits.min_cell_gap);
-      const bool nested = inside(o, cell.shape.x[0], cell.shape.y[0]) || inside(cell.shape, o.x[0], o.y[0]);
+      // One inside the other (even–odd rule: a negative signed distance).
+      const bool nested = geometry::signed_distance(o, cell.shape.x[0], cell.shape.y[0]) < 0.0 ||
+                          geometry::signed_distance(cell.shape, o.x[0], o.y[0]) < 0.0;
       if (nested || closest < s.limits.min_cell_gap)
         reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm makes cell " +
                       std::to_string(i) + " overlap cell " + std::to_string(j) + " (" + cell_key(j, "center_um") +

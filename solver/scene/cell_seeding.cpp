@@ -9,8 +9,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "geometry/shapes.hpp"
-#include "scene/units.hpp"
+#include "geometry/grid_polygon.hpp"
+#include "scene/cell_shape.hpp"
 
 namespace erythro::scene {
 namespace {
@@ -20,22 +20,12 @@ using geometry::Polygon;
 // A uniform double in [0, 1) from the top 53 bits of one draw: the same on every platform.
 double uniform01(std::mt19937_64& rng) { return static_cast<double>(rng() >> 11) * 0x1.0p-53; }
 
-// The shape centred at the origin, unrotated, in units of `unit_um` (h for the marker
-// count, 1 for µm), as cell_checks.cpp builds it.
-Polygon shape_of(const CellSpec& c, int markers, double unit_um) {
-  if (c.shape == "circle") return geometry::circle(markers, c.radius_um / unit_um);
-  if (c.shape == "ellipse") return geometry::ellipse(markers, c.semi_axes_um[0] / unit_um, c.semi_axes_um[1] / unit_um);
-  if (c.shape == "biconcave") return geometry::biconcave(markers, c.radius_um / unit_um);
-  throw std::invalid_argument("cell shape \"" + c.shape + "\" is not one of \"circle\", \"ellipse\", \"biconcave\"");
-}
-
-// The marker count of the set-up: the cell's own, or ⌈perimeter / kAutoMarkerSpacing h⌉,
-// at least 16 (the rule of derive_membrane, cell_checks.cpp). Seeded cells carry it
-// explicitly, so the set-up builds exactly the polygons checked here.
+// The marker count of the set-up: the cell's own, or the automatic one, at least 16 (the
+// rule of cell_checks.cpp). Seeded cells carry it explicitly, so the set-up builds exactly
+// the polygons checked here.
 int marker_count(const CellSpec& c, double spacing_um) {
   if (c.markers != 0) return static_cast<int>(c.markers);
-  const double perimeter_h = geometry::perimeter(shape_of(c, 512, spacing_um)) * c.scale;
-  return std::max(16, static_cast<int>(std::ceil(perimeter_h / kAutoMarkerSpacing)));
+  return std::max(16, static_cast<int>(automatic_marker_count(c, spacing_um)));
 }
 
 // Largest distance of a vertex from (cx, cy): the polygon's bounding circle.
@@ -43,15 +33,6 @@ double bounding_radius(const Polygon& p, double cx, double cy) {
   double r = 0.0;
   for (std::size_t i = 0; i < p.size(); ++i) r = std::max(r, std::hypot(p.x[i] - cx, p.y[i] - cy));
   return r;
-}
-
-// Even-odd rule: is (px, py) inside p?
-bool inside(const Polygon& p, double px, double py) {
-  bool in = false;
-  for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
-    if ((p.y[i] > py) != (p.y[j] > py) && px < (p.x[j] - p.x[i]) * (py - p.y[i]) / (p.y[j] - p.y[i]) + p.x[i])
-      in = !in;
-  return in;
 }
 
 struct Point {
@@ -160,14 +141,17 @@ SeedingDomain seeding_domain(const Scene& s) {
 }
 
 Polygon cell_outline_um(const CellSpec& c, double spacing_um) {
-  Polygon p = geometry::transformed(shape_of(c, marker_count(c, spacing_um), 1.0), c.scale,
+  Polygon p = geometry::transformed(cell_shape_at_origin(c, marker_count(c, spacing_um), 1.0), c.scale,
                                     c.angle_deg * std::numbers::pi / 180.0, c.center_um[0], c.center_um[1]);
   geometry::make_counter_clockwise(p);
   return p;
 }
 
 bool polygons_closer_than(const Polygon& a, const Polygon& b, double dx, double dy, double gap) {
-  if (inside(b, a.x[0] - dx, a.y[0] - dy) || inside(a, b.x[0] + dx, b.y[0] + dy)) return true;
+  // One polygon inside the other (even–odd rule: a negative signed distance).
+  if (geometry::signed_distance(b, a.x[0] - dx, a.y[0] - dy) < 0.0 ||
+      geometry::signed_distance(a, b.x[0] + dx, b.y[0] + dy) < 0.0)
+    return true;
   const Box box_a = box_of(a, 0.0, 0.0), box_b = box_of(b, dx, dy);
   if (!box_a.near(box_b, gap)) return false;
   const std::vector<std::size_t> ea = edges_near(a, 0.0, 0.0, box_b, gap), eb = edges_near(b, dx, dy, box_a, gap);
