@@ -48,18 +48,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-struct Stats {
-  double median = 0.0, min = 0.0, max = 0.0;
-  double spread() const { return median > 0.0 ? (max - min) / median : 0.0; }
-};
-
-Stats stats_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  const double median = n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-  return {median, v.front(), v.back()};
-}
-
 // ---------------------------------------------------------------- copy bandwidth
 
 struct FreeDeleter {

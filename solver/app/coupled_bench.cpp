@@ -114,11 +114,7 @@ Timed time_run(const Prepared& p, long steps) {
   return t;
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+double median(std::vector<double> v) { return stats_of(std::move(v)).median; }
 
 struct Measurement {
   double fluid_only_us = 0.0, coupled_us = 0.0, fluid_with_cells_us = 0.0;  // per step, medians over pairs
