@@ -11,6 +11,7 @@ struct HealthReport {
   double value = 0.0;
   double limit = 0.0;  // the bound that was violated (NaN for non-finite)
   double max_speed = 0.0;  // healthy scan: max |u| over all nodes (lattice units)
+  std::string hint;        // optional: which limit and its likely causes, for the message
 };
 
 }  // namespace erythro

@@ -216,7 +216,8 @@ std::vector<KeySpec> make_keys() {
       {.path = "monitor.concentration_range_uM",
        .kind = Kind::vec2,
        .unit = "µM",
-       .when_absent = note("none: finite values only"),
+       .when_absent = note("no upper limit; lower limit −1 % of the start's concentration scale (its largest "
+                           "|C|, the held side values, at least 1 µM): a concentration is never negative"),
        .rule = "lo < hi",
        .meaning = "Transport: the run stops if a species' concentration leaves [lo, hi] at a check (a growing "
                   "oscillation caught before it is a NaN); a cell's saturation outside [0, 1] always stops it"},

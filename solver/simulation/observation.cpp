@@ -44,8 +44,10 @@ std::string describe_transport_divergence(long step, const HealthReport& r, cons
   std::ostringstream out;
   if (r.node_x >= 0) describe_where(out, step, r, setup);
   else out << "diverged at step " << step << ": " << r.quantity << " = " << r.value;  // a cell's saturation
-  out << (std::isnan(r.limit) ? " is not finite" : " is outside its limit " + std::to_string(r.limit))
-      << ". Lower transport.time_step_s or the diffusivity (docs/transport.md).";
+  if (std::isnan(r.limit)) out << " is not finite";
+  else out << " is outside its limit " << r.limit;
+  if (!r.hint.empty()) out << ", " << r.hint;
+  out << ". Lower transport.time_step_s or the diffusivity, or check the sides' values (docs/transport.md).";
   return out.str();
 }
 

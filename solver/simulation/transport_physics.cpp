@@ -35,6 +35,7 @@ TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geo
   const std::size_t N = domain_.grid.size();
   initial_amount_.assign(S, 0.0);
   inflow_.assign(S, 0.0);
+  floor_.assign(S, 0.0);
   for (std::size_t i = 0; i < S; ++i) {
     const scene::SpeciesSetup& sp = setup_.species[i];
     std::vector<double> c(N, sp.initial);
@@ -85,6 +86,21 @@ void TransportPhysics::initialize(std::size_t i, std::span<const double> C) {
   lattices_[i].initialize(C);
   initial_amount_[i] = lattices_[i].stored_amount();
   inflow_[i] = 0.0;
+  floor_[i] = concentration_floor(setup_.species[i].boundaries, C);
+}
+
+// The default lower limit of a species' concentration (no monitor.concentration_range_uM):
+// a concentration is never negative; the scheme's undershoot near a steep front stays far
+// within 1 % of the concentration scale (the start's largest |C|, the held side values,
+// at least 1 µM), while a sink or outward flux that draws more than there is, or a
+// growing oscillation, crosses it.
+double TransportPhysics::concentration_floor(const transport::TransportBoundaries& sides,
+                                             std::span<const double> C) {
+  double scale = 1.0;
+  for (const double c : C) scale = std::max(scale, std::abs(c));
+  for (const transport::Side& side : {sides.left, sides.right, sides.bottom, sides.top})
+    if (side.kind == transport::SideKind::fixed_concentration) scale = std::max(scale, std::abs(side.value));
+  return -0.01 * scale;
 }
 
 void TransportPhysics::place_cells(std::span<const geometry::Polygon> cells) {
@@ -205,6 +221,7 @@ void TransportPhysics::save_state(StateRecord& r, const std::string& prefix) con
   r.put(prefix + "saturation", saturation_);
   r.put(prefix + "initial_amount", initial_amount_);
   r.put(prefix + "inflow", inflow_);
+  r.put(prefix + "concentration_floor", floor_);
 }
 
 void TransportPhysics::restore_state(const StateRecord& r, const std::string& prefix) {
@@ -220,6 +237,7 @@ void TransportPhysics::restore_state(const StateRecord& r, const std::string& pr
   r.copy_to(prefix + "saturation", saturation_);
   r.copy_to(prefix + "initial_amount", initial_amount_);
   r.copy_to(prefix + "inflow", inflow_);
+  r.copy_to(prefix + "concentration_floor", floor_);
 }
 
 std::span<const double> TransportPhysics::readout(std::size_t i) const {
@@ -248,14 +266,21 @@ HealthReport TransportPhysics::check_health() const {
   const Grid& g = domain_.grid;
   for (std::size_t i = 0; i < lattices_.size(); ++i) {
     HealthReport h = lattices_[i].check_health();
-    if (h.healthy && setup_.concentration_range) {
-      const auto [lo, hi] = *setup_.concentration_range;
+    if (h.healthy) {
+      const bool range_set = setup_.concentration_range.has_value();
+      const double lo = range_set ? (*setup_.concentration_range)[0] : floor_[i];
+      const double hi = range_set ? (*setup_.concentration_range)[1] : std::numeric_limits<double>::infinity();
       const auto C = lattices_[i].concentration();
       for (int y = 0; y < g.ny && h.healthy; ++y)
         for (int x = 0; x < g.nx; ++x) {
           const double c = C[g.index(x, y)];
           if (!(c >= lo && c <= hi)) {
-            h = {false, "concentration", x, y, c, c < lo ? lo : hi, 0.0};
+            h = {false, "concentration", x, y, c, c < lo ? lo : hi, 0.0,
+                 range_set ? "outside monitor.concentration_range_uM"
+                           : "below the floor of -1 % of the start's concentration scale (a concentration is "
+                                 "never negative; monitor.concentration_range_uM sets another range): a sink, a "
+                                 "zero-order consumption or an outward fixed flux draws more than there is, or "
+                                 "the scheme is unstable"};
             break;
           }
         }
@@ -269,7 +294,7 @@ HealthReport TransportPhysics::check_health() const {
     if (!(saturation_[c] >= 0.0 && saturation_[c] <= 1.0)) {
       const double limit = std::isfinite(saturation_[c]) ? (saturation_[c] < 0.0 ? 0.0 : 1.0)
                                                           : std::numeric_limits<double>::quiet_NaN();
-      return {false, "cell " + std::to_string(c) + " saturation", -1, -1, saturation_[c], limit, 0.0};
+      return {false, "cell " + std::to_string(c) + " saturation", -1, -1, saturation_[c], limit, 0.0, {}};
     }
   return {};
 }

@@ -69,8 +69,9 @@ class TransportPhysics {
   double face_correction_gain(std::size_t i) const;
   // Largest |M(t+1) − M(t) − sources − boundary flux| / Σ|g| of any species, last step.
   double max_relative_residual() const;
-  // Finite concentrations within monitor.concentration_range_uM, valid relaxation times in
-  // every species, saturations within [0, 1].
+  // Finite concentrations within monitor.concentration_range_uM (when absent: not below
+  // concentration_floor's limit, no upper limit), valid relaxation times in every species,
+  // saturations within [0, 1].
   HealthReport check_health() const;
 
   // Checkpoint (common/state_record.hpp), under `prefix`: every species lattice, the cells
@@ -83,6 +84,7 @@ class TransportPhysics {
   void apply_species_fields(std::size_t i);
   void apply_compartments();
   void release_oxygen();
+  static double concentration_floor(const transport::TransportBoundaries& sides, std::span<const double> C);
 
   scene::TransportSetup setup_;
   geometry::Domain domain_;
@@ -96,6 +98,7 @@ class TransportPhysics {
   std::vector<HbCell> hb_;                        // per cell, with [hemoglobin]
   std::vector<double> saturation_;
   std::vector<double> initial_amount_, inflow_;
+  std::vector<double> floor_;                     // per species: the default lower limit (µM), set by initialize
   std::vector<double> ux_, uy_;                   // scaled velocity (scratch)
   mutable std::vector<double> readout_;           // Ĉ (scratch)
 };

@@ -314,7 +314,7 @@ HealthReport TransportLattice::check_health(double min_tau_margin) const {
     for (int x = 0; x < grid_.nx; ++x) {
       const std::size_t n = grid_.index(x, y);
       if (!std::isfinite(C_[n])) {
-        return {false, "concentration", x, y, C_[n], std::numeric_limits<double>::quiet_NaN(), 0.0};
+        return {false, "concentration", x, y, C_[n], std::numeric_limits<double>::quiet_NaN(), 0.0, {}};
       }
       // tensor: the smaller eigenvalue (positive definiteness)
       const double D = !Dxx_.empty() ? 0.5 * (Dxx_[n] + Dyy_[n]) -
@@ -322,7 +322,7 @@ HealthReport TransportLattice::check_health(double min_tau_margin) const {
                        : D_field_.empty() ? uniform_D_
                                           : D_field_[n];
       const double margin = tau_for_diffusivity(D) - 0.5;
-      if (!(margin >= min_tau_margin)) return {false, "tau_margin", x, y, margin, min_tau_margin, 0.0};
+      if (!(margin >= min_tau_margin)) return {false, "tau_margin", x, y, margin, min_tau_margin, 0.0, {}};
     }
   }
   return r;

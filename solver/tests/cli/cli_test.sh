@@ -84,6 +84,12 @@ CAPSULE="$SRC/scenes/capsule_shear.toml"
 expect torn_membrane 3 'diverged at step [0-9]+: cell 0 (edge strain|area change) = .* exceeds the limit' -- \
   "$ERYTHRO" run "$CAPSULE" --out torn --quiet --set run.steps=600 \
   --set 'boundaries.top.velocity_um_s=[5e5,0]' --set 'boundaries.bottom.velocity_um_s=[-5e5,0]'
+# An outward fixed flux far beyond what the medium holds (issue 17: this once completed with O2
+# at -2.4e27 uM) stops at the transport's non-negativity floor, exit code 3.
+DEOXY="$SRC/scenes/rbc_deoxygenation.toml"
+expect drained_o2 3 'diverged at step [0-9]+: O2 concentration = .* is outside its limit .*, below the floor' -- \
+  "$ERYTHRO" run "$DEOXY" --out drained --quiet --set run.duration_s=2e-3 --set monitor.interval_steps=20 \
+  --set 'species[0].left="fixed_flux"' --set 'species[0].left_value=-1e30'
 # The regression comparer accepts an identical rerun and catches a small change of
 # the discretisation (τ moved by 1e-4), naming the quantity that moved.
 TG="$SRC/scenes/regression/taylor_green.toml"
