@@ -11,7 +11,7 @@
 #   erythro_add_test(NAME n COMMAND cmd... LABELS unit [CI] [NO_FULL] [TIMEOUT s] [ENVIRONMENT k=v...]
 #                    [PROCESSORS n] [RESOURCE_LOCK r...])
 #   (NO_FULL: not in `full`, e.g. benchmarks)
-#   vv_add_case(CASE c COMMAND cmd... LABELS verification [CI] [TIMEOUT s] [ENVIRONMENT k=v...]
+#   vv_add_case(CASE c COMMAND cmd... LABELS verification [CI] [NO_FULL] [TIMEOUT s] [ENVIRONMENT k=v...]
 #               [PROCESSORS n] [RESOURCE_LOCK r...])
 #   (ENVIRONMENT entries come after the defaults and override them, e.g. OMP_NUM_THREADS=1
 #   for a long run on a small grid, where thread start-up per step costs more than it gains)
@@ -79,7 +79,7 @@ function(vv_add_case)
   if(V_CI)
     list(APPEND extra CI)
   endif()
-  if(V_NO_FULL)  # a study too long for the full tier (label `study`, ci/study.sh)
+  if(V_NO_FULL)  # a study too long for the full tier (label `study`), or a CI subset a full study asserts
     list(APPEND extra NO_FULL)
   endif()
   if(V_ENVIRONMENT)

@@ -43,6 +43,13 @@ def is_flag(metric):
     return metric.comparison in ("absolute", "at_least")
 
 
+def is_informative(metric):
+    """A measurement without a requirement (a speed on a shared machine): one-sided with an
+    infinite limit, so any finite value passes and only NaN fails."""
+    e = metric.expected
+    return (metric.comparison == "at_least" and e == -math.inf) or (metric.comparison == "at_most" and e == math.inf)
+
+
 def value_text(metric):
     if is_flag(metric):
         return "yes" if metric.value == 1 else "no"
@@ -53,6 +60,8 @@ def expected_text(metric):
     """Expected value; for one-sided comparisons with its sign (≤ / ≥)."""
     if is_flag(metric):
         return "yes"
+    if is_informative(metric):
+        return "informative: any finite value"
     text = with_unit(metric.expected, metric.unit)
     if metric.comparison == "at_most":
         return f"≤ {text}"

@@ -59,6 +59,12 @@ class Flags(unittest.TestCase):
         self.assertEqual(fmt.value_text(metric(0.0, 1.0, 0.0)), "no")
         self.assertTrue(fmt.is_flag(metric(1.0, 1.0, 0.0, "at_least", "1 if the motion is classified")))
 
+    def test_informative_measurements_read_as_such(self):
+        speed = metric(-30.7, float("-inf"), 0.0, "at_least", unit="us")
+        self.assertTrue(fmt.is_informative(speed))
+        self.assertEqual(fmt.limit_text(speed), "informative: any finite value")
+        self.assertFalse(fmt.is_informative(metric(2.0, 1.0, 0.0, "at_least")))
+
     def test_counts_and_zero_limits_keep_their_numbers(self):
         for m in (metric(1.0, 1.0, 0.0, "at_least", "runs that diverged", unit="runs"),
                   metric(2.0, 1.0, 0.0, "at_least"), metric(0.0, 0.0, 0.0, "at_most"),

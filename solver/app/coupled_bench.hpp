@@ -13,7 +13,7 @@ namespace erythro::app {
 struct CoupledBenchOptions {
   std::vector<int> cells{2, 8, 32, 128};  // cells per box; the box is sized for φ = 0.3
   std::vector<int> threads{1, 2};
-  long steps = 300;  // time steps of each timed run
+  long steps = 150;  // time steps of each timed run (≈ 3 s for 128 cells on one thread)
   int pairs = 3;     // fluid-only and coupled runs, one after the other; medians reported
 };
 

@@ -285,6 +285,13 @@ HealthReport TransportPhysics::check_health() const {
           }
         }
     }
+    // Eq T5 holds to round-off (~1e-16 (nodes)^½ of Σ|g|); far above it the lattice has lost
+    // amount it cannot account for: a defect or an overflow, never physics.
+    const double residual = lattices_[i].mass_balance().relative_residual();
+    if (h.healthy && !(residual <= kMaxRelativeResidual))
+      h = {false, "mass-balance residual", -1, -1, residual, kMaxRelativeResidual, 0.0,
+           "relative to the stored amount (eq T5 holds to round-off): the step lost or created amount it cannot "
+           "account for"};
     if (!h.healthy) {
       h.quantity = setup_.species[i].name + " " + h.quantity;
       return h;

@@ -71,7 +71,9 @@ class TransportPhysics {
   double max_relative_residual() const;
   // Finite concentrations within monitor.concentration_range_uM (when absent: not below
   // concentration_floor's limit, no upper limit), valid relaxation times in every species,
+  // the last step's relative mass-balance residual at most kMaxRelativeResidual,
   // saturations within [0, 1].
+  static constexpr double kMaxRelativeResidual = 1e-9;
   HealthReport check_health() const;
 
   // Checkpoint (common/state_record.hpp), under `prefix`: every species lattice, the cells

@@ -11,6 +11,7 @@
 #include "scene/units.hpp"
 #include "simulation/series_recorder.hpp"
 #include "simulation/simulation.hpp"
+#include "simulation/transport_physics.hpp"
 #include "transport/hb_kinetics.hpp"
 
 namespace erythro::sim {
@@ -122,6 +123,22 @@ TEST(TransportScene, ClosedBoxConservesFreePlusBoundOxygen) {
   const double nodes_inside = gained / released_per_node;  // must be the cell's interior node count
   EXPECT_NEAR(nodes_inside, std::round(nodes_inside), 1e-9 * nodes_inside);
   EXPECT_EQ(rec.field_frames, 2);  // initial and final
+}
+
+// The health check: healthy after an ordinary step; amount created outside the step (a
+// population changed between steps) breaks eq T5 far above round-off and is caught.
+TEST(TransportScene, HealthCatchesAMassBalanceThatDoesNotClose) {
+  const scene::Scene s = scene::parse_scene(still_scene("zero_flux"), "t.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  TransportPhysics& T = *sim.transport();
+  T.step({}, {});
+  EXPECT_TRUE(T.check_health().healthy);
+  T.lattice(0).populations()[5] += 1.0;  // 1 µM·node from nowhere, against ~2e4 stored
+  T.step({}, {});
+  const HealthReport h = T.check_health();
+  EXPECT_FALSE(h.healthy);
+  EXPECT_EQ(h.quantity, "O2 mass-balance residual");
+  EXPECT_GT(h.value, TransportPhysics::kMaxRelativeResidual);
 }
 
 // Held at 20 µM on every side: the cell loses O2 to the boundary; every transport
