@@ -1,6 +1,7 @@
 #include "simulation/transport_physics.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,6 +12,22 @@
 #include "transport/subpixel_diffusivity.hpp"
 
 namespace erythro::sim {
+namespace {
+
+// The default lower limit of a species' concentration (no monitor.concentration_range_uM):
+// a concentration is never negative; the scheme's undershoot near a steep front stays far
+// within 1 % of the concentration scale (the start's largest |C|, the held side values,
+// at least 1 µM), while a sink or outward flux that draws more than there is, or a
+// growing oscillation, crosses it.
+double concentration_floor(const transport::TransportBoundaries& sides, std::span<const double> C) {
+  double scale = 1.0;
+  for (const double c : C) scale = std::max(scale, std::abs(c));
+  for (const transport::Side& side : {sides.left, sides.right, sides.bottom, sides.top})
+    if (side.kind == transport::SideKind::fixed_concentration) scale = std::max(scale, std::abs(side.value));
+  return -0.01 * scale;
+}
+
+}  // namespace
 
 TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geometry::Domain& domain,
                                    std::span<const geometry::Polygon> cells)
@@ -87,20 +104,6 @@ void TransportPhysics::initialize(std::size_t i, std::span<const double> C) {
   initial_amount_[i] = lattices_[i].stored_amount();
   inflow_[i] = 0.0;
   floor_[i] = concentration_floor(setup_.species[i].boundaries, C);
-}
-
-// The default lower limit of a species' concentration (no monitor.concentration_range_uM):
-// a concentration is never negative; the scheme's undershoot near a steep front stays far
-// within 1 % of the concentration scale (the start's largest |C|, the held side values,
-// at least 1 µM), while a sink or outward flux that draws more than there is, or a
-// growing oscillation, crosses it.
-double TransportPhysics::concentration_floor(const transport::TransportBoundaries& sides,
-                                             std::span<const double> C) {
-  double scale = 1.0;
-  for (const double c : C) scale = std::max(scale, std::abs(c));
-  for (const transport::Side& side : {sides.left, sides.right, sides.bottom, sides.top})
-    if (side.kind == transport::SideKind::fixed_concentration) scale = std::max(scale, std::abs(side.value));
-  return -0.01 * scale;
 }
 
 void TransportPhysics::place_cells(std::span<const geometry::Polygon> cells) {
@@ -263,28 +266,16 @@ double TransportPhysics::max_relative_residual() const {
 }
 
 HealthReport TransportPhysics::check_health() const {
-  const Grid& g = domain_.grid;
   for (std::size_t i = 0; i < lattices_.size(); ++i) {
-    HealthReport h = lattices_[i].check_health();
-    if (h.healthy) {
-      const bool range_set = setup_.concentration_range.has_value();
-      const double lo = range_set ? (*setup_.concentration_range)[0] : floor_[i];
-      const double hi = range_set ? (*setup_.concentration_range)[1] : std::numeric_limits<double>::infinity();
-      const auto C = lattices_[i].concentration();
-      for (int y = 0; y < g.ny && h.healthy; ++y)
-        for (int x = 0; x < g.nx; ++x) {
-          const double c = C[g.index(x, y)];
-          if (!(c >= lo && c <= hi)) {
-            h = {false, "concentration", x, y, c, c < lo ? lo : hi, 0.0,
-                 range_set ? "outside monitor.concentration_range_uM"
-                           : "below the floor of -1 % of the start's concentration scale (a concentration is "
-                                 "never negative; monitor.concentration_range_uM sets another range): a sink, a "
-                                 "zero-order consumption or an outward fixed flux draws more than there is, or "
-                                 "the scheme is unstable"};
-            break;
-          }
-        }
-    }
+    const bool range_set = setup_.concentration_range.has_value();
+    HealthReport h = lattices_[i].check_health(
+        range_set ? *setup_.concentration_range
+                  : std::array<double, 2>{floor_[i], std::numeric_limits<double>::infinity()});
+    if (!h.healthy && h.quantity == "concentration" && !std::isnan(h.limit))
+      h.hint = range_set ? "outside monitor.concentration_range_uM"
+                         : "below the floor of -1 % of the start's concentration scale (a concentration is never "
+                           "negative; monitor.concentration_range_uM sets another range): a sink, a zero-order "
+                           "consumption or an outward fixed flux draws more than there is, or the scheme is unstable";
     // Eq T5 holds to round-off (~1e-16 (nodes)^½ of Σ|g|); far above it the lattice has lost
     // amount it cannot account for: a defect or an overflow, never physics.
     const double residual = lattices_[i].mass_balance().relative_residual();

@@ -70,9 +70,9 @@ class TransportPhysics {
   // Largest |M(t+1) − M(t) − sources − boundary flux| / Σ|g| of any species, last step.
   double max_relative_residual() const;
   // Finite concentrations within monitor.concentration_range_uM (when absent: not below
-  // concentration_floor's limit, no upper limit), valid relaxation times in every species,
-  // the last step's relative mass-balance residual at most kMaxRelativeResidual,
-  // saturations within [0, 1].
+  // −1 % of the start's concentration scale, no upper limit; transport_physics.cpp), valid
+  // relaxation times in every species, the last step's relative mass-balance residual at
+  // most kMaxRelativeResidual, saturations within [0, 1].
   static constexpr double kMaxRelativeResidual = 1e-9;
   HealthReport check_health() const;
 
@@ -86,7 +86,6 @@ class TransportPhysics {
   void apply_species_fields(std::size_t i);
   void apply_compartments();
   void release_oxygen();
-  static double concentration_floor(const transport::TransportBoundaries& sides, std::span<const double> C);
 
   scene::TransportSetup setup_;
   geometry::Domain domain_;
@@ -100,7 +99,7 @@ class TransportPhysics {
   std::vector<HbCell> hb_;                        // per cell, with [hemoglobin]
   std::vector<double> saturation_;
   std::vector<double> initial_amount_, inflow_;
-  std::vector<double> floor_;                     // per species: the default lower limit (µM), set by initialize
+  std::vector<double> floor_;                     // per species: the default lower limit of C (µM), set by initialize
   std::vector<double> ux_, uy_;                   // scaled velocity (scratch)
   mutable std::vector<double> readout_;           // Ĉ (scratch)
 };

@@ -308,13 +308,16 @@ void TransportLattice::face_flux(std::span<double> east, std::span<double> north
   }
 }
 
-HealthReport TransportLattice::check_health(double min_tau_margin) const {
+HealthReport TransportLattice::check_health(std::array<double, 2> range, double min_tau_margin) const {
   HealthReport r;
+  const auto [lo, hi] = range;
   for (int y = 0; y < grid_.ny; ++y) {
     for (int x = 0; x < grid_.nx; ++x) {
       const std::size_t n = grid_.index(x, y);
-      if (!std::isfinite(C_[n])) {
-        return {false, "concentration", x, y, C_[n], std::numeric_limits<double>::quiet_NaN(), 0.0, {}};
+      const double c = C_[n];
+      if (!(c >= lo && c <= hi)) {
+        const double limit = !std::isfinite(c) ? std::numeric_limits<double>::quiet_NaN() : c < lo ? lo : hi;
+        return {false, "concentration", x, y, c, limit, 0.0, {}};
       }
       // tensor: the smaller eigenvalue (positive definiteness)
       const double D = !Dxx_.empty() ? 0.5 * (Dxx_[n] + Dyy_[n]) -

@@ -18,7 +18,9 @@
 // fused pull stream–collide step, OpenMP over rows (as fluid/stream_collide.cpp).
 // Node (x, y) sits at ((x+½)h, (y+½)h): every non-periodic side lies halfway between
 // the last node and the (virtual) next one.
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -172,8 +174,11 @@ class TransportLattice {
   // faces on the sides (as the boundary condition gives). Size N each.
   void face_flux(std::span<double> east, std::span<double> north) const;
 
-  // Finite C everywhere and τ − ½ ≥ min_tau_margin (D field), first offending node.
-  HealthReport check_health(double min_tau_margin = 1e-3) const;
+  // C finite and within [range[0], range[1]] everywhere, and τ − ½ ≥ min_tau_margin
+  // (D field): the first offending node (limit NaN for a non-finite C).
+  HealthReport check_health(std::array<double, 2> range = {-std::numeric_limits<double>::infinity(),
+                                                           std::numeric_limits<double>::infinity()},
+                            double min_tau_margin = 1e-3) const;
 
   std::span<const double> populations() const { return g_; }  // [i*N + n], post-collision
   std::span<double> populations() { return g_; }
