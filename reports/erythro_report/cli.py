@@ -9,7 +9,6 @@ import sys
 
 from . import html_report, markdown_report
 from .expected import parse_labels
-from .figures import render_all
 from .model import build_report
 from .regression import summary_text
 
@@ -63,6 +62,7 @@ def check_usage(args):
 
 def write_outputs(report, out_dir):
     """Draws the figures and writes index.html and summary.md; returns index.html's path."""
+    from .figures import render_all  # matplotlib is loaded only when a report is drawn
     os.makedirs(out_dir, exist_ok=True)
     figures = render_all(report, out_dir)
     index = os.path.join(out_dir, "index.html")

@@ -5,6 +5,7 @@ folder can be moved as a whole. A figure that fails to draw becomes a Problem
 naming the case, and the rest of the report is still written.
 """
 import glob
+import multiprocessing
 import os
 import re
 from dataclasses import dataclass, field
@@ -22,6 +23,14 @@ class CaseFigures:
     series: list = field(default_factory=list)   # one relative path ("" if none) per series
     stability_map: str = ""
     fields: list = field(default_factory=list)   # one relative path ("" if none) per field
+
+    def resolve(self, drawn):
+        """Planned paths -> the drawn ones ("" where nothing was drawn)."""
+        self.convergence = drawn.get(self.convergence, "")
+        self.speed_error = drawn.get(self.speed_error, "")
+        self.stability_map = drawn.get(self.stability_map, "")
+        self.series = [drawn.get(p, "") for p in self.series]
+        self.fields = [drawn.get(p, "") for p in self.fields]
 
 
 @dataclass
@@ -45,47 +54,86 @@ class _Namer:
         return f"{IMG_DIR}/{name}.png"
 
 
-def render_all(report, out_dir):
-    """Draws all figures; returns Figures and appends drawing failures to report.problems."""
+def render_all(report, out_dir, jobs=None):
+    """Draws all figures; returns Figures and appends drawing failures to report.problems.
+
+    The figures are planned first (file names in a fixed order), then drawn by `jobs`
+    worker processes (default: one per core). Each figure is drawn by itself, so the
+    files are the same for any number of workers."""
     img_dir = os.path.join(out_dir, IMG_DIR)
     os.makedirs(img_dir, exist_ok=True)
     for stale in glob.glob(os.path.join(img_dir, "*.png")):
         os.remove(stale)
     namer = _Namer()
+    plan = []            # _Job, in drawing order
     figures = Figures()
     for record in report.records:
-        figures.cases[record.path] = _render_case(record, out_dir, namer, report.problems)
-    try:
-        figures.overview = [os.path.relpath(p, out_dir) for p in plots.overview_figures(
-            report.records, lambda i: os.path.join(out_dir, namer("speed-against-error", str(i + 1))))]
-    except Exception as exc:  # a broken figure must not hide the rest of the report
-        report.problems.append(Problem("speed against error", f"figure failed: {exc}"))
+        figures.cases[record.path] = _plan_case(record, namer, plan)
+    overview_pages = plots.overview_pages(report.records)
+    overview_paths = [namer("speed-against-error", str(i + 1)) for i in range(len(overview_pages))]
+    for page, rel_path in zip(overview_pages, overview_paths):
+        plan.append(_Job(plots.overview_page_figure, page, rel_path, "speed against error"))
+    outcomes = _draw_all(plan, out_dir, jobs)
+    drawn = {}
+    for job, (ok, error) in zip(plan, outcomes):
+        if error:
+            report.problems.append(Problem(job.owner, error))
+        drawn[job.rel_path] = job.rel_path if ok else ""
+    for figs in figures.cases.values():
+        figs.resolve(drawn)
+    figures.overview = [p for p in overview_paths if drawn.get(p)]
     return figures
 
 
-def _render_case(record, out_dir, namer, problems):
+@dataclass
+class _Job:
+    function: object   # plots.*_figure(data, path) -> bool
+    data: object
+    rel_path: str
+    owner: str         # the case (or panel) a failure is reported against
+
+
+def _plan_case(record, namer, plan):
+    """Adds the case's figures to `plan`; returns its CaseFigures holding planned paths."""
+    def add(function, data, *name_parts):
+        rel_path = namer(record.case, *name_parts)
+        plan.append(_Job(function, data, rel_path, record.case))
+        return rel_path
+
     figs = CaseFigures()
     if record.convergence:
-        figs.convergence = _draw(plots.convergence_figure, record, namer(record.case, "convergence"),
-                                 out_dir, record, problems)
+        figs.convergence = add(plots.convergence_figure, record, "convergence")
     if record.speed_error:
-        figs.speed_error = _draw(plots.speed_error_figure, record, namer(record.case, "speed-error"),
-                                 out_dir, record, problems)
+        figs.speed_error = add(plots.speed_error_figure, record, "speed-error")
     if plots.has_stability_map(record):
-        figs.stability_map = _draw(plots.stability_map_figure, record, namer(record.case, "stability-map"),
-                                   out_dir, record, problems)
-    for series in record.series:
-        figs.series.append(_draw(plots.series_figure, series, namer(record.case, series.name),
-                                 out_dir, record, problems))
-    for fld in record.fields:
-        figs.fields.append(_draw(plots.field_figure, fld, namer(record.case, "field", fld.name),
-                                 out_dir, record, problems))
+        figs.stability_map = add(plots.stability_map_figure, record, "stability-map")
+    figs.series = [add(plots.series_figure, series, series.name) for series in record.series]
+    figs.fields = [add(plots.field_figure, fld, "field", fld.name) for fld in record.fields]
     return figs
 
 
-def _draw(function, data, rel_path, out_dir, record, problems):
+_PLAN = []        # the plan the forked workers read (set just before the pool starts)
+_OUT_DIR = ""
+
+
+def _draw_one(index):
+    """(drawn?, error text or "") for _PLAN[index]; never raises (a broken figure must not
+    hide the rest of the report)."""
+    job = _PLAN[index]
     try:
-        return rel_path if function(data, os.path.join(out_dir, rel_path)) else ""
+        return bool(job.function(job.data, os.path.join(_OUT_DIR, job.rel_path))), ""
     except Exception as exc:
-        problems.append(Problem(record.case, f"{function.__name__} failed: {exc}"))
-        return ""
+        return False, f"{job.function.__name__} failed: {exc}"
+
+
+def _draw_all(plan, out_dir, jobs):
+    global _PLAN, _OUT_DIR
+    _PLAN, _OUT_DIR = plan, out_dir
+    try:
+        workers = min(jobs or os.cpu_count() or 1, len(plan))
+        if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+            return [_draw_one(i) for i in range(len(plan))]
+        with multiprocessing.get_context("fork").Pool(workers) as pool:
+            return pool.map(_draw_one, range(len(plan)), chunksize=4)
+    finally:
+        _PLAN, _OUT_DIR = [], ""

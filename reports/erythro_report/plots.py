@@ -157,17 +157,14 @@ def _draw_speed_line(ax, line, color, marker, label_points):
     return 1
 
 
-def overview_figures(records, path_for_page):
-    """'Speed against error' for every case with /speed_error, up to 3 × 3 panels a page.
-
-    path_for_page(i) gives the file of page i; returns the list of files written.
-    """
+def overview_pages(records):
+    """The cases with /speed_error, grouped into pages of up to 3 × 3 panels."""
     cases = [r for r in records if r.speed_error]
-    pages = [cases[i:i + PANELS_PER_PAGE] for i in range(0, len(cases), PANELS_PER_PAGE)]
-    return [_overview_page(page, path_for_page(i)) for i, page in enumerate(pages)]
+    return [cases[i:i + PANELS_PER_PAGE] for i in range(0, len(cases), PANELS_PER_PAGE)]
 
 
-def _overview_page(records, path):
+def overview_page_figure(records, path):
+    """'Speed against error', one panel per case of `records` (one page)."""
     cols = min(PANEL_COLUMNS, len(records))
     rows = math.ceil(len(records) / cols)
     fig = _new_figure(4.3 * cols, 3.5 * rows)
@@ -175,8 +172,7 @@ def _overview_page(records, path):
     for i, record in enumerate(records):
         draw_speed_error(fig.add_subplot(rows, cols, i + 1), record, record.case,
                          label_points=False)
-    _save(fig, path)
-    return path
+    return _save(fig, path)
 
 
 # -- plain series --------------------------------------------------------------------
