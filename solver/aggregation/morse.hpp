@@ -14,7 +14,7 @@
 // differences. The shift moves the minimum slightly (use the shifted form for
 // predictions: solver/aggregation/morse_units.hpp does).
 //
-// Units: lattice (h = Δt = ρ0 = 1). In the 2D pair model (morse_aggregation.hpp) the
+// Units: lattice (h = Δt = ρ0 = 1). In the 2D pair model (cell_contacts.hpp) the
 // pair energy of markers m, n is Φ_s(r_mn) ℓ_m ℓ_n, so D_e is an energy per unit depth
 // per length², i.e. a PRESSURE (lattice ρ0 h²/Δt²); r0, r_c are lengths (h), β an
 // inverse length (1/h). See morse_units.hpp for the physical parameters.

@@ -2,7 +2,7 @@
 // Morse parameters from physical units to lattice units, and the flat-contact
 // analysis that ties the 2D pair density D_e to a surface energy.
 //
-// 2D pair model (morse_aggregation.hpp): E = Σ Φ_s(r_mn) ℓ_m ℓ_n per unit depth, so
+// 2D pair model (cell_contacts.hpp): E = Σ Φ_s(r_mn) ℓ_m ℓ_n per unit depth, so
 // D_e [energy/depth/length²] = [J/m³] = [Pa]; lattice D_e = D_e Δt²/(ρ0 h²)
 // (membrane::pressure_to_lattice). r0, r_c: lengths (/h); β: inverse length (·h).
 //

@@ -71,7 +71,8 @@ std::string scene_text(int n, int cells, long steps) {
       << "bending_modulus_dyn_cm = 1.3784035119934664e-10\narea_modulus_Pa = 5875.547791958511\n"
       << "kernel = \"cosine4\"\ninterior_viscosity_cP = 6.0\ninterior_method = \"flood_fill\"\n"
       << "[[cell_populations]]\nshape = \"biconcave\"\nradius_um = " << kRadiusUm << "\nmarkers = " << kMarkers
-      << "\ncount = " << cells << "\nseed = 1\n";
+      << "\ncount = " << cells << "\nseed = 1\n"
+      << "[repulsion]\npressure_Pa = 1.0\n";
   return s.str();
 }
 

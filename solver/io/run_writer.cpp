@@ -137,6 +137,11 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
                                     {"morse_r0_lattice", a->r0},
                                     {"morse_beta_lattice", a->beta},
                                     {"morse_cutoff_lattice", a->cutoff}});
+      if (const auto& r = setup.membrane->repulsion)
+        h5::write_attrs(meta.id(), {{"repulsion_pressure_lattice", r->pressure},
+                                    {"repulsion_range_lattice", r->range},
+                                    {"repulsion_range_um", r->range * setup.scales.length_m * 1e6},
+                                    {"repulsion_walls", std::string(r->walls ? "true" : "false")}});
     }
     write_cell_populations(meta.id(), scene);
 

@@ -257,6 +257,24 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
                       num(0.5 * n[axis] * h_um) + " µm): the minimum-image separation would be ambiguous");
   }
 
+  if (s.repulsion) {
+    if (!mechanics)
+      reject(s, "[repulsion] moves cells, but transport.coupling = \"none\" builds no fluid: remove [repulsion]");
+    const RepulsionSpec& r = *s.repulsion;
+    const double range_h = r.range_um ? *r.range_um / h_um : 2.0;
+    const std::string range_text =
+        r.range_um ? "repulsion.range_um = " + num(*r.range_um) + " µm" : "repulsion.range_um (default 2 h)";
+    if (range_h < 1.0)
+      reject(s, range_text + " is below domain.spacing_um = " + num(h_um) +
+                    " µm: a marker could slip between two markers of another cell; allowed: >= " + num(h_um) + " µm");
+    for (int axis = 0; axis < 2; ++axis)
+      if (periodic[axis] && range_h >= 0.5 * n[axis])
+        reject(s, range_text + " is not below half the periodic domain (" + num(0.5 * n[axis] * h_um) +
+                      " µm): the minimum-image separation would be ambiguous");
+    const double pressure_lattice = membrane::pressure_to_lattice(r.pressure_Pa, ms);
+    M.repulsion = aggregation::RepulsionParameters{pressure_lattice, range_h, r.walls};
+  }
+
   if (!mechanics) return M;  // fixed shapes in a still medium: no membrane update to keep stable
 
   // Explicit-update stability (membrane/stability.hpp): Π = modulus Δt²/(ρ0 h^k) < limit.

@@ -202,6 +202,16 @@ struct AggregationSpec {
   std::optional<double> cutoff_um;             // r_c > r0; default r0 + 5/β
 };
 
+// [repulsion]: short-range repulsion between the membranes of different cells and between
+// a membrane and a wall (docs/model.md §4b, eqs 4.11–4.13): the pair density
+// P (d/r − 1)² within the range d. Required with [[cell_populations]] (crowded cells must
+// not overlap); independent of [aggregation] (both share one neighbour search).
+struct RepulsionSpec {
+  double pressure_Pa = 0.1;           // P (the schema's default, scene_keys.cpp)
+  std::optional<double> range_um;     // d; absent: 2 h (domain.spacing_um)
+  bool walls = true;                  // also against the walls of non-periodic sides
+};
+
 // [transport]: how the NO/O2 transport is coupled to the flow (docs/architecture.md
 // "Time steps and coupling"). Each module keeps its own time step.
 struct TransportSpec {
@@ -317,6 +327,7 @@ struct Scene {
   std::vector<CellPopulationSpec> cell_populations;      // [[cell_populations]]
   std::vector<PopulationPlacement> population_placements;  // one per population, set by the parser
   std::optional<AggregationSpec> aggregation;  // [aggregation] (needs cells and a fluid)
+  std::optional<RepulsionSpec> repulsion;      // [repulsion] (needs cells and a fluid)
   std::optional<TransportSpec> transport;  // [transport]; absent: no transport
   std::vector<SpeciesSpec> species;        // [[species]] (needs [transport])
   std::vector<TransportLayerSpec> transport_layers;  // [[transport.layers]] (needs [[species]])

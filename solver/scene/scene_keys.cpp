@@ -472,6 +472,24 @@ std::vector<KeySpec> make_keys() {
        .when_absent = note("r0 + 5/β (1.792 µm with the defaults)"),
        .rule = "> `zero_force_distance_um`; < half a periodic side",
        .meaning = "r_c: the potential is force-shifted to zero there"},
+      // [repulsion]
+      {.path = "repulsion.pressure_Pa",
+       .unit = "Pa",
+       .bound = Bound{0.0, true, 1e6, false},
+       .when_absent = literal("0.1"),
+       .meaning = "P of the pair density P (d/r − 1)² (docs/model.md eq 4.11); two flat membranes a gap s apart "
+                  "are pushed apart by a pressure of 4.9 P at s = d/2, 34 P at d/4, πPd²/s² as s → 0 (eq 4.12)"},
+      {.path = "repulsion.range_um",
+       .unit = "µm",
+       .bound = positive,
+       .when_absent = note("2 × `domain.spacing_um`"),
+       .rule = ">= `domain.spacing_um` (a marker cannot slip between two markers of another cell); < half a "
+               "periodic side",
+       .meaning = "d: the distance beyond which membranes do not repel"},
+      {.path = "repulsion.walls",
+       .kind = Kind::boolean,
+       .when_absent = literal("true"),
+       .meaning = "Whether membranes are repelled by the walls of non-periodic sides too (eq 4.13)"},
       // [transport]
       {.path = "transport.coupling",
        .kind = Kind::string,
@@ -706,6 +724,9 @@ const std::vector<TableSpec>& known_tables() {
        "without overlap (after the `[[cells]]` entries)."},
       {"aggregation", false,
        "Optional: Morse aggregation between cells (needs cells and a fluid); exactly one of the three strengths."},
+      {"repulsion", false,
+       "Short-range repulsion between cells and against walls (needs cells and a fluid); required with "
+       "`[[cell_populations]]`."},
       {"transport", false, "Optional: NO/O2 transport, its coupling to the flow and its own time step."},
       {"species", true, "One entry per transported species; at least one with `[transport]`."},
       {"transport.layers", true,

@@ -564,6 +564,17 @@ Scene read_scene(const Reader& r, const std::string& origin) {
                        format_number(a.zero_force_distance_um) + " µm (the potential is cut beyond r_c)");
     s.aggregation = a;
   }
+  if (r.has("repulsion")) {
+    RepulsionSpec rep;
+    rep.pressure_Pa = r.number("repulsion.pressure_Pa");
+    if (r.has("repulsion.range_um")) rep.range_um = r.number("repulsion.range_um");
+    rep.walls = r.flag("repulsion.walls");
+    s.repulsion = rep;
+  } else if (!s.cell_populations.empty()) {
+    throw InputError(r.where_table("cell_populations") +
+                     ": [[cell_populations]] crowd cells together, and nothing would keep their membranes apart: "
+                     "add a [repulsion] table (its defaults are fine: docs/scenes.md)");
+  }
   read_transport(r, s);
   return s;
 }

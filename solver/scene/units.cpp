@@ -434,6 +434,9 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
     if (const auto& a = M->aggregation)
       rows.push_back({"aggregation (Morse)", "D_e " + num(a->De) + ", r0 " + num(a->r0) + ", r_c " + num(a->cutoff),
                       "flat-contact gap " + num(M->aggregation_flat_gap * u.length_m * um) + " µm"});
+    if (const auto& r = M->repulsion)
+      rows.push_back({"repulsion", "P " + num(r->pressure) + ", d " + num(r->range) + (r->walls ? ", walls" : ""),
+                      "d = " + num(r->range * u.length_m * um) + " µm"});
     rows.push_back({"stability Π_T", num(e.tension_number), "limit " + num(e.tension_limit)});
     rows.push_back({"stability Π_B", num(e.bending_number), "limit " + num(e.bending_limit)});
     rows.push_back({"stability Π_A", num(e.area_number), "limit " + num(e.area_limit)});

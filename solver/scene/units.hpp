@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "aggregation/morse.hpp"
+#include "aggregation/repulsion.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
 #include "fluid/viscosity_layers.hpp"
@@ -59,6 +60,8 @@ struct MembraneSetup {
   // Morse aggregation between cells (lattice units), only with [aggregation].
   std::optional<aggregation::MorseParameters> aggregation;
   double aggregation_flat_gap = 0.0;  // flat-contact equilibrium gap d* (h), shown by `check`
+  // Short-range repulsion between cells and against walls (lattice units), only with [repulsion].
+  std::optional<aggregation::RepulsionParameters> repulsion;
 };
 
 // Fixed set-up rules for cells (docs/scenes.md "Checks done by units.cpp"), in h. The two

@@ -17,8 +17,9 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
       index_interval_(std::max(1L, setup.index_update_interval)) {
   for (const scene::CellSetup& c : setup.cells)
     cells_.add_cell(c.shape, membrane::RestShape::from_polygon(c.rest.size() != 0 ? c.rest : c.shape), c.model);
-  if (setup.aggregation)
-    aggregation_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()), *setup.aggregation);
+  if (setup.aggregation || setup.repulsion)
+    contacts_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()),
+                      aggregation::ContactLaw{setup.aggregation, setup.repulsion});
   if (setup.indicator != interior::Method::indexless) {
     index_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()), interior::IndexFieldOptions{setup.indicator});
     polygons_.resize(static_cast<std::size_t>(cells_.cell_count()));
@@ -59,13 +60,13 @@ void CellPhysics::refresh_viscosity_timed(fluid::FluidLattice& lattice) {
   index_exposed_seconds_ += s;
 }
 
-void CellPhysics::add_aggregation_forces() {
-  if (aggregation_) aggregation_stats_ = aggregation_->add_forces(cells_);
+void CellPhysics::add_contact_forces() {
+  if (contacts_) contact_stats_ = contacts_->add_forces(cells_);
 }
 
 void CellPhysics::compute_marker_forces() {
   cells_.compute_forces();
-  add_aggregation_forces();
+  add_contact_forces();
 }
 
 bool CellPhysics::index_beside_forces() const {
@@ -73,7 +74,7 @@ bool CellPhysics::index_beside_forces() const {
   // Only when the force stage would run on one thread anyway: inside the two-section
   // region a nested parallel loop gets one thread, which would slow a threaded stage.
   const bool forces_threaded = cells_.threads_forces() ||
-                               (aggregation_ && aggregation::MorseAggregation::threads_forces(cells_.marker_count()));
+                               (contacts_ && aggregation::CellContacts::threads_forces(cells_.marker_count()));
   return omp_get_max_threads() > 1 && !forces_threaded;
 #else
   return false;
@@ -121,10 +122,13 @@ void CellPhysics::refresh_viscosity_beside_forces(fluid::FluidLattice& lattice) 
 void CellPhysics::save_state(StateRecord& r, const std::string& prefix) const {
   cells_.save_state(r, prefix + "markers.");
   if (index_) index_->save_state(r, prefix + "index_field.");
-  if (aggregation_) {
-    aggregation_->save_state(r, prefix + "aggregation.");
-    const aggregation::AggregationStats& a = aggregation_stats_;
+  if (contacts_) {  // under "aggregation.", the name of the layer before it also repelled
+    contacts_->save_state(r, prefix + "aggregation.");
+    const aggregation::ContactStats& a = contact_stats_;
     r.put(prefix + "aggregation.stats", std::vector<double>{static_cast<double>(a.pairs), a.energy, a.max_force});
+    if (contacts_->law().repulsion)
+      r.put(prefix + "aggregation.closest", std::vector<double>{static_cast<double>(a.wall_markers),
+                                                               a.min_pair_distance, a.min_wall_distance});
   }
   r.put(prefix + "fill_history", std::vector<double>{static_cast<double>(fill_history_.updates),
                                                      fill_history_.max_area_mismatch,
@@ -134,10 +138,19 @@ void CellPhysics::save_state(StateRecord& r, const std::string& prefix) const {
 void CellPhysics::restore_state(const StateRecord& r, const std::string& prefix) {
   cells_.restore_state(r, prefix + "markers.");
   if (index_) index_->restore_state(r, prefix + "index_field.");
-  if (aggregation_) {
-    aggregation_->restore_state(r, prefix + "aggregation.");
+  if (contacts_) {
+    contacts_->restore_state(r, prefix + "aggregation.");
     const std::vector<double>& a = r.get(prefix + "aggregation.stats", 3);
-    aggregation_stats_ = {static_cast<std::size_t>(a[0]), a[1], a[2]};
+    contact_stats_ = aggregation::ContactStats{};
+    contact_stats_.pairs = static_cast<std::size_t>(a[0]);
+    contact_stats_.energy = a[1];
+    contact_stats_.max_force = a[2];
+    if (contacts_->law().repulsion) {
+      const std::vector<double>& c = r.get(prefix + "aggregation.closest", 3);
+      contact_stats_.wall_markers = static_cast<std::size_t>(c[0]);
+      contact_stats_.min_pair_distance = c[1];
+      contact_stats_.min_wall_distance = c[2];
+    }
   }
   const std::vector<double>& h = r.get(prefix + "fill_history", 3);
   fill_history_ = {static_cast<long>(h[0]), h[1], static_cast<int>(h[2])};
@@ -154,7 +167,7 @@ void CellPhysics::register_stages(TimeLoop& loop, fluid::FluidLattice& lattice) 
       loop.add(Phase::forces, "index_field", [this, &lattice](long) { refresh_viscosity_timed(lattice); },
                index_interval_, index_interval_);
     loop.add(Phase::forces, "membrane_forces", [this](long) { cells_.compute_forces(); });
-    if (aggregation_) loop.add(Phase::forces, "aggregation_forces", [this](long) { add_aggregation_forces(); });
+    if (contacts_) loop.add(Phase::forces, "contact_forces", [this](long) { add_contact_forces(); });
   }
   // The lattice's uniform (body) force is added to this field by the fluid step.
   loop.add(Phase::spread, "force_field_reset", [&lattice](long) { membrane::ImmersedCells::clear_force_field(lattice); });

@@ -2,15 +2,15 @@
 // The cell physics of a scene: the immersed-boundary cycle of membrane::ImmersedCells
 // (thesis §II.3, eqs 23–25; docs/model.md §2) with, when the scene asks for them, the
 // interior viscosity of the index field (thesis §II.4, eqs 26–27; docs/model.md §5)
-// refreshed every k steps before the fluid step, and the Morse aggregation forces
-// between cells (docs/model.md §4) added to the membrane forces. Only what the scene
+// refreshed every k steps before the fluid step, and the forces between cells (Morse
+// aggregation, docs/model.md §4; short-range repulsion, §4b) added to the membrane forces. Only what the scene
 // declares is built. The cycle is a set of stages of the time loop around the fluid
 // step (register_stages).
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include "aggregation/morse_aggregation.hpp"
+#include "aggregation/cell_contacts.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "interior/index_field.hpp"
 #include "membrane/immersed_cells.hpp"
@@ -29,13 +29,14 @@ class CellPhysics {
   // The stages of one step n, around the fluid's own stage (Phase::fluid):
   //   forces       index_field        I → τ when n > 0 and n is a multiple of k
   //                membrane_forces    F_m = −∂E/∂X_m (membrane_energy.hpp)
-  //                aggregation_forces + Morse forces between cells (with [aggregation])
+  //                contact_forces     + forces between cells: Morse ([aggregation]) and
+  //                                   repulsion ([repulsion]), one neighbour search
   //   spread       force_field_reset  f = 0 on the grid
   //                spreading          f += Σ_m F_m δ_h(x − X_m)
   //   interpolate  interpolation      u of the fluid step at the markers' support nodes
   //   advect       marker_advection   X_m += U_m, periodic wrap
   // On two or more OpenMP threads, when the force stage runs on one thread anyway (fewer
-  // than ImmersedCells::kParallelCells cells and MorseAggregation::kParallelMarkers
+  // than ImmersedCells::kParallelCells cells and CellContacts::kParallelMarkers
   // markers), the index field is rebuilt on a second thread beside the forces, in one
   // stage "forces_and_index_field" (independent: the same bits). docs/performance.md,
   // "Index field". Stages throw std::domain_error (non-finite marker) or
@@ -45,9 +46,12 @@ class CellPhysics {
   const membrane::ImmersedCells& cells() const { return cells_; }
   // The index field, or nullptr when the interior has the fluid's viscosity.
   const interior::IndexField* index_field() const { return index_ ? &*index_ : nullptr; }
-  // The aggregation, or nullptr; its statistics of the last step.
-  const aggregation::MorseAggregation* aggregation() const { return aggregation_ ? &*aggregation_ : nullptr; }
-  const aggregation::AggregationStats& aggregation_stats() const { return aggregation_stats_; }
+  // The forces between cells (Morse aggregation and/or repulsion), or nullptr; their
+  // statistics of the last step.
+  const aggregation::CellContacts* contacts() const { return contacts_ ? &*contacts_ : nullptr; }
+  const aggregation::ContactStats& contact_stats() const { return contact_stats_; }
+  // Whether Morse aggregation acts (a doublet's pair probe needs it).
+  bool aggregates() const { return contacts_ && contacts_->law().morse.has_value(); }
   // Wall time spent so far rebuilding the index field and writing τ (s), and the part of
   // it the step waited for: all of it when run alone; when run beside the force stage,
   // the time by which that two-thread region outlasted the force stage.
@@ -65,7 +69,7 @@ class CellPhysics {
   const FillHistory& fill_history() const { return fill_history_; }
 
   // Checkpoint (common/state_record.hpp), under `prefix`: the cells, the index field and
-  // the fill history (the τ field it wrote is the fluid's), the aggregation's force
+  // the fill history (the τ field it wrote is the fluid's), the contact forces'
   // magnitudes and statistics of the last step (its forces are recomputed every step).
   void save_state(StateRecord& record, const std::string& prefix) const;
   void restore_state(const StateRecord& record, const std::string& prefix);
@@ -75,15 +79,15 @@ class CellPhysics {
   void refresh_viscosity(fluid::FluidLattice& lattice);
   void record_fill(const interior::FillReport& report);
   void refresh_viscosity_timed(fluid::FluidLattice& lattice);
-  void compute_marker_forces();  // membrane forces [+ aggregation]
-  void add_aggregation_forces();
+  void compute_marker_forces();  // membrane forces [+ contact forces]
+  void add_contact_forces();
   void refresh_viscosity_beside_forces(fluid::FluidLattice& lattice);
   std::span<const geometry::Polygon> polygons_from_cells();
 
   membrane::ImmersedCells cells_;
   std::optional<interior::IndexField> index_;
-  std::optional<aggregation::MorseAggregation> aggregation_;
-  aggregation::AggregationStats aggregation_stats_;
+  std::optional<aggregation::CellContacts> contacts_;
+  aggregation::ContactStats contact_stats_;
   std::vector<geometry::Polygon> polygons_;  // scratch for the index field
   double nu_interior_ = 0.0, nu_exterior_ = 0.0;
   long index_interval_ = 1;

@@ -13,6 +13,7 @@
 #include "simulation/interrupt.hpp"
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
+#include "simulation/probes/contact_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
 #include "simulation/probes/interior_probe.hpp"
 #include "simulation/probes/marker_speed_probe.hpp"
@@ -50,8 +51,10 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
     if (cells_)
       probes_.push_back(std::make_unique<MarkerSpeedProbe>(*cells_, scene_.output.extremes_interval_steps));
     if (cells_ && cells_->index_field()) probes_.push_back(std::make_unique<InteriorProbe>(*cells_));
-    if (cells_ && cells_->aggregation() && cells_->cells().cell_count() == 2)  // a doublet
+    if (cells_ && cells_->aggregates() && cells_->cells().cell_count() == 2)  // a doublet
       probes_.push_back(std::make_unique<PairProbe>(*cells_));
+    if (cells_ && cells_->contacts() && cells_->contacts()->law().repulsion)
+      probes_.push_back(std::make_unique<ContactProbe>(*cells_, scene_.output.extremes_interval_steps));
   } else if (setup_.membrane) {
     for (const scene::CellSetup& c : setup_.membrane->cells) fixed_cells_.push_back(c.shape);
   }

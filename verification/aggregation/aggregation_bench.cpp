@@ -19,7 +19,7 @@
 #include <functional>
 #include <vector>
 
-#include "aggregation/morse_aggregation.hpp"
+#include "aggregation/cell_contacts.hpp"
 #include "configs.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "geometry/polygon.hpp"
@@ -90,12 +90,12 @@ int main(int argc, char** argv) {
       c.y.resize(200);
       c.offsets.resize(3);
     }
-    MorseAggregation agg(c.domain, kP);
+    CellContacts agg(c.domain, kP);
     std::vector<double> fx(c.markers(), 0.0), fy(c.markers(), 0.0);
-    AggregationStats st;
+    ContactStats st;
     const double t = time_call([&] { st = agg.add_forces(c.view(), fx, fy); }, min_s);
     double tb = NAN;
-    if (c.markers() <= 4000) tb = time_call([&] { add_forces_brute_force(c.domain, kP, c.view(), fx, fy); }, min_s);
+    if (c.markers() <= 4000) tb = time_call([&] { add_forces_brute_force(c.domain, ContactLaw{kP, std::nullopt}, c.view(), fx, fy); }, min_s);
     std::printf("%8zu %9zu %8d %10zu %14.6e %14.6e %12.1f\n", c.offsets.size() - 1, c.markers(), c.domain.grid.nx,
                 st.pairs, t, tb, 1e9 * t / double(c.markers()));
     nm.push_back(double(c.markers()));
@@ -118,8 +118,8 @@ int main(int argc, char** argv) {
     const double d = 0.62 * a + kP.r0;
     cells.add_cell(geometry::transformed(s, 1.0, 0.5 * 3.141592653589793, 100.5 - 0.5 * d, 100.5), rest, model);
     cells.add_cell(geometry::transformed(s, 1.0, 0.5 * 3.141592653589793, 100.5 + 0.5 * d, 100.5), rest, model);
-    MorseAggregation agg(cells.transfer().domain(), kP);
-    AggregationStats st;
+    CellContacts agg(cells.transfer().domain(), kP);
+    ContactStats st;
     cells.compute_forces();
     const double t_fluid = time_call([&] { lat.step(); }, min_s);
     const double t_agg = time_call([&] { st = agg.add_forces(cells); }, min_s);

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "aggregation/morse_aggregation.hpp"
+#include "aggregation/cell_contacts.hpp"
 #include "geometry/domain.hpp"
 
 namespace erythro::vv {

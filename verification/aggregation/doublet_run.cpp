@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <numbers>
 
-#include "aggregation/morse_aggregation.hpp"
+#include "aggregation/cell_contacts.hpp"
 #include "aggregation/morse_units.hpp"
 #include "common/lattice_inputs.hpp"
 #include "common/scene_case.hpp"
@@ -40,7 +40,7 @@ Shape measure(const geometry::Polygon& p) {
 
 // Net Morse force on rigid polygon b, shifted by s along the unit vector e (from a's
 // centre to b's), projected on e: > 0 pushes b away from a (repulsion).
-double force_along(aggregation::MorseAggregation& agg, const geometry::Polygon& a, const geometry::Polygon& b,
+double force_along(aggregation::CellContacts& agg, const geometry::Polygon& a, const geometry::Polygon& b,
                    double ex, double ey, double s) {
   std::vector<double> x(a.x), y(a.y);
   for (std::size_t i = 0; i < b.size(); ++i) {
@@ -57,7 +57,7 @@ double force_along(aggregation::MorseAggregation& agg, const geometry::Polygon& 
 
 // The shift s ∈ (lo, hi) of b along e where that force changes sign from + to −
 // (first sign change on a 0.05 grid, then bisection).
-double balance_root(aggregation::MorseAggregation& agg, const geometry::Polygon& a, const geometry::Polygon& b,
+double balance_root(aggregation::CellContacts& agg, const geometry::Polygon& a, const geometry::Polygon& b,
                     double ex, double ey, double lo, double hi) {
   double l = lo, h = lo;
   bool found = false;
@@ -80,7 +80,7 @@ double balance_root(aggregation::MorseAggregation& agg, const geometry::Polygon&
 // Gap where the discrete Morse force between the rigid INITIAL polygons vanishes.
 double discrete_rigid_gap(const geometry::Domain& dom, const aggregation::MorseParameters& p, const geometry::Polygon& a,
                           const geometry::Polygon& b, double R) {
-  aggregation::MorseAggregation agg(dom, p);
+  aggregation::CellContacts agg(dom, p);
   const double gap0 = measure(b).cx - measure(a).cx - 2.0 * R;
   return gap0 + balance_root(agg, a, b, 1.0, 0.0, 0.1 * p.r0 - gap0, p.cutoff - gap0);
 }
@@ -149,7 +149,7 @@ DoubletResult run_doublet(const DoubletSetup& s, const std::string& case_name, c
   const scene::MembraneSetup& M = *run.setup.membrane;
   const aggregation::MorseParameters& morse = *M.aggregation;
   const geometry::Domain dom = fluid::domain_of(run.setup.grid, run.setup.boundaries);
-  aggregation::MorseAggregation agg(dom, morse);
+  aggregation::CellContacts agg(dom, morse);
   const geometry::Polygon &p0 = M.cells[0].shape, &p1 = M.cells[1].shape;
   r.discrete_rigid_gap = discrete_rigid_gap(dom, morse, p0, p1, measure(p0).R);
 

@@ -1,7 +1,7 @@
 // Case verification.aggregation_forces (issue 6 item 3).
 //
 // Requirement: the Morse aggregation forces are the exact negative gradient of the
-// discrete energy (aggregation/morse_aggregation.hpp), their pair structure makes the
+// discrete energy (aggregation/cell_contacts.hpp), their pair structure makes the
 // total force and torque vanish to round-off, and the cell-list search returns
 // bit-for-bit the brute-force result.
 // Reference: F_m = −∂E/∂X_m; central differences of E with step ε have error
@@ -17,7 +17,7 @@
 #include <omp.h>
 #include <random>
 
-#include "aggregation/morse_aggregation.hpp"
+#include "aggregation/cell_contacts.hpp"
 #include "common/case_support.hpp"
 #include "configs.hpp"
 #include "geometry/polygon.hpp"
@@ -64,7 +64,7 @@ struct FdResult {
 
 // Central differences of E at every `stride`-th marker (both axes) against add_forces.
 FdResult finite_difference_check(vv::MarkerConfig c, const MorseParameters& p, double eps, std::size_t stride = 1) {
-  MorseAggregation agg(c.domain, p);
+  CellContacts agg(c.domain, p);
   std::vector<double> fx(c.markers(), 0.0), fy(c.markers(), 0.0);
   agg.add_forces(c.view(), fx, fy);
   FdResult r;
@@ -132,9 +132,9 @@ TEST(AggregationForces, All) {
   // 2. Total force and torque of a doublet (not wrapped: positions are the true separations).
   {
     const auto c = doublet(false, 11);
-    MorseAggregation agg(c.domain, kP);
+    CellContacts agg(c.domain, kP);
     std::vector<double> fx(c.markers(), 0.0), fy(c.markers(), 0.0);
-    const AggregationStats st = agg.add_forces(c.view(), fx, fy);
+    const ContactStats st = agg.add_forces(c.view(), fx, fy);
     double sx = 0, sy = 0, tq = 0, fabs = 0, tabs = 0;
     for (std::size_t m = 0; m < c.markers(); ++m) {
       sx += fx[m];
@@ -173,13 +173,13 @@ TEST(AggregationForces, All) {
                         {"small_box_2bins", 6, 48, 25, 30, true, 5}};
   for (const Case& k : cases) {
     const auto c = vv::random_cells(k.cells, k.markers, k.nx, k.ny, k.periodic, k.seed);
-    MorseAggregation agg(c.domain, kP);
+    CellContacts agg(c.domain, kP);
     std::vector<double> fx(c.markers(), 0.0), fy(c.markers(), 0.0), bx(c.markers(), 0.0), by(c.markers(), 0.0);
     vv::Stopwatch sw;
-    const AggregationStats a = agg.add_forces(c.view(), fx, fy);
+    const ContactStats a = agg.add_forces(c.view(), fx, fy);
     const double t_cl = sw.seconds();
     vv::Stopwatch sb;
-    const AggregationStats b = add_forces_brute_force(c.domain, kP, c.view(), bx, by);
+    const ContactStats b = add_forces_brute_force(c.domain, ContactLaw{kP, std::nullopt}, c.view(), bx, by);
     const double t_bf = sb.seconds();
     // Same with one thread: deterministic for any thread count.
     const int threads = omp_get_max_threads();

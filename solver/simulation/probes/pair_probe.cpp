@@ -16,7 +16,7 @@ double wrap(double d, double period) { return d - period * std::round(d / period
 }  // namespace
 
 PairProbe::PairProbe(const CellPhysics& cells) : cells_(cells) {
-  if (cells.cells().cell_count() != 2 || !cells.aggregation())
+  if (cells.cells().cell_count() != 2 || !cells.aggregates())
     throw std::logic_error("PairProbe: needs exactly two cells and aggregation");
 }
 
@@ -34,7 +34,7 @@ void PairProbe::declare(std::vector<SeriesInfo>& series) const {
 
 void PairProbe::sample(const ProbeContext& context, std::span<double> values) {
   const membrane::ImmersedCells& cells = cells_.cells();
-  const aggregation::MorseAggregation& agg = *cells_.aggregation();
+  const aggregation::CellContacts& agg = *cells_.contacts();
   const geometry::Domain& domain = agg.domain();
   const double um = context.setup.scales.length_m * 1e6;
   std::array<geometry::Polygon, 2> p{cells.polygon(0), cells.polygon(1)};
@@ -82,7 +82,7 @@ void PairProbe::sample(const ProbeContext& context, std::span<double> values) {
   values[5] = sigmoid;
   values[6] = bow;
   values[7] = geometry::equivalent_ellipse(p).axis_ratio;
-  values[8] = gap > agg.parameters().cutoff ? 1.0 : 0.0;
+  values[8] = gap > agg.cutoff() ? 1.0 : 0.0;
 }
 
 }  // namespace erythro::sim

@@ -1,5 +1,5 @@
 // Unit tests of the Morse potential (aggregation/morse.hpp), its units
-// (aggregation/morse_units.hpp) and small configurations of MorseAggregation.
+// (aggregation/morse_units.hpp) and small configurations of CellContacts.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "aggregation/morse.hpp"
-#include "aggregation/morse_aggregation.hpp"
+#include "aggregation/cell_contacts.hpp"
 #include "aggregation/morse_units.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "geometry/shapes.hpp"
@@ -123,7 +123,7 @@ TEST(MorseUnits, FlatContactGap) {
   EXPECT_THROW(pair_density_for(-0.1, sharp), std::invalid_argument);
 }
 
-TEST(MorseAggregation, TwoTrianglesMatchHandSum) {
+TEST(CellContacts, TwoTrianglesMatchHandSum) {
   // Two 3-marker cells; E = Σ_{m in A, n in B} Φ_s(r) ℓ_m ℓ_n written out here independently.
   const std::vector<double> x{0, 2, 1, 4, 6, 5}, y{0, 0, 1.5, 0.2, 0.1, 1.8};
   const std::vector<std::size_t> off{0, 3, 6};
@@ -137,7 +137,7 @@ TEST(MorseAggregation, TwoTrianglesMatchHandSum) {
   double E = 0.0;
   for (std::size_t i = 0; i < 3; ++i)
     for (std::size_t j = 3; j < 6; ++j) E += m.energy(std::hypot(x[i] - x[j], y[i] - y[j])) * ell(i) * ell(j);
-  MorseAggregation agg(dom, p);
+  CellContacts agg(dom, p);
   const MarkerView v{x, y, off};
   EXPECT_NEAR(agg.energy(v), E, 1e-14 * std::abs(E));
   std::vector<double> fx(6, 0.0), fy(6, 0.0);
@@ -151,10 +151,10 @@ TEST(MorseAggregation, TwoTrianglesMatchHandSum) {
   EXPECT_LE(st.pairs, 9u);
 }
 
-TEST(MorseAggregation, SameCellNeverInteracts) {
+TEST(CellContacts, SameCellNeverInteracts) {
   const std::vector<double> x{0, 1, 0.5}, y{0, 0, 1};
   const std::vector<std::size_t> off{0, 3};
-  MorseAggregation agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
+  CellContacts agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
   std::vector<double> fx(3, 0.0), fy(3, 0.0);
   const auto st = agg.add_forces(MarkerView{x, y, off}, fx, fy);
   EXPECT_EQ(st.pairs, 0u);
@@ -162,11 +162,11 @@ TEST(MorseAggregation, SameCellNeverInteracts) {
   for (int i = 0; i < 3; ++i) EXPECT_EQ(fx[i], 0.0);
 }
 
-TEST(MorseAggregation, RejectsBadInput) {
+TEST(CellContacts, RejectsBadInput) {
   // A cut-off of half a periodic side or more would see two images.
-  EXPECT_THROW(MorseAggregation(geometry::Domain{Grid{12, 40}, true, false}, {0.3, 2.5, 0.8, 6.0}), std::invalid_argument);
-  EXPECT_NO_THROW(MorseAggregation(geometry::Domain{Grid{12, 40}, false, false}, {0.3, 2.5, 0.8, 6.0}));
-  MorseAggregation agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
+  EXPECT_THROW(CellContacts(geometry::Domain{Grid{12, 40}, true, false}, {0.3, 2.5, 0.8, 6.0}), std::invalid_argument);
+  EXPECT_NO_THROW(CellContacts(geometry::Domain{Grid{12, 40}, false, false}, {0.3, 2.5, 0.8, 6.0}));
+  CellContacts agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
   const std::vector<double> x{0, 1, 0.5, 0, 1, 0.5}, y{0, 0, 1, 0, 0, 1};
   std::vector<double> fx(6, 0.0), fy(6, 0.0);
   const std::vector<std::size_t> bad{0, 2, 6};  // a cell of 2 markers
@@ -175,7 +175,7 @@ TEST(MorseAggregation, RejectsBadInput) {
   EXPECT_THROW(agg.add_forces(MarkerView{x, y, off}, fx, fy), std::domain_error);
 }
 
-TEST(MorseAggregation, RelativeContactArea) {
+TEST(CellContacts, RelativeContactArea) {
   const std::vector<double> mag{0.0, 1.0, 0.5, 0.011, 0.0, 0.02};
   const std::vector<std::size_t> off{0, 3, 6};
   EXPECT_DOUBLE_EQ(relative_contact_area(mag, off, 0), 2.0 / 3.0);
@@ -184,7 +184,7 @@ TEST(MorseAggregation, RelativeContactArea) {
   EXPECT_EQ(relative_contact_area(none, off, 0), 0.0);
 }
 
-TEST(MorseAggregation, ImmersedCellsWrapperMatchesRawPath) {
+TEST(CellContacts, ImmersedCellsWrapperMatchesRawPath) {
   // add_forces(ImmersedCells&) ADDS to the membrane forces and equals the raw-array path.
   fluid::FluidLattice lat(Grid{48, 40}, fluid::CollisionConfig{fluid::CollisionModel::bgk, 1.0, 3.0 / 16.0},
                           fluid::BoundaryConfig{});
@@ -197,8 +197,8 @@ TEST(MorseAggregation, ImmersedCellsWrapperMatchesRawPath) {
   cells.compute_forces();
   const std::vector<double> mfx(cells.marker_fx().begin(), cells.marker_fx().end());
   const MorseParameters p{1e-3, 3.0, 0.6, 11.0};
-  MorseAggregation agg(fluid::domain_of(lat.grid(), lat.boundaries()), p);
-  const AggregationStats st = agg.add_forces(cells);
+  CellContacts agg(fluid::domain_of(lat.grid(), lat.boundaries()), p);
+  const ContactStats st = agg.add_forces(cells);
   const std::vector<std::size_t> off = cell_offsets(cells);
   ASSERT_EQ(off, (std::vector<std::size_t>{0, 40, 80}));
   std::vector<double> x(cells.marker_x().begin(), cells.marker_x().end()), y(cells.marker_y().begin(), cells.marker_y().end());
@@ -209,19 +209,19 @@ TEST(MorseAggregation, ImmersedCellsWrapperMatchesRawPath) {
   EXPECT_EQ(agg.energy(cells), st.energy);
   EXPECT_EQ(agg.force_magnitude().size(), 80u);
   // A model built for another domain is refused.
-  MorseAggregation other(geometry::Domain{Grid{64, 64}, true, true}, p);
+  CellContacts other(geometry::Domain{Grid{64, 64}, true, true}, p);
   EXPECT_THROW(other.add_forces(cells), std::invalid_argument);
 }
 
-TEST(MorseAggregation, NonFiniteMarkerIsReported) {
+TEST(CellContacts, NonFiniteMarkerIsReported) {
   const std::vector<double> x{0, 1, 0.5, 5, 6, NAN}, y{0, 0, 1, 0, 0, 1};
   const std::vector<std::size_t> off{0, 3, 6};
-  MorseAggregation agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
+  CellContacts agg(geometry::Domain{Grid{32, 32}, true, true}, {0.3, 2.5, 0.8, 6.0});
   std::vector<double> fx(6, 0.0), fy(6, 0.0);
   EXPECT_THROW(agg.add_forces(MarkerView{x, y, off}, fx, fy), std::domain_error);
 }
 
-TEST(MorseAggregation, FarOutsideWallsStillBinned) {
+TEST(CellContacts, FarOutsideWallsStillBinned) {
   // Markers far beyond the walls of a non-periodic box join the edge bins: same result as
   // the brute force.
   const std::vector<double> x{-1e6, -1e6 + 1, -1e6 + 0.5, -1e6 + 3, -1e6 + 4, -1e6 + 3.5},
@@ -229,10 +229,10 @@ TEST(MorseAggregation, FarOutsideWallsStillBinned) {
   const std::vector<std::size_t> off{0, 3, 6};
   const geometry::Domain dom{Grid{40, 40}, false, false};
   const MorseParameters p{0.3, 2.5, 0.8, 6.0};
-  MorseAggregation agg(dom, p);
+  CellContacts agg(dom, p);
   std::vector<double> fx(6, 0.0), fy(6, 0.0), bx(6, 0.0), by(6, 0.0);
   const auto a = agg.add_forces(MarkerView{x, y, off}, fx, fy);
-  const auto b = add_forces_brute_force(dom, p, MarkerView{x, y, off}, bx, by);
+  const auto b = add_forces_brute_force(dom, ContactLaw{p, std::nullopt}, MarkerView{x, y, off}, bx, by);
   EXPECT_EQ(a.energy, b.energy);
   EXPECT_GT(a.pairs, 0u);
   for (int i = 0; i < 6; ++i) EXPECT_EQ(fx[i], bx[i]);

@@ -22,8 +22,9 @@ namespace {
 using testing::channel_scene;
 using testing::error_of;
 
-// 40 µm × 40 µm at h = 0.25 µm; walls at bottom and top unless `walls` is false.
-std::string box(bool walls) { return channel_scene("40, 40", "0.25", "1.0", "10", walls); }
+// 40 µm × 40 µm at h = 0.25 µm; walls at bottom and top unless `walls` is false; with the
+// [repulsion] that crowded cells need.
+std::string box(bool walls) { return channel_scene("40, 40", "0.25", "1.0", "10", walls) + "\n[repulsion]\n"; }
 
 std::string population(const std::string& body) { return "\n[[cell_populations]]\n" + body + "\n"; }
 // 2D haematocrit 0.25 (the random addition of these cells with a 2 h gap jams near 0.3 at this
@@ -154,6 +155,13 @@ TEST(CellSeeding, AnUnreachableTargetNamesTheKeyTheValueAndTheFractionReached) {
                   "cell_populations[0].min_gap_um' = 0.2 is below limits.min_cell_gap");
   const std::string both = population("radius_um = 3.0\narea_fraction = 0.1\ncount = 3");
   EXPECT_CONTAINS(error_of([&] { parse_scene(box(true) + both, "both.toml"); }), "give exactly one of them");
+}
+
+TEST(CellSeeding, PopulationsNeedRepulsion) {
+  const std::string bare = channel_scene("40, 40", "0.25", "1.0", "10", true);
+  const std::string message = error_of([&] { parse_scene(bare + rbcs, "crowd.toml"); });
+  EXPECT_CONTAINS(message, "crowd.toml:");
+  EXPECT_CONTAINS(message, "add a [repulsion] table");
 }
 
 TEST(CellSeeding, SeededCellsAreOrdinaryCellsOfTheSetUp) {

@@ -54,6 +54,7 @@ radius_um = 2.0
 count = 1
 [aggregation]
 de_star = 1.0
+[repulsion]
 [transport]
 [[species]]
 name = "O2"
@@ -124,6 +125,8 @@ const std::map<std::string, Accessor>& accessors() {
         {"aggregation.zero_force_distance_um",
          [](const Scene& s) -> Value { return s.aggregation->zero_force_distance_um; }},
         {"aggregation.decay_per_um", [](const Scene& s) -> Value { return s.aggregation->decay_per_um; }},
+        {"repulsion.pressure_Pa", [](const Scene& s) -> Value { return s.repulsion->pressure_Pa; }},
+        {"repulsion.walls", [](const Scene& s) -> Value { return s.repulsion->walls; }},
         {"transport.coupling", [](const Scene& s) -> Value { return s.transport->coupling; }},
         {"transport.stencil", [](const Scene& s) -> Value { return s.transport->stencil; }},
         {"transport.collision", [](const Scene& s) -> Value { return s.transport->collision; }},
@@ -251,6 +254,7 @@ TEST(SceneSchema, TheStructInitialisersAgreeWithTheSchema) {
   s.cells.emplace_back();
   s.cell_populations.emplace_back();
   s.aggregation.emplace();
+  s.repulsion.emplace();
   s.transport.emplace();
   s.species.emplace_back();
   s.hemoglobin.emplace();

@@ -1,8 +1,9 @@
-#include "aggregation/morse_aggregation.hpp"
+#include "aggregation/cell_contacts.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -13,7 +14,7 @@ namespace erythro::aggregation {
 
 namespace {
 
-constexpr std::size_t kParallelMarkers = MorseAggregation::kParallelMarkers;
+constexpr std::size_t kParallelMarkers = CellContacts::kParallelMarkers;
 
 // Minimum-image difference on a periodic axis of length L, inv = 1/L. Symmetric:
 // image(−d) = −image(d) bit for bit (−d·inv = −(d·inv) exactly, and round-to-nearest-even
@@ -23,16 +24,16 @@ inline double image(double d, bool periodic, double L, double inv) {
 }
 
 void check_view(const MarkerView& v) {
-  if (v.x.size() != v.y.size()) throw std::invalid_argument("aggregation: x and y differ in size");
+  if (v.x.size() != v.y.size()) throw std::invalid_argument("cell contacts: x and y differ in size");
   if (v.offsets.empty() || v.offsets.front() != 0 || v.offsets.back() != v.x.size()) {
-    throw std::invalid_argument("aggregation: offsets must run from 0 to the marker count");
+    throw std::invalid_argument("cell contacts: offsets must run from 0 to the marker count");
   }
   for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
-    if (v.offsets[c + 1] < v.offsets[c] + 3) throw std::invalid_argument("aggregation: a cell needs >= 3 markers");
+    if (v.offsets[c + 1] < v.offsets[c] + 3) throw std::invalid_argument("cell contacts: a cell needs >= 3 markers");
   }
   for (std::size_t m = 0; m < v.x.size(); ++m) {
     if (!std::isfinite(v.x[m]) || !std::isfinite(v.y[m])) {
-      throw std::domain_error("aggregation: marker " + std::to_string(m) + " has a non-finite position");
+      throw std::domain_error("cell contacts: marker " + std::to_string(m) + " has a non-finite position");
     }
   }
 }
@@ -42,16 +43,20 @@ void check_view(const MarkerView& v) {
 // every marker of another cell within the cut-off (it may contain more).
 struct Engine {
   const geometry::Domain& domain;
-  const ShiftedMorse& morse;
+  const ContactPotential& potential;
   const MarkerView& v;
   std::vector<std::size_t> cell_of;
-  std::vector<double> edge, ell, S, px, py;
+  std::vector<double> edge, ell, S, px, py, rmin;
+  std::vector<double> W;  // W(s_m) summed over the walls (eq 4.13); empty without wall repulsion
+  std::size_t wall_markers = 0;
+  double min_wall_gap = std::numeric_limits<double>::infinity();
   std::vector<double> box_cx, box_cy, box_hx, box_hy;  // per-cell bounding box: centre, half-widths
   std::vector<std::size_t> count;
   std::atomic<bool> coincident{false};
+  std::atomic<bool> beyond_wall{false};
   bool use_boxes = true;  // bounding-box block skip (cell lists); the brute force tests every pair
 
-  Engine(const geometry::Domain& d, const ShiftedMorse& m, const MarkerView& view) : domain(d), morse(m), v(view) {
+  Engine(const geometry::Domain& d, const ContactPotential& p, const MarkerView& view) : domain(d), potential(p), v(view) {
     check_view(v);
     const std::size_t N = v.x.size();
     cell_of.resize(N);
@@ -85,6 +90,7 @@ struct Engine {
     px.assign(N, 0.0);
     py.assign(N, 0.0);
     count.assign(N, 0);
+    rmin.assign(N, std::numeric_limits<double>::infinity());
   }
 
   // Pair sums of marker m over its candidate list: S_m, the pair force, the pair count.
@@ -102,10 +108,12 @@ struct Engine {
     px[m] = acc.fx;
     py[m] = acc.fy;
     count[m] = acc.k;
+    rmin[m] = acc.rmin;
   }
 
   struct Sums {
     double s = 0.0, fx = 0.0, fy = 0.0;
+    double rmin = std::numeric_limits<double>::infinity();
     std::size_t k = 0;
   };
 
@@ -118,7 +126,7 @@ struct Engine {
   void accumulate(std::size_t m, std::span<const std::size_t> cand, Sums& acc) {
     const double Lx = domain.grid.nx, Ly = domain.grid.ny, ix = 1.0 / Lx, iy = 1.0 / Ly;
     const bool perx = domain.periodic_x, pery = domain.periodic_y;
-    const double rc = morse.parameters().cutoff, rc2 = rc * rc, skip2 = rc2 * (1.0 + 1e-9);
+    const double rc = potential.cutoff(), rc2 = rc * rc, skip2 = rc2 * (1.0 + 1e-9);
     const double xm = v.x[m], ym = v.y[m], lm = ell[m];
     std::size_t i = 0;
     while (i < cand.size()) {
@@ -143,32 +151,74 @@ struct Engine {
           continue;
         }
         double phi = 0.0, dphi = 0.0;
-        if (!morse.evaluate(r, phi, dphi)) continue;
-        acc.s += phi * ell[n];                        // S_m = Σ Φ_s ℓ_n
+        if (!potential.evaluate(r, phi, dphi)) continue;
+        acc.s += phi * ell[n];                        // S_m = Σ Φ ℓ_n
         const double w = dphi * (lm * ell[n]) / r;    // symmetric in (m, n) bit for bit
-        acc.fx -= w * dx;                             // −Φ_s' ℓ_m ℓ_n (X_m − X_n)/r
+        acc.fx -= w * dx;                             // −Φ' ℓ_m ℓ_n (X_m − X_n)/r
         acc.fy -= w * dy;
+        acc.rmin = std::min(acc.rmin, r);
         ++acc.k;
       }
     }
   }
 
+  // The walls' part (eq 4.13): W_m = Σ_walls W(s) and the normal force −W'(s) ℓ_m ∂s/∂X_m,
+  // for every marker within the range of a wall of a non-periodic axis (walls at 0 and n).
+  void add_walls() {
+    const RepulsionParameters* rep = potential.wall_repulsion();
+    if (!rep || (domain.periodic_x && domain.periodic_y)) return;
+    const std::size_t N = v.x.size();
+    W.assign(N, 0.0);
+    const double Lx = domain.grid.nx, Ly = domain.grid.ny, d = rep->range;
+    std::size_t near = 0;
+    for (std::size_t m = 0; m < N; ++m) {
+      bool touched = false;
+      // One axis: walls at 0 (s = q, ∂s/∂q = 1) and at L (s = L − q, ∂s/∂q = −1).
+      auto side = [&](double q, double L, double& force) {
+        for (const double sign : {1.0, -1.0}) {
+          const double gap = sign > 0 ? q : L - q;
+          if (!(gap < d)) continue;
+          if (!(gap > 0.0)) {
+            beyond_wall.store(true, std::memory_order_relaxed);
+            continue;
+          }
+          W[m] += wall_energy(*rep, gap);
+          min_wall_gap = std::min(min_wall_gap, gap);
+          force -= sign * wall_energy_derivative(*rep, gap) * ell[m];
+          touched = true;
+        }
+      };
+      if (!domain.periodic_x) side(v.x[m], Lx, px[m]);
+      if (!domain.periodic_y) side(v.y[m], Ly, py[m]);
+      near += touched ? 1 : 0;
+    }
+    wall_markers = near;
+  }
+
   void check_coincident() const {
-    if (coincident.load()) throw std::domain_error("aggregation: markers of two different cells coincide");
+    if (coincident.load()) throw std::domain_error("cell contacts: markers of two different cells coincide");
+    if (beyond_wall.load()) throw std::domain_error("cell contacts: a marker is on or beyond a wall");
   }
 
   double energy() const {
     check_coincident();
     double e = 0.0;
     for (std::size_t m = 0; m < S.size(); ++m) e += ell[m] * S[m];  // E = ½ Σ ℓ_m S_m
-    return 0.5 * e;
+    e *= 0.5;
+    if (!W.empty()) {
+      for (std::size_t m = 0; m < W.size(); ++m) e += ell[m] * W[m];  // + Σ ℓ_m W_m
+    }
+    return e;
   }
 
+  // ∂E/∂ℓ_m: S_m, plus W_m with walls.
+  double length_derivative(std::size_t m) const { return W.empty() ? S[m] : S[m] + W[m]; }
+
   // F_m = pair part + edge part (T_e = (S_e + S_{e+1})/2 along edge e), added to fx, fy.
-  AggregationStats finish(std::span<double> fx, std::span<double> fy, std::vector<double>* magnitude) const {
+  ContactStats finish(std::span<double> fx, std::span<double> fy, std::vector<double>* magnitude) const {
     check_coincident();
     const std::size_t N = S.size();
-    if (fx.size() != N || fy.size() != N) throw std::invalid_argument("aggregation: force arrays differ in size");
+    if (fx.size() != N || fy.size() != N) throw std::invalid_argument("cell contacts: force arrays differ in size");
     if (magnitude) magnitude->assign(N, 0.0);
     const long long n_ll = static_cast<long long>(N);
 #pragma omp parallel for schedule(static) if (N >= kParallelMarkers)
@@ -177,8 +227,8 @@ struct Engine {
       const std::size_t c = cell_of[m], o = v.offsets[c], e = v.offsets[c + 1];
       const std::size_t next = m + 1 < e ? m + 1 : o;
       const std::size_t prev = m > o ? m - 1 : e - 1;
-      const double Tm = 0.5 * (S[m] + S[next]);     // edge m: m → next
-      const double Tp = 0.5 * (S[prev] + S[m]);     // edge prev: prev → m
+      const double Tm = 0.5 * (length_derivative(m) + length_derivative(next));     // edge m: m → next
+      const double Tp = 0.5 * (length_derivative(prev) + length_derivative(m));     // edge prev: prev → m
       const double um_x = (v.x[next] - v.x[m]) / edge[m], um_y = (v.y[next] - v.y[m]) / edge[m];
       const double up_x = (v.x[m] - v.x[prev]) / edge[prev], up_y = (v.y[m] - v.y[prev]) / edge[prev];
       const double gx = px[m] + Tm * um_x - Tp * up_x;
@@ -187,7 +237,10 @@ struct Engine {
       fy[m] += gy;
       if (magnitude) (*magnitude)[m] = std::hypot(gx, gy);
     }
-    AggregationStats st;
+    ContactStats st;
+    st.wall_markers = wall_markers;
+    st.min_wall_distance = min_wall_gap;
+    for (std::size_t m = 0; m < N; ++m) st.min_pair_distance = std::min(st.min_pair_distance, rmin[m]);
     std::size_t pairs2 = 0;
     for (std::size_t m = 0; m < N; ++m) pairs2 += count[m];
     st.pairs = pairs2 / 2;
@@ -316,7 +369,7 @@ void run_brute_force(Engine& eng) {
 void check_periodic_cutoff(const geometry::Domain& d, double rc) {
   // Minimum image is the only image within r_c only if r_c < half the period.
   if ((d.periodic_x && !(2.0 * rc < d.grid.nx)) || (d.periodic_y && !(2.0 * rc < d.grid.ny))) {
-    throw std::invalid_argument("aggregation: the cut-off " + std::to_string(rc) +
+    throw std::invalid_argument("cell contacts: the cut-off " + std::to_string(rc) +
                                 " must be below half of every periodic side");
   }
 }
@@ -329,37 +382,39 @@ MarkerView view_of(const membrane::ImmersedCells& cells, const std::vector<std::
 
 void check_same_domain(const geometry::Domain& a, const geometry::Domain& b) {
   if (a.grid.nx != b.grid.nx || a.grid.ny != b.grid.ny || a.periodic_x != b.periodic_x || a.periodic_y != b.periodic_y) {
-    throw std::invalid_argument("aggregation: the cells live on another domain than the aggregation model");
+    throw std::invalid_argument("cell contacts: the cells live on another domain than the contact model");
   }
 }
 
 }  // namespace
 
-MorseAggregation::MorseAggregation(const geometry::Domain& domain, MorseParameters p) : domain_(domain), morse_(p) {
-  check_periodic_cutoff(domain, p.cutoff);
-  nbx_ = CellList::bins(domain.grid.nx, p.cutoff);
-  nby_ = CellList::bins(domain.grid.ny, p.cutoff);
+CellContacts::CellContacts(const geometry::Domain& domain, const ContactLaw& law) : domain_(domain), potential_(law) {
+  check_periodic_cutoff(domain, potential_.cutoff());
+  nbx_ = CellList::bins(domain.grid.nx, potential_.cutoff());
+  nby_ = CellList::bins(domain.grid.ny, potential_.cutoff());
 }
 
-AggregationStats MorseAggregation::add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy) {
-  Engine eng(domain_, morse_, markers);
+ContactStats CellContacts::add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy) {
+  Engine eng(domain_, potential_, markers);
   run_cell_list(eng, domain_, nbx_, nby_);
+  eng.add_walls();
   return eng.finish(fx, fy, &magnitude_);
 }
 
-double MorseAggregation::energy(const MarkerView& markers) const {
-  Engine eng(domain_, morse_, markers);
+double CellContacts::energy(const MarkerView& markers) const {
+  Engine eng(domain_, potential_, markers);
   run_cell_list(eng, domain_, nbx_, nby_);
+  eng.add_walls();
   return eng.energy();
 }
 
-AggregationStats MorseAggregation::add_forces(membrane::ImmersedCells& cells) {
+ContactStats CellContacts::add_forces(membrane::ImmersedCells& cells) {
   check_same_domain(domain_, cells.transfer().domain());
   const std::vector<std::size_t> offsets = cell_offsets(cells);
   return add_forces(view_of(cells, offsets), cells.marker_fx(), cells.marker_fy());
 }
 
-double MorseAggregation::energy(const membrane::ImmersedCells& cells) const {
+double CellContacts::energy(const membrane::ImmersedCells& cells) const {
   check_same_domain(domain_, cells.transfer().domain());
   const std::vector<std::size_t> offsets = cell_offsets(cells);
   return energy(view_of(cells, offsets));
@@ -380,21 +435,23 @@ double relative_contact_area(std::span<const double> mag, std::span<const std::s
   return double(k) / double(e - o);
 }
 
-AggregationStats add_forces_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers,
-                                        std::span<double> fx, std::span<double> fy) {
-  check_periodic_cutoff(domain, p.cutoff);
-  const ShiftedMorse morse(p);
-  Engine eng(domain, morse, markers);
+ContactStats add_forces_brute_force(const geometry::Domain& domain, const ContactLaw& law, const MarkerView& markers,
+                                    std::span<double> fx, std::span<double> fy) {
+  const ContactPotential potential(law);
+  check_periodic_cutoff(domain, potential.cutoff());
+  Engine eng(domain, potential, markers);
   run_brute_force(eng);
+  eng.add_walls();
   std::vector<double> mag;
   return eng.finish(fx, fy, &mag);
 }
 
-double energy_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers) {
-  check_periodic_cutoff(domain, p.cutoff);
-  const ShiftedMorse morse(p);
-  Engine eng(domain, morse, markers);
+double energy_brute_force(const geometry::Domain& domain, const ContactLaw& law, const MarkerView& markers) {
+  const ContactPotential potential(law);
+  check_periodic_cutoff(domain, potential.cutoff());
+  Engine eng(domain, potential, markers);
   run_brute_force(eng);
+  eng.add_walls();
   return eng.energy();
 }
 

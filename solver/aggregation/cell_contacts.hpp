@@ -1,23 +1,27 @@
 #pragma once
-// Morse aggregation between the membranes of DIFFERENT cells (docs/model.md §4), as a
-// discrete energy and its exact negative gradient. Lattice units, per unit depth.
+// The forces between the membranes of DIFFERENT cells (docs/model.md §4, §4b): Morse
+// aggregation, short-range repulsion, or both (contact_law.hpp), as a discrete energy and
+// its exact negative gradient. Lattice units, per unit depth.
 //
 // Each marker m carries the membrane length ℓ_m = (|X_m − X_{m−1}| + |X_{m+1} − X_m|)/2
 // (half its two adjacent edges, CURRENT lengths). The energy is the pair sum over
-// markers of different cells within the cut-off (morse.hpp, force-shifted Φ_s):
+// markers of different cells within the cut-off (Φ = Φ_s + Φ_r, contact_law.hpp),
+// plus, with wall repulsion, each marker's energy against the walls (eq 4.13):
 //
-//   E = Σ_{m<n, cell(m)≠cell(n)} Φ_s(r_mn) ℓ_m ℓ_n  = ½ Σ_m ℓ_m S_m,   S_m = Σ_n Φ_s(r_mn) ℓ_n,
+//   E = Σ_{m<n, cell(m)≠cell(n)} Φ(r_mn) ℓ_m ℓ_n + Σ_m W(s_m) ℓ_m
+//     = Σ_m ℓ_m (½ S_m + W_m),   S_m = Σ_n Φ(r_mn) ℓ_n,
 //
-// a quadrature of the continuum ∮∮ Φ_s(|X(s) − Y(t)|) ds dt. Its gradient has two parts:
+// a quadrature of the continuum ∮∮ Φ(|X(s) − Y(t)|) ds dt. Its gradient has two parts:
 //
-//   pair  F_m −= Σ_n Φ_s'(r_mn) ℓ_m ℓ_n (X_m − X_n)/r_mn               (central, ± per pair)
-//   edge  ∂E/∂ℓ_m = S_m and ℓ_m = (L_{m−1} + L_m)/2, so edge e (markers e → e+1) carries
-//         T_e = (S_e + S_{e+1})/2 and  F_e += T_e u_e,  F_{e+1} −= T_e u_e  (u_e unit edge vector)
+//   pair  F_m −= Σ_n Φ'(r_mn) ℓ_m ℓ_n (X_m − X_n)/r_mn               (central, ± per pair)
+//         F_m −= W'(s_m) ℓ_m ∂s_m/∂X_m                                 (wall: along its normal)
+//   edge  ∂E/∂ℓ_m = S_m + W_m and ℓ_m = (L_{m−1} + L_m)/2, so edge e (markers e → e+1) carries
+//         T_e = (S_e + W_e + S_{e+1} + W_{e+1})/2 and  F_e += T_e u_e,  F_{e+1} −= T_e u_e
 //
-// Both parts are central forces between two markers, so the total force and torque on
-// the markers vanish to round-off; the edge part also has zero net force and torque on
-// each cell. Separations use the minimum image on periodic axes (markers may be
-// unwrapped: ImmersedCells shifts whole cells only), so the cut-off must be < half the
+// The pair part and the edge part are central forces between two markers, so without
+// walls the total force and torque on the markers vanish to round-off; the edge part
+// also has zero net force and torque on each cell. Separations use the minimum image on
+// periodic axes (markers may be unwrapped: ImmersedCells shifts whole cells only), so the cut-off must be < half the
 // period (checked). Within a cell the edges use the plain coordinate differences.
 //
 // Neighbour search: cell lists with bins of side ≥ r_c (O(N) in markers). The markers
@@ -30,15 +34,16 @@
 // two give BITWISE identical forces and energies (asserted in
 // verification.aggregation_forces). Each pair term uses exactly antisymmetric arithmetic
 // (X_m − X_n = −(X_n − X_m) in IEEE, odd-symmetric minimum image; the weight
-// Φ_s'(r)(ℓ_mℓ_n)/r is symmetric), so the force marker n gets from m is bit for bit minus
+// Φ'(r)(ℓ_mℓ_n)/r is symmetric), so the force marker n gets from m is bit for bit minus
 // the force m gets from n; only their accumulation into different sums rounds. Each
 // marker writes only its own force: parallel over bins and markers (OpenMP, from 2000
 // markers on), deterministic for any thread count.
 #include <cstddef>
+#include <limits>
 #include <span>
 #include <vector>
 
-#include "aggregation/morse.hpp"
+#include "aggregation/contact_law.hpp"
 #include "common/state_record.hpp"
 #include "geometry/domain.hpp"
 
@@ -56,27 +61,35 @@ struct MarkerView {
   std::span<const std::size_t> offsets;
 };
 
-struct AggregationStats {
+struct ContactStats {
   std::size_t pairs = 0;   // marker pairs of different cells within the cut-off (each once)
-  double energy = 0.0;     // E (lattice energy per depth)
-  double max_force = 0.0;  // largest |F_m| of the aggregation force
+  double energy = 0.0;     // E (lattice energy per depth), walls included
+  double max_force = 0.0;  // largest |F_m| of the contact force
+  std::size_t wall_markers = 0;  // markers within the repulsion range of a wall
+  // The closest two markers of different cells, and the closest marker to a wall, among
+  // those within the cut-off (+inf when none is).
+  double min_pair_distance = std::numeric_limits<double>::infinity();
+  double min_wall_distance = std::numeric_limits<double>::infinity();
 };
 
-class MorseAggregation {
+class CellContacts {
  public:
   // Throws std::invalid_argument on bad parameters, or a cut-off ≥ half a periodic side.
-  MorseAggregation(const geometry::Domain& domain, MorseParameters p);
+  CellContacts(const geometry::Domain& domain, const ContactLaw& law);
+  // Morse aggregation alone.
+  CellContacts(const geometry::Domain& domain, const MorseParameters& morse)
+      : CellContacts(domain, ContactLaw{morse, std::nullopt}) {}
 
-  // ADDS the aggregation forces to cells.marker_fx()/marker_fy() (call after
+  // ADDS the contact forces to cells.marker_fx()/marker_fy() (call after
   // cells.compute_forces(), which overwrites them) and returns the statistics.
-  AggregationStats add_forces(membrane::ImmersedCells& cells);
+  ContactStats add_forces(membrane::ImmersedCells& cells);
   double energy(const membrane::ImmersedCells& cells) const;
 
   // The same on raw arrays (fx, fy sized as x).
-  AggregationStats add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy);
+  ContactStats add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy);
   double energy(const MarkerView& markers) const;
 
-  // |F_m| of the aggregation force of the last add_forces call, per marker.
+  // |F_m| of the contact force of the last add_forces call, per marker.
   std::span<const double> force_magnitude() const { return magnitude_; }
   // Checkpoint (common/state_record.hpp): those magnitudes, the one thing kept between
   // steps (read by the contact diagnostics of the state after a step).
@@ -85,7 +98,8 @@ class MorseAggregation {
     magnitude_ = record.get(prefix + "force_magnitude");
   }
 
-  const MorseParameters& parameters() const { return morse_.parameters(); }
+  const ContactLaw& law() const { return potential_.law(); }
+  double cutoff() const { return potential_.cutoff(); }
   const geometry::Domain& domain() const { return domain_; }
   // Below this many markers a parallel region costs more than it saves (a doublet of
   // 2 × 100 markers: ~10 µs of work per call), and add_forces runs on one thread.
@@ -97,14 +111,14 @@ class MorseAggregation {
 
  private:
   geometry::Domain domain_;
-  ShiftedMorse morse_;
+  ContactPotential potential_;
   int nbx_ = 1, nby_ = 1;
   std::vector<double> magnitude_;
 };
 
 // Relative contact area of cell c (thesis §III.2, after Bagchi et al.): the fraction of
-// its markers whose aggregation force exceeds `fraction` (0.012) of the largest one
-// over all markers. 0 when no marker feels a force.
+// its markers whose contact force (Morse, and repulsion when on) exceeds `fraction`
+// (0.012) of the largest one over all markers. 0 when no marker feels a force.
 double relative_contact_area(std::span<const double> force_magnitude, std::span<const std::size_t> offsets, int c,
                              double fraction = 0.012);
 
@@ -112,9 +126,9 @@ double relative_contact_area(std::span<const double> force_magnitude, std::span<
 std::vector<std::size_t> cell_offsets(const membrane::ImmersedCells& cells);
 
 // Brute-force O(N²) reference: every marker against every marker of the other cells,
-// same arithmetic and summation order as MorseAggregation (bitwise the same result).
-AggregationStats add_forces_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers,
-                                        std::span<double> fx, std::span<double> fy);
-double energy_brute_force(const geometry::Domain& domain, const MorseParameters& p, const MarkerView& markers);
+// same arithmetic and summation order as CellContacts (bitwise the same result).
+ContactStats add_forces_brute_force(const geometry::Domain& domain, const ContactLaw& law, const MarkerView& markers,
+                                    std::span<double> fx, std::span<double> fy);
+double energy_brute_force(const geometry::Domain& domain, const ContactLaw& law, const MarkerView& markers);
 
 }  // namespace erythro::aggregation

@@ -1,0 +1,186 @@
+// Unit tests of the short-range repulsion (aggregation/repulsion.hpp, docs/model.md §4b):
+// the pair density and its derivative, the wall's closed form against a quadrature of the
+// pair density, and CellContacts with repulsion (and Morse): forces = −∇E, the cell list
+// equal to the brute force bit for bit, Morse alone unchanged.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "aggregation/cell_contacts.hpp"
+#include "aggregation/repulsion.hpp"
+
+using namespace erythro;
+using namespace erythro::aggregation;
+
+namespace {
+
+const RepulsionParameters kRep{0.02, 2.0, true};
+const MorseParameters kMorse{0.3, 2.5, 0.8, 6.0};
+
+// W(s) = ∫ Φ_r(√(s² + u²)) du over |u| < √(d² − s²), composite Simpson (the integrand is
+// smooth there; its derivative is continuous at the ends, so the error falls like n⁻²).
+double wall_quadrature(const RepulsionParameters& p, double s, int n = 200000) {
+  const Repulsion rep(p);
+  const double a = std::sqrt(p.range * p.range - s * s), hstep = 2.0 * a / n;
+  auto f = [&](double u) {
+    double phi = 0.0, dphi = 0.0;
+    rep.evaluate(std::hypot(s, u), phi, dphi);
+    return phi;
+  };
+  double sum = f(-a) + f(a);
+  for (int i = 1; i < n; ++i) sum += f(-a + i * hstep) * (i % 2 ? 4.0 : 2.0);
+  return sum * hstep / 3.0;
+}
+
+// Two rings of n markers (radius R) with centres a distance `sep` apart along x, at height y0.
+struct TwoRings {
+  std::vector<double> x, y;
+  std::vector<std::size_t> off;
+  TwoRings(int n, double R, double cx, double sep, double y0) {
+    for (int c = 0; c < 2; ++c)
+      for (int k = 0; k < n; ++k) {
+        const double t = 2.0 * std::numbers::pi * k / n + 0.1 * c;
+        x.push_back(cx + c * sep + R * std::cos(t));
+        y.push_back(y0 + R * std::sin(t));
+      }
+    off = {0, static_cast<std::size_t>(n), static_cast<std::size_t>(2 * n)};
+  }
+  MarkerView view() const { return {x, y, off}; }
+};
+
+}  // namespace
+
+TEST(Repulsion, PairDensityValuesAndDerivative) {
+  const Repulsion r(kRep);
+  double phi = 0.0, dphi = 0.0;
+  ASSERT_TRUE(r.evaluate(1.0, phi, dphi));  // d/r − 1 = 1
+  EXPECT_DOUBLE_EQ(phi, kRep.pressure);
+  EXPECT_DOUBLE_EQ(dphi, -2.0 * kRep.pressure * 2.0);
+  EXPECT_FALSE(r.evaluate(kRep.range, phi, dphi));
+  EXPECT_EQ(phi, 0.0);
+  EXPECT_EQ(dphi, 0.0);
+  // Energy and force continuous at d; repulsive (dΦ/dr < 0) inside.
+  r.evaluate(kRep.range * (1.0 - 1e-9), phi, dphi);
+  EXPECT_NEAR(phi, 0.0, 1e-18);
+  EXPECT_NEAR(dphi, 0.0, 1e-10);
+  for (double x : {0.3, 0.9, 1.5, 1.99}) {
+    double pp, dp, pm, dm, p0, d0;
+    const double e = 1e-6;
+    r.evaluate(x + e, pp, dp);
+    r.evaluate(x - e, pm, dm);
+    r.evaluate(x, p0, d0);
+    EXPECT_NEAR(d0, (pp - pm) / (2 * e), 1e-7 * std::max(1.0, std::abs(d0))) << x;
+    EXPECT_LT(d0, 0.0) << x;
+  }
+  EXPECT_THROW(Repulsion({0.0, 2.0, true}), std::invalid_argument);
+  EXPECT_THROW(Repulsion({0.1, -1.0, true}), std::invalid_argument);
+  EXPECT_THROW(Repulsion({std::nan(""), 1.0, true}), std::invalid_argument);
+}
+
+TEST(Repulsion, WallClosedFormMatchesQuadratureAndItsDerivative) {
+  for (double s : {0.1, 0.5, 1.0, 1.7, 1.99}) {
+    const double W = wall_energy(kRep, s);
+    EXPECT_NEAR(W, wall_quadrature(kRep, s), 1e-8 * W) << s;
+    const double e = 1e-6 * s;
+    const double fd = (wall_energy(kRep, s + e) - wall_energy(kRep, s - e)) / (2 * e);
+    EXPECT_NEAR(wall_energy_derivative(kRep, s), fd, 1e-6 * std::abs(fd)) << s;
+  }
+  EXPECT_EQ(wall_energy(kRep, kRep.range), 0.0);
+  EXPECT_EQ(wall_energy_derivative(kRep, 3.0), 0.0);
+  EXPECT_TRUE(std::isinf(wall_energy(kRep, 0.0)));
+  // eq 4.12: the flat-contact pressure −W'(s) is 2P(4π/3 − √3) ≈ 4.91 P at s = d/2 and
+  // tends to πPd²/s² as s → 0.
+  EXPECT_NEAR(-wall_energy_derivative(kRep, 1.0), 2.0 * kRep.pressure * (4.0 * std::numbers::pi / 3.0 - std::sqrt(3.0)),
+              1e-14);
+  const double s = 1e-3;
+  EXPECT_NEAR(-wall_energy_derivative(kRep, s) / (std::numbers::pi * kRep.pressure * 4.0 / (s * s)), 1.0, 2e-3);
+}
+
+TEST(ContactPotential, MorseAloneIsBitwiseShiftedMorseAndBothAdd) {
+  const ShiftedMorse morse(kMorse);
+  const Repulsion rep(kRep);
+  const ContactPotential alone(ContactLaw{kMorse, std::nullopt});
+  const ContactPotential both(ContactLaw{kMorse, kRep});
+  EXPECT_EQ(alone.cutoff(), kMorse.cutoff);
+  for (double r : {0.2, 1.0, 1.99, 2.0, 3.0, 5.9}) {
+    double a, da, m, dm, b, db, q, dq;
+    alone.evaluate(r, a, da);
+    morse.evaluate(r, m, dm);
+    EXPECT_EQ(a, m);
+    EXPECT_EQ(da, dm);
+    both.evaluate(r, b, db);
+    rep.evaluate(r, q, dq);
+    EXPECT_EQ(b, m + q) << r;
+    EXPECT_EQ(db, dm + dq) << r;
+  }
+  const ContactPotential repulsion_only(ContactLaw{std::nullopt, kRep});
+  EXPECT_EQ(repulsion_only.cutoff(), kRep.range);
+  EXPECT_THROW(ContactPotential(ContactLaw{std::nullopt, std::nullopt}), std::invalid_argument);
+}
+
+// Forces are −∂E/∂X (pairs, edges and walls), the cell list gives the brute force's bits, and
+// without walls the total force vanishes.
+TEST(CellContacts, RepulsionForcesAreTheNegativeGradient) {
+  for (const bool walls : {false, true}) {
+    SCOPED_TRACE(walls ? "walls in y" : "periodic");
+    const geometry::Domain dom{Grid{40, 30}, true, !walls};
+    for (const ContactLaw& law : {ContactLaw{std::nullopt, kRep}, ContactLaw{kMorse, kRep}}) {
+      TwoRings rings(24, 4.0, 10.0, 9.5, 5.2);  // gap 1.5 < d; the bottom 1.2 above the wall
+      CellContacts contacts(dom, law);
+      std::vector<double> fx(rings.x.size(), 0.0), fy(rings.x.size(), 0.0);
+      const ContactStats st = contacts.add_forces(rings.view(), fx, fy);
+      EXPECT_GT(st.pairs, 0u);
+      EXPECT_EQ(st.wall_markers > 0, walls);
+      EXPECT_NEAR(st.energy, contacts.energy(rings.view()), 1e-15 * std::abs(st.energy));
+      double sx = 0.0, sy = 0.0;
+      for (std::size_t m = 0; m < rings.x.size(); ++m) {
+        sx += fx[m];
+        sy += fy[m];
+        const double e = 1e-6;
+        for (std::vector<double>* q : {&rings.x, &rings.y}) {
+          const double keep = (*q)[m];
+          (*q)[m] = keep + e;
+          const double ep = contacts.energy(rings.view());
+          (*q)[m] = keep - e;
+          const double em = contacts.energy(rings.view());
+          (*q)[m] = keep;
+          const double f = q == &rings.x ? fx[m] : fy[m];
+          EXPECT_NEAR(f, -(ep - em) / (2 * e), 1e-6 * (std::abs(f) + 1e-3)) << m;
+        }
+      }
+      EXPECT_NEAR(sx, 0.0, 1e-13);
+      if (walls) EXPECT_GT(sy, 0.0);  // the bottom wall pushes the cells up
+      else EXPECT_NEAR(sy, 0.0, 1e-13);
+      std::vector<double> bx(rings.x.size(), 0.0), by(rings.x.size(), 0.0);
+      const ContactStats b = add_forces_brute_force(dom, law, rings.view(), bx, by);
+      EXPECT_EQ(b.energy, st.energy);
+      EXPECT_EQ(b.pairs, st.pairs);
+      for (std::size_t m = 0; m < bx.size(); ++m) {
+        EXPECT_EQ(bx[m], fx[m]);
+        EXPECT_EQ(by[m], fy[m]);
+      }
+    }
+  }
+}
+
+TEST(CellContacts, RepulsionPushesApartAndAMarkerOnAWallIsReported) {
+  const geometry::Domain dom{Grid{40, 30}, true, false};
+  CellContacts contacts(dom, ContactLaw{std::nullopt, kRep});
+  TwoRings rings(24, 4.0, 10.0, 9.5, 15.0);
+  std::vector<double> fx(rings.x.size(), 0.0), fy(rings.x.size(), 0.0);
+  contacts.add_forces(rings.view(), fx, fy);
+  double left = 0.0, right = 0.0;
+  for (std::size_t m = 0; m < 24; ++m) left += fx[m];
+  for (std::size_t m = 24; m < 48; ++m) right += fx[m];
+  EXPECT_LT(left, 0.0);  // ring 0 pushed towards −x, ring 1 towards +x
+  EXPECT_GT(right, 0.0);
+  rings.y[3] = -0.1;  // beyond the bottom wall
+  EXPECT_THROW(contacts.add_forces(rings.view(), fx, fy), std::domain_error);
+  // The range must stay below half a periodic side.
+  EXPECT_THROW(CellContacts(geometry::Domain{Grid{3, 30}, true, false}, ContactLaw{std::nullopt, kRep}),
+               std::invalid_argument);
+}
