@@ -13,6 +13,7 @@
 #include "simulation/interrupt.hpp"
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
+#include "simulation/probes/channel_probe.hpp"
 #include "simulation/probes/contact_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
 #include "simulation/probes/interior_probe.hpp"
@@ -46,6 +47,7 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
       cells_ = std::make_unique<CellPhysics>(*setup_.membrane, setup_.viscosity, *fluid_);
     register_fluid_stages();
     probes_.push_back(std::make_unique<FluidProbe>());
+    if (ChannelProbe::applies(setup_)) probes_.push_back(std::make_unique<ChannelProbe>(cells_.get()));
     if (cells_)
       probes_.push_back(std::make_unique<CellShapeProbe>(*cells_, scene_.output.extremes_interval_steps));
     if (cells_)
