@@ -302,28 +302,6 @@ struct CellList {
   }
 };
 
-// Sorts v, made of ascending runs ending at the offsets in `ends`, by merging neighbouring
-// runs until one is left.
-void merge_runs(std::vector<std::size_t>& v, std::vector<std::size_t>& ends) {
-  using It = std::vector<std::size_t>::iterator;
-  while (ends.size() > 1) {
-    std::size_t w = 0, begin = 0;
-    for (std::size_t i = 0; i < ends.size(); i += 2) {
-      if (i + 1 < ends.size()) {
-        const It b = v.begin() + static_cast<std::ptrdiff_t>(begin);
-        std::inplace_merge(b, v.begin() + static_cast<std::ptrdiff_t>(ends[i]),
-                           v.begin() + static_cast<std::ptrdiff_t>(ends[i + 1]));
-        begin = ends[i + 1];
-        ends[w++] = ends[i + 1];
-      } else {
-        begin = ends[i];
-        ends[w++] = ends[i];
-      }
-    }
-    ends.resize(w);
-  }
-}
-
 void run_cell_list(Engine& eng, const geometry::Domain& d, int nbx, int nby) {
   CellList cl;
   cl.nbx = nbx;
@@ -334,23 +312,22 @@ void run_cell_list(Engine& eng, const geometry::Domain& d, int nbx, int nby) {
 #pragma omp parallel if (eng.v.x.size() >= kParallelMarkers)
   {
     std::vector<int> nb;
-    std::vector<std::size_t> cand, runs;
+    std::vector<std::size_t> cand;
 #pragma omp for schedule(dynamic, 4)
     for (int b = 0; b < nbins; ++b) {
       const std::size_t b0 = cl.start[static_cast<std::size_t>(b)], b1 = cl.start[static_cast<std::size_t>(b) + 1];
       if (b0 == b1) continue;
       // One sorted candidate list serves every marker of bin b (ascending = brute-force order).
       cl.neighbours(d, b % nbx, b / nbx, nb);
-      // Each bin's items are ascending: concatenate the runs and merge them pairwise
-      // (cheaper than a full sort of the ~100 candidates).
+      // Concatenate the bins' items and sort them (a few tens of candidates: std::sort in
+      // place is faster than merging the ascending runs with std::inplace_merge, which
+      // allocates a buffer per call; the same order, so the same bits).
       cand.clear();
-      runs.clear();
       for (const int q : nb) {
         cand.insert(cand.end(), cl.items.begin() + static_cast<std::ptrdiff_t>(cl.start[static_cast<std::size_t>(q)]),
                     cl.items.begin() + static_cast<std::ptrdiff_t>(cl.start[static_cast<std::size_t>(q) + 1]));
-        runs.push_back(cand.size());
       }
-      merge_runs(cand, runs);
+      std::sort(cand.begin(), cand.end());
       for (std::size_t k = b0; k < b1; ++k) eng.pair_sums(cl.items[k], cand);
     }
   }

@@ -26,7 +26,7 @@
 //
 // Neighbour search: cell lists with bins of side ≥ r_c (O(N) in markers). The markers
 // of a bin share one candidate list: the markers of its ≤ 9 neighbouring bins, in
-// ASCENDING index order (each bin is filled in index order; the runs are merged). A
+// ASCENDING index order (the bins' items, sorted). A
 // marker sums over it in that order, skipping its own cell (a contiguous block), whole
 // blocks of cells whose bounding box lies beyond r_c (exact: the minimum-image distance
 // is 1-Lipschitz) and pairs beyond r_c: exactly the pairs and the order of the

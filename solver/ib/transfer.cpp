@@ -1,5 +1,6 @@
 #include "ib/transfer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -43,19 +44,18 @@ inline void weights_1d(double X, int& i0, double* w) {
   }
 }
 
-template <class K>
-void interpolate_impl(const geometry::Domain& d, std::span<const double> X, std::span<const double> Y,
-                      std::span<const double> ux, std::span<const double> uy, std::span<double> Ux,
-                      std::span<double> Uy) {
+// `weights(m, i0, wx, j0, wy)` gives marker m's support origin and 1D weights: computed
+// from (X, Y), or the ones spread() computed for the same positions.
+template <class K, class Weights>
+void interpolate_impl(const geometry::Domain& d, long M, const Weights& weights, std::span<const double> ux,
+                      std::span<const double> uy, std::span<double> Ux, std::span<double> Uy) {
   constexpr int W = K::width;
   const int nx = d.grid.nx, ny = d.grid.ny;
-  const long M = static_cast<long>(X.size());
 #pragma omp parallel for schedule(static) if (M >= 2048)
   for (long m = 0; m < M; ++m) {
     int i0, j0;
     double wx[W], wy[W];
-    weights_1d<K>(X[m], i0, wx);
-    weights_1d<K>(Y[m], j0, wy);
+    weights(static_cast<std::size_t>(m), i0, wx, j0, wy);
     double sx = 0.0, sy = 0.0;
     for (int a = 0; a < W; ++a) {
       int j = j0 + a;
@@ -108,6 +108,8 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
       weights_1d<K>(X[m], i0_[m], &wx_[m * W]);
       weights_1d<K>(Y[m], j0_[m], &wy_[m * W]);
     }
+    weights_x_.assign(X.begin(), X.end());  // the positions these weights belong to
+    weights_y_.assign(Y.begin(), Y.end());
     // 2. Stable counting sort of markers by the bucket of their first support row.
     //    Periodic y: bucket = j0 mod ny. Walls: bucket = j0 + W − 1 ∈ [0, ny + W − 1);
     //    a marker whose whole support lies beyond a wall gets no bucket.
@@ -162,7 +164,28 @@ void Transfer::interpolate(std::span<const double> X, std::span<const double> Y,
     throw std::invalid_argument("ib::Transfer::interpolate: velocity field size does not match the grid");
   }
   check_finite(X, Y);
-  dispatch(kernel_, [&](auto k) { interpolate_impl<decltype(k)>(domain_, X, Y, ux, uy, Ux, Uy); });
+  // The positions spread() last saw (the usual IB cycle: spread at X^n, fluid step,
+  // interpolate at X^n): its supports and weights serve again, the same numbers.
+  const bool same_positions = weights_x_.size() == M && std::equal(X.begin(), X.end(), weights_x_.begin()) &&
+                              std::equal(Y.begin(), Y.end(), weights_y_.begin());
+  const long markers = static_cast<long>(M);
+  dispatch(kernel_, [&](auto k) {
+    using K = decltype(k);
+    constexpr int W = K::width;
+    if (same_positions) {
+      interpolate_impl<K>(domain_, markers, [&](std::size_t m, int& i0, double* wx, int& j0, double* wy) {
+        i0 = i0_[m];
+        j0 = j0_[m];
+        std::copy_n(&wx_[m * W], W, wx);
+        std::copy_n(&wy_[m * W], W, wy);
+      }, ux, uy, Ux, Uy);
+    } else {
+      interpolate_impl<K>(domain_, markers, [&](std::size_t m, int& i0, double* wx, int& j0, double* wy) {
+        weights_1d<K>(X[m], i0, wx);
+        weights_1d<K>(Y[m], j0, wy);
+      }, ux, uy, Ux, Uy);
+    }
+  });
 }
 
 void advance_markers(std::span<double> X, std::span<double> Y, std::span<const double> Ux,

@@ -41,6 +41,8 @@ class Transfer {
               std::span<std::uint8_t> rows_written = {});
 
   // Writes the interpolated velocity (Ux, Uy) of every marker from node fields (ux, uy).
+  // At the positions of the last spread() (the IB cycle's), its supports and weights are
+  // reused (one sine and cosine per marker and axis fewer; the same numbers).
   void interpolate(std::span<const double> X, std::span<const double> Y, std::span<const double> ux,
                    std::span<const double> uy, std::span<double> Ux, std::span<double> Uy) const;
 
@@ -50,6 +52,7 @@ class Transfer {
   // Scratch reused across calls: per-marker support origin and weights, buckets.
   std::vector<int> i0_, j0_, bucket_start_, order_, next_;  // scratch reused across calls
   std::vector<double> wx_, wy_;
+  std::vector<double> weights_x_, weights_y_;  // the marker positions wx_, wy_ were computed at
 };
 
 // Explicit Euler marker update of the thesis: X ← X + U Δt (lattice Δt = 1 by default).
