@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <numeric>
 #include <stdexcept>
@@ -53,7 +54,8 @@ struct Engine {
   std::vector<double> box_cx, box_cy, box_hx, box_hy;  // per-cell bounding box: centre, half-widths
   std::vector<std::size_t> count;
   std::atomic<bool> coincident{false};
-  std::atomic<bool> beyond_wall{false};
+  std::size_t beyond_wall = SIZE_MAX;  // the first marker on or beyond a wall (add_walls is serial)
+  double beyond_wall_gap = 0.0;
   bool use_boxes = true;  // bounding-box block skip (cell lists); the brute force tests every pair
 
   Engine(const geometry::Domain& d, const ContactPotential& p, const MarkerView& view) : domain(d), potential(p), v(view) {
@@ -179,7 +181,10 @@ struct Engine {
           const double gap = sign > 0 ? q : L - q;
           if (!(gap < d)) continue;
           if (!(gap > 0.0)) {
-            beyond_wall.store(true, std::memory_order_relaxed);
+            if (beyond_wall == SIZE_MAX) {
+              beyond_wall = m;
+              beyond_wall_gap = gap;
+            }
             continue;
           }
           W[m] += wall_energy(*rep, gap);
@@ -197,7 +202,10 @@ struct Engine {
 
   void check_coincident() const {
     if (coincident.load()) throw std::domain_error("cell contacts: markers of two different cells coincide");
-    if (beyond_wall.load()) throw std::domain_error("cell contacts: a marker is on or beyond a wall");
+    if (beyond_wall != SIZE_MAX)
+      throw std::domain_error("cell contacts: marker " + std::to_string(beyond_wall) + " (cell " +
+                              std::to_string(cell_of[beyond_wall]) + ") is " + std::to_string(-beyond_wall_gap) +
+                              " lattice spacings beyond a wall");
   }
 
   double energy() const {
