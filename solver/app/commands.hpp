@@ -19,5 +19,8 @@ struct RunOptions {
 int run_command(const RunOptions& options);
 int check_command(const std::string& scene_path, const std::vector<std::string>& overrides);
 int compare_command(const std::string& current, const std::string& baseline, const std::string& tolerances);
+// `erythro dispersion RUN.h5`: the transverse dispersion of the cells from their centroid
+// heights (analysis/dispersion.hpp), samples from `after_s` on; prints the MSD table and D_yy.
+int dispersion_command(const std::string& run_h5, double after_s);
 
 }  // namespace erythro::app

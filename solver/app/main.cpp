@@ -1,4 +1,4 @@
-// The `erythro` command: run, check, compare, bench, schema. Exit codes: docs/cli.md.
+// The `erythro` command: run, check, compare, dispersion, bench, schema. Exit codes: docs/cli.md.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -41,6 +41,14 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("baseline", baseline, "Baseline .h5")->required()->check(CLI::ExistingFile);
   compare_cmd->add_option("--tolerances", tolerances, "Tolerance file (TOML)")->required()->check(CLI::ExistingFile);
 
+  std::string dispersion_run;
+  double dispersion_after_s = 0.0;
+  auto* dispersion_cmd =
+      cli.add_subcommand("dispersion", "Transverse dispersion D_yy of the cells of a finished run (docs/model.md §12)");
+  dispersion_cmd->add_option("run", dispersion_run, "run.h5 of a run with cells")->required()->check(CLI::ExistingFile);
+  dispersion_cmd->add_option("--after-s", dispersion_after_s, "Leave out the samples before this time (s)")
+      ->check(CLI::Range(0.0, 1e30));
+
   app::BenchOptions bench;
   auto* bench_cmd = app::add_bench_subcommand(cli, bench);
 
@@ -61,6 +69,7 @@ int main(int argc, char** argv) {
   if (*run_cmd) return app::run_command(run);
   if (*check_cmd) return app::check_command(check_scene, check_overrides);
   if (*compare_cmd) return app::compare_command(current, baseline, tolerances);
+  if (*dispersion_cmd) return app::dispersion_command(dispersion_run, dispersion_after_s);
   if (*bench_cmd) return app::bench_command(bench);
   if (*schema_cmd) return app::schema_command(schema);
   std::cout << cli.help();

@@ -161,6 +161,14 @@ expect large_output_warns 4 'warning: .*taylor_green.toml: the run will write ab
   "$ERYTHRO" run "$SRC/scenes/taylor_green.toml" --set run.steps=1000000 --set output.fields_interval_steps=1 \
   --out run1 --quiet
 
+# `erythro dispersion`: a run with cells gives its MSD table; a run without cells is a clear
+# input error (exit 2).
+ONE="$SRC/verification/suspension/channel_one_cell.toml"
+expect one_cell_run 0 'results: ' -- "$ERYTHRO" run "$ONE" --out one_cell --quiet --set run.steps=40 \
+  --set output.diagnostics_interval_steps=4
+expect dispersion_table 0 'transverse dispersion of 1 cells, 11 samples' -- "$ERYTHRO" dispersion one_cell/run.h5
+expect dispersion_no_cells 2 'no cell centroid series' -- "$ERYTHRO" dispersion tg_same/run.h5
+
 no_partials no_partial_files
 
 echo "$((checks - failures)) passed, $failures failed"
