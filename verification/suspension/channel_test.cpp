@@ -12,7 +12,8 @@
 // H − y_c − πR/4 at the top; the tube haematocrit is the 96-gon's area (n/2)R² sin(2π/n)
 // over the channel's.
 // Reference: the closed forms above. Tolerances: (1) 1e-9, the steady state's own
-// convergence (the run stops when u changes by < 1e-12 per 100 steps); (2) the column mean
+// convergence (the run stops when u changes by < 1e-12 per 100 steps), and no transverse
+// velocity (mean |u_y| ≤ 1e-12 u_max, round-off); (2) the column mean
 // samples the arc at lattice columns (with partial columns at the circle's two sides) and
 // takes the lowest of markers 0.79 h apart: a quarter of h; the area: round-off, 1e-9.
 #include <gtest/gtest.h>
@@ -51,6 +52,11 @@ TEST(ChannelDiagnostics, PlasmaAndOneCell) {
                   {"expected", eta_expected},
                   {"wall_time_s", plasma.wall_time_s}},
                  plasma.scene.source_text);
+  const double transverse = plasma.file.series("mean_transverse_plasma_speed_um_s").back();
+  const double u_max_um_s = 1.5 * plasma.file.series("channel_mean_velocity_um_s").back();
+  record.add_metric({"plasma_transverse_speed", "mean |u_y| of plasma alone at steady state, / u_max", "",
+                     transverse / u_max_um_s, 1e-12, 0.0, io::Comparison::at_most,
+                     "plane Poiseuille flow has no transverse velocity; round-off only"});
   record.add_metric({"plasma_relative_viscosity", "U0/mean(u) of plasma alone at steady state", "", eta, eta_expected,
                      1e-9, io::Comparison::absolute,
                      "the steady state is reached to 1e-12 per 100 steps; TRT's walls make the parabola exact"});

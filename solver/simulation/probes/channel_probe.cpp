@@ -20,6 +20,8 @@ void ChannelProbe::declare(std::vector<SeriesInfo>& series) const {
   series.push_back({"channel_mean_velocity_um_s", "um/s", "mean of u_x over the nodes (flow rate per depth / H)"});
   series.push_back({"relative_apparent_viscosity", "",
                     "U0 / mean u_x, U0 = F H^2 / (12 mu) the plasma's mean velocity at the same force"});
+  series.push_back({"mean_transverse_plasma_speed_um_s", "um/s",
+                    "mean |u_y| over the plasma's nodes (index field > 1/2; every node without an index field)"});
   if (!cells_) return;
   series.push_back({"cell_free_layer_bottom_um", "um",
                     "mean over the x columns a membrane crosses of the distance from the bottom wall to the nearest "
@@ -42,6 +44,16 @@ void ChannelProbe::sample(const ProbeContext& c, std::span<double> values) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   values[0] = mean_u * um_s;
   values[1] = mean_u != 0.0 ? u0 / mean_u : nan;  // undefined while the fluid is at rest
+  // The plasma's transverse motion: nodes outside the cells by the index field, if any.
+  const interior::IndexField* index = cells_ ? cells_->index_field() : nullptr;
+  double sum_uy = 0.0;
+  long plasma = 0;
+  for (std::size_t n = 0; n < m.uy.size(); ++n) {
+    if (index && !(index->values()[n] > 0.5)) continue;
+    sum_uy += std::abs(m.uy[n]);
+    ++plasma;
+  }
+  values[2] = plasma ? sum_uy / static_cast<double>(plasma) * um_s : nan;
   if (!cells_) return;
 
   // eq 12.2: per lattice column, the lowest and highest marker (x wrapped into [0, nx)).
@@ -74,11 +86,11 @@ void ChannelProbe::sample(const ProbeContext& c, std::span<double> values) {
   }
   bottom = columns ? bottom / columns : nan;
   top = columns ? top / columns : nan;
-  values[2] = bottom * um;
-  values[3] = top * um;
-  values[4] = 0.5 * (bottom + top) / (0.5 * ny);
-  values[5] = area / (static_cast<double>(nx) * ny);                 // eq 12.3
-  values[6] = mean_u != 0.0 ? area_flux / (static_cast<double>(nx) * ny * mean_u) : nan;  // eq 12.3
+  values[3] = bottom * um;
+  values[4] = top * um;
+  values[5] = 0.5 * (bottom + top) / (0.5 * ny);
+  values[6] = area / (static_cast<double>(nx) * ny);                 // eq 12.3
+  values[7] = mean_u != 0.0 ? area_flux / (static_cast<double>(nx) * ny * mean_u) : nan;  // eq 12.3
 }
 
 }  // namespace erythro::sim

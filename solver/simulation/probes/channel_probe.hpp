@@ -4,6 +4,8 @@
 //   channel_mean_velocity_um_s   Ū, the mean of u_x over the nodes (the flow rate per depth / H)
 //   relative_apparent_viscosity  U0/Ū, U0 = F H²/(12 μ) the mean velocity of the plasma alone
 //                                at the same F (eq 12.1); NaN while the fluid is at rest
+//   mean_transverse_plasma_speed_um_s  the mean of |u_y| over the plasma's nodes (index field
+//                                I > ½ with an interior viscosity; every node without one)
 // and, with cells (eqs 12.2, 12.3):
 //   cell_free_layer_bottom_um    mean over the x columns a membrane crosses of the distance
 //   cell_free_layer_top_um       from the wall to the nearest marker in that column
