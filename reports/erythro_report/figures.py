@@ -25,12 +25,14 @@ class CaseFigures:
     fields: list = field(default_factory=list)   # one relative path ("" if none) per field
 
     def resolve(self, drawn):
-        """Planned paths -> the drawn ones ("" where nothing was drawn)."""
-        self.convergence = drawn.get(self.convergence, "")
-        self.speed_error = drawn.get(self.speed_error, "")
-        self.stability_map = drawn.get(self.stability_map, "")
-        self.series = [drawn.get(p, "") for p in self.series]
-        self.fields = [drawn.get(p, "") for p in self.fields]
+        """Planned paths -> the drawn ones ("" where nothing was drawn); drawn: a set of paths."""
+        def kept(path):
+            return path if path in drawn else ""
+        self.convergence = kept(self.convergence)
+        self.speed_error = kept(self.speed_error)
+        self.stability_map = kept(self.stability_map)
+        self.series = [kept(p) for p in self.series]
+        self.fields = [kept(p) for p in self.fields]
 
 
 @dataclass
@@ -54,11 +56,11 @@ class _Namer:
         return f"{IMG_DIR}/{name}.png"
 
 
-def render_all(report, out_dir, jobs=None):
+def render_all(report, out_dir):
     """Draws all figures; returns Figures and appends drawing failures to report.problems.
 
-    The figures are planned first (file names in a fixed order), then drawn by `jobs`
-    worker processes (default: one per core). Each figure is drawn by itself, so the
+    The figures are planned first (file names in a fixed order), then drawn by worker
+    processes, one per core. Each figure is drawn by itself, so the
     files are the same for any number of workers."""
     img_dir = os.path.join(out_dir, IMG_DIR)
     os.makedirs(img_dir, exist_ok=True)
@@ -73,15 +75,16 @@ def render_all(report, out_dir, jobs=None):
     overview_paths = [namer("speed-against-error", str(i + 1)) for i in range(len(overview_pages))]
     for page, rel_path in zip(overview_pages, overview_paths):
         plan.append(_Job(plots.overview_page_figure, page, rel_path, "speed against error"))
-    outcomes = _draw_all(plan, out_dir, jobs)
-    drawn = {}
+    outcomes = _draw_all(plan, out_dir)
+    drawn = set()  # the paths of the figures that were drawn
     for job, (ok, error) in zip(plan, outcomes):
         if error:
             report.problems.append(Problem(job.owner, error))
-        drawn[job.rel_path] = job.rel_path if ok else ""
+        if ok:
+            drawn.add(job.rel_path)
     for figs in figures.cases.values():
         figs.resolve(drawn)
-    figures.overview = [p for p in overview_paths if drawn.get(p)]
+    figures.overview = [p for p in overview_paths if p in drawn]
     return figures
 
 
@@ -126,11 +129,11 @@ def _draw_one(index):
         return False, f"{job.function.__name__} failed: {exc}"
 
 
-def _draw_all(plan, out_dir, jobs):
+def _draw_all(plan, out_dir):
     global _PLAN, _OUT_DIR
     _PLAN, _OUT_DIR = plan, out_dir
     try:
-        workers = min(jobs or os.cpu_count() or 1, len(plan))
+        workers = min(os.cpu_count() or 1, len(plan))
         if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
             return [_draw_one(i) for i in range(len(plan))]
         with multiprocessing.get_context("fork").Pool(workers) as pool:

@@ -187,9 +187,11 @@ struct Engine {
             }
             continue;
           }
-          W[m] += wall_energy(*rep, gap);
+          double w = 0.0, dw = 0.0;
+          wall_evaluate(*rep, gap, w, dw);
+          W[m] += w;
           min_wall_gap = std::min(min_wall_gap, gap);
-          force -= sign * wall_energy_derivative(*rep, gap) * ell[m];
+          force -= sign * dw * ell[m];
           touched = true;
         }
       };

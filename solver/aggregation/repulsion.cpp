@@ -16,20 +16,33 @@ void check(const RepulsionParameters& p) {
 Repulsion::Repulsion(const RepulsionParameters& p) : p_(p) { check(p); }
 
 // eq 4.13
-double wall_energy(const RepulsionParameters& p, double s) {
+bool wall_evaluate(const RepulsionParameters& p, double s, double& W, double& dW) {
   const double d = p.range;
-  if (!(s < d)) return 0.0;
-  if (!(s > 0.0)) return std::numeric_limits<double>::infinity();
-  const double a = std::sqrt((d - s) * (d + s));
-  return p.pressure * (2.0 * d * d * std::atan(a / s) / s - 4.0 * d * std::asinh(a / s) + 2.0 * a);
+  if (!(s < d)) {
+    W = dW = 0.0;
+    return false;
+  }
+  if (!(s > 0.0)) {
+    W = std::numeric_limits<double>::infinity();
+    dW = -W;
+    return true;
+  }
+  const double a = std::sqrt((d - s) * (d + s)), angle = std::atan(a / s);
+  W = p.pressure * (2.0 * d * d * angle / s - 4.0 * d * std::asinh(a / s) + 2.0 * a);
+  dW = -2.0 * p.pressure * (d * d * angle / (s * s) - a / s);
+  return true;
+}
+
+double wall_energy(const RepulsionParameters& p, double s) {
+  double W = 0.0, dW = 0.0;
+  wall_evaluate(p, s, W, dW);
+  return W;
 }
 
 double wall_energy_derivative(const RepulsionParameters& p, double s) {
-  const double d = p.range;
-  if (!(s < d)) return 0.0;
-  if (!(s > 0.0)) return -std::numeric_limits<double>::infinity();
-  const double a = std::sqrt((d - s) * (d + s));
-  return -2.0 * p.pressure * (d * d * std::atan(a / s) / (s * s) - a / s);
+  double W = 0.0, dW = 0.0;
+  wall_evaluate(p, s, W, dW);
+  return dW;
 }
 
 }  // namespace erythro::aggregation

@@ -49,8 +49,11 @@ struct Repulsion {
   RepulsionParameters p_;
 };
 
-// The wall's potential per unit membrane length W(s) and dW/ds (eq 4.13), s > 0; zero at
-// s ≥ d. At s ≤ 0 (a marker on or beyond the wall) both are +inf and −inf.
+// The wall's potential per unit membrane length W(s) and dW/ds (eq 4.13) at once (one square
+// root and one arctangent), s > 0; returns false (and zeros) at s ≥ d. At s ≤ 0 (a marker on
+// or beyond the wall) they are +inf and −inf.
+bool wall_evaluate(const RepulsionParameters& p, double s, double& W, double& dW);
+// Each alone (tests, diagnostics).
 double wall_energy(const RepulsionParameters& p, double s);
 double wall_energy_derivative(const RepulsionParameters& p, double s);
 

@@ -35,8 +35,18 @@ void ChannelProbe::declare(std::vector<SeriesInfo>& series) const {
 void ChannelProbe::sample(const ProbeContext& c, std::span<double> values) {
   const fluid::Moments& m = *c.moments;
   const int nx = c.setup.grid.nx, ny = c.setup.grid.ny;
-  double sum_u = 0.0;
-  for (std::size_t n = 0; n < m.ux.size(); ++n) sum_u += m.ux[n];
+  // One pass: the mean of u_x over every node, and of |u_y| over the plasma's nodes (outside
+  // the cells by the index field, when there is one).
+  const interior::IndexField* index = cells_ ? cells_->index_field() : nullptr;
+  const std::span<const double> inside = index ? index->values() : std::span<const double>{};
+  double sum_u = 0.0, sum_uy = 0.0;
+  long plasma = 0;
+  for (std::size_t n = 0; n < m.ux.size(); ++n) {
+    sum_u += m.ux[n];
+    if (!inside.empty() && !(inside[n] > 0.5)) continue;
+    sum_uy += std::abs(m.uy[n]);
+    ++plasma;
+  }
   const double mean_u = sum_u / static_cast<double>(m.ux.size());
   // eq 12.1, lattice units (ρ0 = 1): U0 = F H² / (12 ν)
   const double u0 = c.setup.body_force[0] * ny * ny / (12.0 * c.setup.viscosity);
@@ -44,15 +54,6 @@ void ChannelProbe::sample(const ProbeContext& c, std::span<double> values) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   values[0] = mean_u * um_s;
   values[1] = mean_u != 0.0 ? u0 / mean_u : nan;  // undefined while the fluid is at rest
-  // The plasma's transverse motion: nodes outside the cells by the index field, if any.
-  const interior::IndexField* index = cells_ ? cells_->index_field() : nullptr;
-  double sum_uy = 0.0;
-  long plasma = 0;
-  for (std::size_t n = 0; n < m.uy.size(); ++n) {
-    if (index && !(index->values()[n] > 0.5)) continue;
-    sum_uy += std::abs(m.uy[n]);
-    ++plasma;
-  }
   values[2] = plasma ? sum_uy / static_cast<double>(plasma) * um_s : nan;
   if (!cells_) return;
 
