@@ -122,6 +122,10 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
                                   {"fluid_steps_per_transport_step", T->fluid_steps_per_step},
                                   {"species", names},
                                   {"hemoglobin_species", hemoglobin}});
+      // docs/model.md §7b: x the axis z, y the radius from inner_radius_um
+      const double h_um = setup.scales.length_m * 1e6;
+      h5::write_attrs(meta.id(), {{"geometry", T->axisymmetric_inner_radius ? "axisymmetric" : "planar"},
+                                  {"inner_radius_um", T->axisymmetric_inner_radius.value_or(0.0) * h_um}});
     }
     if (setup.membrane) {
       const auto& law = setup.membrane->model.tension.type;

@@ -19,6 +19,9 @@ namespace erythro::scene {
 struct DomainSpec {
   std::array<double, 2> size_um{0.0, 0.0};  // [domain] size_um = [Lx, Ly]
   double spacing_um = 0.0;                  // [domain] spacing_um = h
+  // "planar", or "axisymmetric" (x the axial z, y the radius; transport only, docs/model.md §7b)
+  std::string geometry = "planar";
+  double inner_radius_um = 0.0;  // radius of the bottom side of an axisymmetric domain (0: the axis)
 };
 
 struct TimeSpec {

@@ -87,6 +87,21 @@ std::vector<KeySpec> make_keys() {
        .bound = positive,
        .when_absent = note("required"),
        .meaning = "Lattice spacing h"},
+      {.path = "domain.geometry",
+       .kind = Kind::string,
+       .choices = {"planar", "axisymmetric"},
+       .when_absent = quoted("planar"),
+       .rule = "`axisymmetric`: transport only (`transport.coupling = \"none\"`, no cells); the bottom and top "
+               "sides walls",
+       .meaning = "`planar`: a 2D (x, y) section. `axisymmetric`: a body of revolution, x the axial coordinate z and "
+                  "y the radius r, the bottom side at `inner_radius_um` (docs/model.md §7b)"},
+      {.path = "domain.inner_radius_um",
+       .unit = "µm",
+       .bound = non_negative,
+       .when_absent = literal("0"),
+       .rule = "`axisymmetric` only; 0: the bottom side is the axis (every species `zero_flux` there)",
+       .meaning = "Radius of the bottom side of an axisymmetric domain (> 0: an annulus, e.g. a Krogh tissue "
+                  "cylinder around its capillary)"},
       // [time]
       {.path = "time.step_s",
        .unit = "s",

@@ -397,6 +397,8 @@ Scene read_scene(const Reader& r, const std::string& origin) {
                        range_text(*find_key(key)) + ")");
   s.domain.size_um = r.vec2("domain.size_um");
   s.domain.spacing_um = r.number("domain.spacing_um");
+  s.domain.geometry = r.text("domain.geometry");
+  s.domain.inner_radius_um = r.number("domain.inner_radius_um");
 
   // A still-medium transport scene builds no fluid and has no [time] (units.cpp says so
   // if one is given); every other scene gives exactly one fluid time key.

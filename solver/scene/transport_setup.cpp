@@ -41,6 +41,26 @@ transport::Side make_transport_side(const Scene& s, std::size_t i, int k, bool g
   return side;
 }
 
+// domain.geometry = "axisymmetric" (docs/model.md §7b): the inner radius in lattice units, the
+// axis a zero-flux side of every species, no radial velocity of the medium.
+void set_axisymmetric(const Scene& s, TransportSetup& T) {
+  T.axisymmetric_inner_radius = s.domain.inner_radius_um / s.domain.spacing_um;
+  if (T.stencil != transport::Stencil::d2q5)
+    reject(s, "transport.stencil = \"" + s.transport->stencil + "\" with domain.geometry = \"axisymmetric\": only "
+              "\"d2q5\" is second order at the axis (D2Q9 measured at order 1.6 on the row next to it, "
+              "docs/verification-transport.md)");
+  if (s.domain.inner_radius_um == 0.0) {
+    for (std::size_t i = 0; i < T.species.size(); ++i)
+      if (T.species[i].boundaries.bottom.kind != transport::SideKind::zero_flux)
+        reject(s, "key '" + species_key(i, "bottom") + "' = \"" + s.species[i].side[2] +
+                      "\": with domain.geometry = \"axisymmetric\" and domain.inner_radius_um = 0 the bottom side "
+                      "is the axis, where only \"zero_flux\" (symmetry) is allowed");
+  }
+  if (const auto& v = s.transport->velocity_um_s; v && (*v)[1] != 0.0)
+    reject(s, "transport.velocity_um_s = [" + num((*v)[0]) + ", " + num((*v)[1]) +
+                  "] µm/s: an axisymmetric medium moves along its axis only; the radial (second) component must be 0");
+}
+
 }  // namespace
 
 TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
@@ -117,6 +137,8 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
       reject(s, "species[" + std::to_string(i) + "] boundaries: " + why);
     T.species.push_back(out);
   }
+
+  if (s.domain.geometry == "axisymmetric") set_axisymmetric(s, T);
 
   if (const auto& hb = s.hemoglobin) {
     transport::HbParameters p;

@@ -205,7 +205,28 @@ LatticeSetup derive_still_medium(const Scene& s) {
 
 }  // namespace
 
+// domain.geometry (docs/model.md §7b): an axisymmetric domain is a transport-only set-up (the
+// fluid and the cells are planar), radial between two walls.
+void check_geometry(const Scene& s) {
+  const DomainSpec& d = s.domain;
+  if (d.geometry != "axisymmetric") {
+    if (d.inner_radius_um != 0.0)
+      reject(s, "domain.inner_radius_um = " + num(d.inner_radius_um) + " µm needs domain.geometry = \"axisymmetric\"");
+    return;
+  }
+  const std::string what = "domain.geometry = \"axisymmetric\" ";
+  if (!s.transport || s.transport->coupling != "none")
+    reject(s, what + "is for the transport alone (the fluid and the cells are planar): it needs [transport] with "
+                     "transport.coupling = \"none\"");
+  if (!s.cells.empty() || !s.cell_populations.empty())
+    reject(s, what + "has no cells (a planar cell would be a torus): remove [[cells]] and [[cell_populations]]");
+  if (s.boundaries.bottom.type == "periodic" || s.boundaries.top.type == "periodic")
+    reject(s, what + "is radial along y: boundaries.bottom (the axis or the inner radius) and boundaries.top (the "
+                     "outer radius) must be walls, not periodic");
+}
+
 LatticeSetup derive_lattice(const Scene& s) {
+  check_geometry(s);
   if (s.transport && s.transport->coupling == "none") return derive_still_medium(s);
   LatticeSetup L;
   L.grid = make_grid(s);

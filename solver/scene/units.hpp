@@ -124,6 +124,9 @@ struct TransportSetup {
   std::string hb_coupling = "cell_implicit", mean_pressure = "concentration", heme_weights = "area_fraction";
   std::vector<TransportLayerSetup> layers;
   std::optional<std::array<double, 2>> concentration_range;
+  // domain.geometry = "axisymmetric": the radius of the bottom side in lattice units (0: the
+  // axis); absent for a planar domain (docs/model.md §7b).
+  std::optional<double> axisymmetric_inner_radius;
 };
 
 // Everything the simulation needs, in lattice units, plus derived numbers to show.

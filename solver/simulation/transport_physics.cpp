@@ -41,6 +41,7 @@ TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geo
   for (std::size_t i = 0; i < S; ++i) {
     const scene::SpeciesSetup& sp = setup_.species[i];
     lattices_.emplace_back(domain_.grid, setup_.stencil, sp.boundaries);
+    if (setup_.axisymmetric_inner_radius) lattices_.back().set_axisymmetric(*setup_.axisymmetric_inner_radius);
     lattices_.back().set_collision(setup_.collision);
     lattices_.back().set_uniform_diffusivity(sp.diffusivity);
     if (setup_.velocity) lattices_.back().set_uniform_velocity((*setup_.velocity)[0], (*setup_.velocity)[1]);

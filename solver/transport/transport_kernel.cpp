@@ -73,7 +73,7 @@ inline Rates rates_for(double D, bool trt, double magic) {
 
 // The collision of one node (eqs T2–T4, T3 or T3'): g holds the streamed populations and
 // receives the post-collision ones; returns Σ_i g*_i in total and q_tot in q.
-template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor>
+template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor, bool Axi = false>
 [[gnu::always_inline]] inline void collide(const KernelArgs& a, std::size_t n, const Rates& uniform, double* g,
                                            double& total, double& q) {
   constexpr int Q = S::Q;
@@ -119,7 +119,12 @@ template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool
   } else {
     // eq T3': symmetric part relaxes with ω⁺ towards w_i C, antisymmetric with ω⁻ towards w_i C c_i·u/c_s²
     const double om = r.omega, op = r.omega_plus;
-    const double src_p = (1.0 - 0.5 * op) * q, src_m = (1.0 - 0.5 * om) * q;
+    const double src_p = (1.0 - 0.5 * op) * q;
+    double src_m = (1.0 - 0.5 * om) * q;
+    // Axisymmetric (docs/model.md eq 7.9): the source's antisymmetric part carries the velocity
+    // times Λ⁺/Λ⁻, which makes the steady state the conservative cylindrical finite-volume scheme
+    // (with 1, the steady flux gains (Λ⁺ − Λ⁻) r q_tot (u + D/r e_r), a point source at the axis).
+    if constexpr (Axi) src_m *= (1.0 / op - 0.5) / (1.0 / om - 0.5);
     double out[Q];
 #pragma GCC unroll 9
     for (int i = 0; i < Q; ++i) {
@@ -155,7 +160,7 @@ inline double row_sum(const double* v, int len) {
 // Interior nodes n0 … n0+len−1 of one row: Q restrict source and destination
 // streams, no branches, so the loop vectorises along x (as the fluid kernel; named
 // pointers rather than arrays, which GCC would not vectorise).
-template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor>
+template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor, bool Axi>
 void interior_span(const KernelArgs& a, const double* const* src, double* const* out, std::size_t n0, int len,
                    const Rates& rates, double* __restrict total, double* __restrict qtot) {
   constexpr int Q = S::Q;
@@ -193,8 +198,8 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
       f[7 % Q] = s7[k];
       f[8 % Q] = s8[k];
     }
-    collide<S, Vel, DField, React, Decay, Trt, Tensor>(a, n0 + static_cast<std::size_t>(k), rates, f, total[k],
-                                                       qtot[k]);
+    collide<S, Vel, DField, React, Decay, Trt, Tensor, Axi>(a, n0 + static_cast<std::size_t>(k), rates, f, total[k],
+                                                            qtot[k]);
     o0[k] = f[0];
     o1[k] = f[1];
     o2[k] = f[2];
@@ -209,7 +214,7 @@ void interior_span(const KernelArgs& a, const double* const* src, double* const*
   }
 }
 
-template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor = false>
+template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool Tensor = false, bool Axi = false>
 void run(const KernelArgs& a) {
   constexpr int Q = S::Q;
   const Grid g = a.grid;
@@ -222,12 +227,13 @@ void run(const KernelArgs& a) {
 #pragma omp for schedule(static)
     for (int y = 0; y < g.ny; ++y) {
       double boundary = 0.0;
+      const TransportBoundaries sides = row_sides(a, y);
       auto general = [&](int x) {
         double f[Q];
-        for (int i = 0; i < Q; ++i) f[i] = pull<S>(g, a.boundaries, a.src, x, y, i, boundary);
+        for (int i = 0; i < Q; ++i) f[i] = pull<S>(g, sides, a.src, x, y, i, boundary);
         const std::size_t n = g.index(x, y);
-        collide<S, Vel, DField, React, Decay, Trt, Tensor>(a, n, rates, f, total[static_cast<std::size_t>(x)],
-                                                           qtot[static_cast<std::size_t>(x)]);
+        collide<S, Vel, DField, React, Decay, Trt, Tensor, Axi>(a, n, rates, f, total[static_cast<std::size_t>(x)],
+                                                                qtot[static_cast<std::size_t>(x)]);
         for (int i = 0; i < Q; ++i) a.dst[i * N + n] = f[i];
       };
       if (y == 0 || y == g.ny - 1 || g.nx < 3) {
@@ -241,8 +247,8 @@ void run(const KernelArgs& a) {
           s[i] = a.src + i * N + g.index(1 - S::cx[i], y - S::cy[i]);
           o[i] = a.dst + i * N + n0;
         }
-        interior_span<S, Vel, DField, React, Decay, Trt, Tensor>(a, s, o, n0, g.nx - 2, rates, total.data() + 1,
-                                                                 qtot.data() + 1);
+        interior_span<S, Vel, DField, React, Decay, Trt, Tensor, Axi>(a, s, o, n0, g.nx - 2, rates, total.data() + 1,
+                                                                      qtot.data() + 1);
         general(g.nx - 1);
       }
       const auto r = static_cast<std::size_t>(y);
@@ -254,8 +260,12 @@ void run(const KernelArgs& a) {
   }
 }
 
+// The axisymmetric source scaling (Axi) changes only TRT with a source (Vel is always set there).
 template <class S, bool Vel, bool DField, bool React, bool Decay>
 void with_collision(const KernelArgs& a) {
+  if constexpr (React && Vel) {
+    if (a.trt && a.row_radius != nullptr) return run<S, Vel, DField, React, Decay, true, false, true>(a);
+  }
   return a.trt ? run<S, Vel, DField, React, Decay, true>(a) : run<S, Vel, DField, React, Decay, false>(a);
 }
 

@@ -31,6 +31,10 @@ struct KernelArgs {
   const double* decay = nullptr;   // optional k (only with q; null: k = 0)
   const double* ux = nullptr;  // optional velocity (both or neither)
   const double* uy = nullptr;
+  // Axisymmetric lattice (docs/model.md eq 7.10): the radius of each row (size ny) and of the
+  // bottom and top sides; null for a planar lattice. The kernel carries φ = r C and writes φ to C.
+  const double* row_radius = nullptr;
+  double bottom_radius = 0.0, top_radius = 0.0;
   // Per-row accumulators (size ny): Σ q_tot, boundary inflow, Σ Σ_i g*_i, Σ |Σ_i g*_i|.
   double* row_source = nullptr;
   double* row_boundary = nullptr;
@@ -39,6 +43,21 @@ struct KernelArgs {
 };
 
 void stream_collide(const KernelArgs& args);
+
+// The sides as a row at radius r of an axisymmetric lattice sees them (eq 7.10): a concentration
+// or an inward flux on a side at radius R enters the φ = r C lattice as R times the value (the
+// bottom and top sides at their radius, the left and right ones at the row's).
+inline TransportBoundaries weighted_sides(TransportBoundaries b, double row_r, double bottom_r, double top_r) {
+  b.left.value *= row_r;
+  b.right.value *= row_r;
+  b.bottom.value *= bottom_r;
+  b.top.value *= top_r;
+  return b;
+}
+inline TransportBoundaries row_sides(const KernelArgs& a, int y) {
+  if (a.row_radius == nullptr) return a.boundaries;
+  return weighted_sides(a.boundaries, a.row_radius[y], a.bottom_radius, a.top_radius);
+}
 
 // The relaxation rates of the collision at each node of a per-node D (resized to D's size).
 void relaxation_rates(std::span<const double> D, bool trt, double magic, std::vector<double>& omega,

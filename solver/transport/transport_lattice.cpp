@@ -24,12 +24,17 @@ void fill_equilibrium(const Grid& grid, std::span<const double> C, std::span<con
 }
 
 // Eq T6: amount crossing line x+½ (east) and y+½ (north) from row y's populations.
+// Axisymmetric: the r-weighted amount, the sides weighted as the kernel weights them (eq 7.10).
 template <class S>
-void face_flux_impl(const Grid& grid, const TransportBoundaries& b, const std::vector<double>& g,
-                    std::span<double> east, std::span<double> north) {
+void face_flux_impl(const Grid& grid, const TransportBoundaries& sides, std::span<const double> row_radius,
+                    const std::vector<double>& g, std::span<double> east, std::span<double> north) {
   const std::size_t N = grid.size();
+  const double bottom_r = row_radius.empty() ? 0.0 : row_radius.front() - 0.5;
+  const double top_r = row_radius.empty() ? 0.0 : row_radius.back() + 0.5;
 #pragma omp parallel for schedule(static) if (grid.worth_threading())
   for (int y = 0; y < grid.ny; ++y) {
+    const TransportBoundaries b =
+        row_radius.empty() ? sides : detail::weighted_sides(sides, row_radius[static_cast<std::size_t>(y)], bottom_r, top_r);
     for (int x = 0; x < grid.nx; ++x) {
       const std::size_t n = grid.index(x, y);
       double e = 0.0, no = 0.0, unused = 0.0;
@@ -96,10 +101,17 @@ void TransportLattice::initialize(std::span<const double> concentration) {
   if (has_reaction()) {
     for (std::size_t n = 0; n < shifted.size(); ++n) shifted[n] += 0.5 * (source_[n] - decay_[n] * C_[n]);
   }
+  std::span<const double> ux = ux_, uy = uy_;
+  if (axisymmetric()) {  // φ = r C with the drift velocity (eq 7.7)
+    for (std::size_t n = 0; n < shifted.size(); ++n) shifted[n] *= row_radius_[n / static_cast<std::size_t>(grid_.nx)];
+    refresh_drift();
+    ux = drift_ux_;
+    uy = drift_uy_;
+  }
   if (stencil_ == Stencil::d2q5) {
-    fill_equilibrium<D2Q5>(grid_, shifted, ux_, uy_, g_);
+    fill_equilibrium<D2Q5>(grid_, shifted, ux, uy, g_);
   } else {
-    fill_equilibrium<D2Q9>(grid_, shifted, ux_, uy_, g_);
+    fill_equilibrium<D2Q9>(grid_, shifted, ux, uy, g_);
   }
   balance_ = MassBalance{};
   balance_.amount = stored_amount();
@@ -115,6 +127,7 @@ void TransportLattice::set_uniform_diffusivity(double D) {
   uniform_D_ = D;
   if (!D_field_.empty()) std::fill(D_field_.begin(), D_field_.end(), D);
   rates_stale_ = true;
+  drift_stale_ = true;
 }
 
 void TransportLattice::set_collision(CollisionModel c) {
@@ -128,6 +141,7 @@ void TransportLattice::set_collision(CollisionModel c) {
 std::span<double> TransportLattice::diffusivity() {
   if (D_field_.empty()) D_field_.assign(grid_.size(), uniform_D_);
   rates_stale_ = true;
+  drift_stale_ = true;
   return D_field_;
 }
 
@@ -164,16 +178,72 @@ void TransportLattice::set_velocity(std::span<const double> ux, std::span<const 
   }
   ux_.assign(ux.begin(), ux.end());
   uy_.assign(uy.begin(), uy.end());
+  drift_stale_ = true;
+  if (axisymmetric()) refuse_radial_velocity();
+}
+
+// docs/model.md §7b: the central φ flux of a radial velocity is first order at the axis row
+// (r C u_r ∝ r² there), so the axisymmetric lattice advects along the axis only.
+void TransportLattice::refuse_radial_velocity() const {
+  for (double v : uy_)
+    if (v != 0.0)
+      throw std::invalid_argument("TransportLattice: an axisymmetric lattice takes an axial velocity only (u_r = 0)");
 }
 
 void TransportLattice::set_uniform_velocity(double ux, double uy) {
   ux_.assign(grid_.size(), ux);
   uy_.assign(grid_.size(), uy);
+  drift_stale_ = true;
+  if (axisymmetric()) refuse_radial_velocity();
 }
 
 void TransportLattice::clear_velocity() {
   ux_.clear();
   uy_.clear();
+  drift_stale_ = true;
+}
+
+void TransportLattice::set_axisymmetric(double inner_radius) {
+  if (!(inner_radius >= 0.0) || !std::isfinite(inner_radius)) {
+    throw std::invalid_argument("TransportLattice::set_axisymmetric: the inner radius must be finite and >= 0");
+  }
+  if (periodic(boundaries_.bottom)) {
+    throw std::invalid_argument("TransportLattice::set_axisymmetric: the bottom (inner) and top (outer) sides cannot be periodic");
+  }
+  if (inner_radius == 0.0 && boundaries_.bottom.kind != SideKind::zero_flux) {
+    throw std::invalid_argument("TransportLattice::set_axisymmetric: the axis (inner radius 0) must be a zero_flux side");
+  }
+  if (has_diffusivity_tensor()) {
+    throw std::invalid_argument("TransportLattice::set_axisymmetric: not with the diffusivity tensor");
+  }
+  if (stencil_ != Stencil::d2q5) {  // measured: D2Q9 is of order 1.6 on the axis row (docs/model.md §7b)
+    throw std::invalid_argument("TransportLattice::set_axisymmetric: D2Q5 only (second order at the axis)");
+  }
+  refuse_radial_velocity();
+  row_radius_.resize(static_cast<std::size_t>(grid_.ny));
+  for (int y = 0; y < grid_.ny; ++y) row_radius_[static_cast<std::size_t>(y)] = inner_radius + y + 0.5;
+  drift_stale_ = true;
+}
+
+// Eq 7.7: the velocity the φ lattice advects with, u + (D/r) e_r (x axial, y radial).
+void TransportLattice::refresh_drift() {
+  if (!drift_stale_) return;
+  const std::size_t N = grid_.size(), nx = static_cast<std::size_t>(grid_.nx);
+  drift_ux_.assign(N, 0.0);
+  drift_uy_.assign(N, 0.0);
+  for (std::size_t n = 0; n < N; ++n) {
+    const double D = D_field_.empty() ? uniform_D_ : D_field_[n];
+    drift_ux_[n] = ux_.empty() ? 0.0 : ux_[n];
+    drift_uy_[n] = (uy_.empty() ? 0.0 : uy_[n]) + D / row_radius_[n / nx];
+  }
+  drift_stale_ = false;
+}
+
+double TransportLattice::total_weight() const {
+  if (!axisymmetric()) return static_cast<double>(grid_.size());
+  double s = 0.0;
+  for (double r : row_radius_) s += r * grid_.nx;
+  return s;
 }
 
 void TransportLattice::step() {
@@ -207,11 +277,16 @@ void TransportLattice::step() {
   a.decay = has_decay_ ? decay_.data() : nullptr;
   a.ux = ux_.empty() ? nullptr : ux_.data();
   a.uy = uy_.empty() ? nullptr : uy_.data();
+  if (axisymmetric()) weight_for_axisymmetry(a);
   a.row_source = row_source_.data();
   a.row_boundary = row_boundary_.data();
   a.row_amount = row_amount_.data();
   a.row_scale = row_scale_.data();
   detail::stream_collide(a);
+  if (axisymmetric()) {  // the kernel wrote φ = r C (eq 7.7)
+    const std::size_t nx = static_cast<std::size_t>(grid_.nx);
+    for (std::size_t n = 0; n < C_.size(); ++n) C_[n] /= row_radius_[n / nx];
+  }
   g_.swap(g_next_);
   ++steps_done_;
   // Serial sums over rows (eq T5): independent of the thread count.
@@ -224,6 +299,23 @@ void TransportLattice::step() {
   }
   b.storage_change = b.amount - balance_.amount;
   balance_ = b;
+}
+
+// Eq 7.7: the kernel sees the drift velocity, the source r q and the r-weighted sides.
+void TransportLattice::weight_for_axisymmetry(detail::KernelArgs& a) {
+  if (!Dxx_.empty()) throw std::logic_error("TransportLattice: the axisymmetric lattice has no diffusivity tensor");
+  refresh_drift();
+  a.ux = drift_ux_.data();
+  a.uy = drift_uy_.data();
+  if (!source_.empty()) {
+    const std::size_t nx = static_cast<std::size_t>(grid_.nx);
+    weighted_source_.resize(source_.size());
+    for (std::size_t n = 0; n < source_.size(); ++n) weighted_source_[n] = row_radius_[n / nx] * source_[n];
+    a.source = weighted_source_.data();
+  }
+  a.row_radius = row_radius_.data();
+  a.bottom_radius = row_radius_.front() - 0.5;
+  a.top_radius = row_radius_.back() + 0.5;
 }
 
 double TransportLattice::source_offset_factor(std::size_t n) const {
@@ -267,6 +359,7 @@ void TransportLattice::restore_state(const StateRecord& r, const std::string& pr
     r.copy_to(prefix + "decay_rate", decay_rate());
   }
   if (r.has(prefix + "ux")) set_velocity(r.get(prefix + "ux"), r.get(prefix + "uy"));
+  drift_stale_ = true;
   const std::vector<double>& b = r.get(prefix + "mass_balance", 5);
   balance_ = {b[0], b[1], b[2], b[3], b[4]};
   steps_done_ = static_cast<long>(r.scalar(prefix + "steps_done"));
@@ -274,7 +367,12 @@ void TransportLattice::restore_state(const StateRecord& r, const std::string& pr
 
 double TransportLattice::total_amount() const {
   double s = 0.0;
-  for (double c : C_) s += c;
+  if (!axisymmetric()) {
+    for (double c : C_) s += c;
+    return s;
+  }
+  const std::size_t nx = static_cast<std::size_t>(grid_.nx);
+  for (std::size_t n = 0; n < C_.size(); ++n) s += row_radius_[n / nx] * C_[n];
   return s;
 }
 
@@ -302,9 +400,9 @@ void TransportLattice::face_flux(std::span<double> east, std::span<double> north
     throw std::invalid_argument("TransportLattice::face_flux: field size does not match the grid");
   }
   if (stencil_ == Stencil::d2q5) {
-    face_flux_impl<D2Q5>(grid_, boundaries_, g_, east, north);
+    face_flux_impl<D2Q5>(grid_, boundaries_, row_radius_, g_, east, north);
   } else {
-    face_flux_impl<D2Q9>(grid_, boundaries_, g_, east, north);
+    face_flux_impl<D2Q9>(grid_, boundaries_, row_radius_, g_, east, north);
   }
 }
 

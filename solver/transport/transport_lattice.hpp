@@ -18,6 +18,12 @@
 // fused pull stream–collide step, OpenMP over rows (as fluid/stream_collide.cpp).
 // Node (x, y) sits at ((x+½)h, (y+½)h): every non-periodic side lies halfway between
 // the last node and the (virtual) next one.
+//
+// Axisymmetric geometry (set_axisymmetric; docs/model.md §7b, eqs 7.6–7.10): x is the axial
+// coordinate z, y the radial one, and the lattice carries φ = r C, which obeys the planar
+// equation with the velocity u + (D/r) e_r and the source r q (eq 7.7): the r-weighted amount is
+// conserved exactly and the steady D2Q5 TRT (Λ = ¼) state is the conservative cylindrical
+// finite-volume scheme (eq 7.9).
 #include <array>
 #include <cstdint>
 #include <limits>
@@ -30,6 +36,9 @@
 #include "lattice/grid.hpp"
 
 namespace erythro::transport {
+namespace detail {
+struct KernelArgs;
+}
 
 enum class Stencil { d2q5, d2q9 };
 
@@ -100,6 +109,22 @@ class TransportLattice {
 
   const Grid& grid() const { return grid_; }
   Stencil stencil() const { return stencil_; }
+
+  // Axisymmetric geometry (docs/model.md §7b): row y at radius r_y = inner_radius + y + ½
+  // (lattice units), the bottom side at inner_radius (0: the axis, which must be zero_flux; the
+  // bottom and top sides cannot be periodic). Call before initialize(). From then on the
+  // populations, stored_amount(), total_amount() (Σ r C), mass_balance() and face_flux() are
+  // r-weighted (amounts per radian per unit axial length… in lattice units: Σ r C h²), while
+  // concentration(), source(), decay_rate(), the velocity (u_z, u_r) and the side values stay
+  // in C's units: the lattice weights them by r (eqs 7.7, 7.10). The velocity is axial only
+  // (u_r = 0: a radial one would be first order at the axis row); D2Q5 only (D2Q9 measured
+  // at order 1.6 on the axis row); not with the diffusivity tensor. Throws std::invalid_argument for a negative radius, inconsistent sides or a
+  // radial velocity (also set_velocity later).
+  void set_axisymmetric(double inner_radius);
+  bool axisymmetric() const { return !row_radius_.empty(); }
+  std::span<const double> row_radius() const { return row_radius_; }  // r_y per row; empty when planar
+  // Σ_n of the weight that total_amount() gives each node: N (planar) or Σ r_y over the nodes.
+  double total_weight() const;
   const TransportBoundaries& boundaries() const { return boundaries_; }
   TransportBoundaries& boundaries() { return boundaries_; }  // values may change between steps
   int q() const;  // populations per node
@@ -159,7 +184,7 @@ class TransportLattice {
 
   // C of the last collision (eq T4, source-corrected), size N.
   std::span<const double> concentration() const { return C_; }
-  double total_amount() const;  // Σ_n C
+  double total_amount() const;  // Σ_n C (axisymmetric: Σ_n r_n C_n)
   double stored_amount() const;  // M = Σ_n Σ_i g*_i
   const MassBalance& mass_balance() const { return balance_; }
 
@@ -203,6 +228,13 @@ class TransportLattice {
   bool has_decay_ = false;                  // decay_rate() was handed out
   std::vector<double> Dxx_, Dyy_, Dxy_;  // optional tensor (eq T8)
   std::vector<double> row_source_, row_boundary_, row_amount_, row_scale_;
+  // Axisymmetric (eq 7.7): radius per row, the velocity with the drift D/r and the source r q
+  // handed to the kernel; the drift is rebuilt when the velocity or D changed.
+  std::vector<double> row_radius_, drift_ux_, drift_uy_, weighted_source_;
+  bool drift_stale_ = true;
+  void refresh_drift();
+  void refuse_radial_velocity() const;
+  void weight_for_axisymmetry(detail::KernelArgs& a);
   MassBalance balance_;
   long steps_done_ = 0;
 };

@@ -22,17 +22,23 @@ TransportProbe::TransportProbe(const TransportPhysics& transport)
 }
 
 void TransportProbe::declare(std::vector<SeriesInfo>& series) const {
+  // Amounts: per unit depth of a planar section (µM·µm²), per radian of a body of revolution
+  // (Σ r C h², µM·µm³; docs/model.md eq 7.8).
+  const bool axi = transport_.setup().axisymmetric_inner_radius.has_value();
+  const std::string unit = axi ? "uM*um^3" : "uM*um^2", suffix = axi ? "_uM_um3" : "_uM_um2";
+  const std::string per = axi ? "per radian" : "per unit depth";
   for (std::size_t i = 0; i < transport_.species_count(); ++i) {
     const std::string& n = transport_.name(i);
-    series.push_back({n + "_mean_uM", "uM", "mean concentration of " + n + " over the nodes"});
+    series.push_back({n + "_mean_uM", "uM",
+                      "mean concentration of " + n + (axi ? " over the volume (r-weighted)" : " over the nodes")});
     series.push_back({n + "_mass_balance_residual", "",
                       "relative mass-balance residual of the last transport step (docs/transport.md eq T5)"});
     series.push_back({n + "_max_mass_balance_residual", "", "largest |relative residual| of any transport step so far"});
-    series.push_back({n + "_amount_uM_um2", "uM*um^2", "stored amount of " + n + " (eq T5's M, per unit depth)"});
-    series.push_back({n + "_amount_change_uM_um2", "uM*um^2", "stored amount of " + n + " minus that at the start "
-                                                              "(per unit depth)"});
-    series.push_back({n + "_boundary_inflow_uM_um2", "uM*um^2", "net amount of " + n + " that entered through the "
-                                                                "sides since the start (per unit depth)"});
+    series.push_back({n + "_amount" + suffix, unit, "stored amount of " + n + " (eq T5's M, " + per + ")"});
+    series.push_back(
+        {n + "_amount_change" + suffix, unit, "stored amount of " + n + " minus that at the start (" + per + ")"});
+    series.push_back({n + "_boundary_inflow" + suffix, unit,
+                      "net amount of " + n + " that entered through the sides since the start (" + per + ")"});
     series.push_back({n + "_change_uM", "uM", "max |C - C at the previous sample| over the nodes (NaN at the first)"});
     series.push_back({n + "_steady_balance", "", "|inflow + net source| / |net source| of the last transport step"});
   }
@@ -67,14 +73,15 @@ void TransportProbe::register_stages(TimeLoop& loop) {
 }
 
 void TransportProbe::sample(const ProbeContext& context, std::span<double> values) {
-  const double nodes = static_cast<double>(context.setup.grid.size());
   const auto& units = transport_.setup().units;
-  const double area = units.h_um * units.h_um;  // lattice amount (µM per node) → µM·µm²
+  // lattice amount (µM per node; axisymmetric: µM·r per node, r in h) → µM·µm² (µM·µm³ per radian)
+  const bool axi = transport_.setup().axisymmetric_inner_radius.has_value();
+  const double area = units.h_um * units.h_um * (axi ? units.h_um : 1.0);
   std::size_t k = 0;
   for (std::size_t i = 0; i < transport_.species_count(); ++i) {
     const auto& lat = transport_.lattice(i);
     const auto& mb = lat.mass_balance();
-    values[k++] = lat.total_amount() / nodes;
+    values[k++] = lat.total_amount() / lat.total_weight();
     values[k++] = context.step == 0 ? 0.0 : mb.relative_residual();
     values[k++] = worst_[i];
     const double M = lat.stored_amount();
@@ -106,6 +113,9 @@ void TransportProbe::sample(const ProbeContext& context, std::span<double> value
       }
       double sum = 0.0;
       for (int x = 0; x < g.nx; ++x) sum += north_[f.row * static_cast<std::size_t>(g.nx) + static_cast<std::size_t>(x)];
+      // axisymmetric: the face flux is r-weighted (eq 7.8): per unit area of the face at r_row + ½
+      const auto radius = transport_.lattice(f.species).row_radius();
+      if (!radius.empty()) sum /= radius[f.row] + 0.5;
       values[k++] = sum / g.nx * units.h_um / units.dt_s;  // amount per step → µM·µm/s
     }
   }

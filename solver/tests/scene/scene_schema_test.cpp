@@ -73,6 +73,8 @@ const std::map<std::string, Accessor>& accessors() {
         {"scene.description", [](const Scene& s) -> Value { return s.description; }},
         {"fluid.density_kg_m3", [](const Scene& s) -> Value { return s.fluid.density_kg_m3; }},
         {"fluid.viscosity_cP", [](const Scene& s) -> Value { return s.fluid.viscosity_cP; }},
+        {"domain.geometry", [](const Scene& s) -> Value { return s.domain.geometry; }},
+        {"domain.inner_radius_um", [](const Scene& s) -> Value { return s.domain.inner_radius_um; }},
         {"fluid.collision", [](const Scene& s) -> Value { return s.fluid.collision; }},
         {"fluid.trt_magic", [](const Scene& s) -> Value { return s.fluid.trt_magic; }},
         {"body_force.density_N_m3", [](const Scene& s) -> Value { return s.body_force->density_N_m3; }},
