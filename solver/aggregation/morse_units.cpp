@@ -100,10 +100,13 @@ double pair_density_for(double gamma, const MorseParameters& shape) {
   return gamma / std::abs(fc.integral);
 }
 
-double pair_density_for_de_star(double de_star, double shear_modulus, const MorseParameters& shape) {
+double surface_energy_for_de_star(double de_star) {
   if (!std::isfinite(de_star) || de_star < 0.0) throw std::invalid_argument("Morse: De* must be >= 0");
-  if (!std::isfinite(shear_modulus) || !(shear_modulus > 0.0)) throw std::invalid_argument("Morse: E_S must be > 0");
-  return pair_density_for(de_star * shear_modulus, shape);
+  return de_star * kDeStarUnit_J_m2;  // docs/model.md eq 4.7
 }
+
+double de_star_for_surface_energy(double gamma_J_m2) { return gamma_J_m2 / kDeStarUnit_J_m2; }
+
+double peak_adhesion_stress(double gamma, double beta) { return 0.5 * gamma * beta; }  // docs/model.md eq 4.8
 
 }  // namespace erythro::aggregation

@@ -54,10 +54,21 @@ FlatContact flat_contact(const MorseParameters& p);
 // system as p: gamma [energy/area] / |J(d*)| [length]).
 double pair_density_for(double gamma, const MorseParameters& shape);
 
-// The thesis's dimensionless surface energy, READ AS De* = γ/E_S (adhesion energy per
-// contact area over the shear modulus; docs/verification-aggregation.md §3, an
-// interpretation): D_e = De*·E_S/|J(d*)|. E_S in the units system of `shape` (lattice:
-// force per depth), De* ≥ 0.
-double pair_density_for_de_star(double de_star, double shear_modulus, const MorseParameters& shape);
+// The thesis's dimensionless surface energy De* (docs/model.md eq 4.7, the project's decision
+// of issue 21): γ = De* × kDeStarUnit_J_m2. Provenance: the thesis quotes the surface energy
+// 1.3e−7 (ch. IV) and Zhang et al. (2008) 5.2e−8, both printed "µJ/µm²"; read as SI surface
+// energies in J/m², their exact ratio 5 : 2 makes them De* = 5 and De* = 2, hence the unit
+// 1.3e−7 / 5 = 5.2e−8 / 2 = 2.6e−8 J/m² (docs/parameters.md).
+inline constexpr double kDeStarUnit_J_m2 = 2.6e-8;
+
+// γ [J/m²] of a level De* ≥ 0 (eq 4.7); std::invalid_argument if De* is negative or not finite.
+double surface_energy_for_de_star(double de_star);
+// De* of a surface energy γ [J/m²] (eq 4.7 inverted).
+double de_star_for_surface_energy(double gamma_J_m2);
+
+// The estimate of the largest adhesion stress (force per contact area) of a flat contact of
+// surface energy gamma: σ_M ≈ γβ/2 (docs/model.md eq 4.8), β the Morse decay. Same units
+// system as the arguments (SI: J/m² × 1/m = Pa).
+double peak_adhesion_stress(double gamma, double beta);
 
 }  // namespace erythro::aggregation

@@ -45,6 +45,18 @@ void write_cell_populations(hid_t meta, const scene::Scene& scene) {
   }
 }
 
+// The aggregation strength in physical terms (docs/model.md eqs 4.7–4.8): γ, De* = γ / 2.6e-8
+// J/m², the estimate γβ/2 of the largest Morse stress and, in a wall-driven simple shear, its
+// ratio to the plasma's viscous stress μγ̇.
+void write_aggregation_strength(hid_t meta, const scene::AggregationStrength& g) {
+  h5::write_attrs(meta, {{"aggregation_surface_energy_J_m2", g.surface_energy_J_m2},
+                         {"aggregation_de_star", g.de_star},
+                         {"aggregation_peak_adhesion_stress_Pa", g.peak_stress_Pa}});
+  if (g.shear_rate_per_s && g.adhesion_to_viscous_stress)
+    h5::write_attrs(meta, {{"aggregation_shear_rate_1_s", *g.shear_rate_per_s},
+                           {"aggregation_adhesion_to_viscous_stress", *g.adhesion_to_viscous_stress}});
+}
+
 std::string frame_group_name(long step) {
   char name[32];
   std::snprintf(name, sizeof name, "%010ld", step);
@@ -141,6 +153,7 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
                                     {"morse_r0_lattice", a->r0},
                                     {"morse_beta_lattice", a->beta},
                                     {"morse_cutoff_lattice", a->cutoff}});
+      if (const auto& g = setup.membrane->aggregation_strength) write_aggregation_strength(meta.id(), *g);
       if (const auto& r = setup.membrane->repulsion)
         h5::write_attrs(meta.id(), {{"repulsion_pressure_lattice", r->pressure},
                                     {"repulsion_range_lattice", r->range},

@@ -62,6 +62,30 @@ double closest_within(const geometry::Polygon& a, const geometry::Polygon& b, co
 
 std::string cell_key(std::size_t i, const char* key) { return "cells[" + std::to_string(i) + "]." + key; }
 
+// γ of [aggregation] in J/m² from whichever strength key the scene gives: γ itself, De*
+// (docs/model.md eq 4.7: γ = De* × 2.6e−8 J/m²) or D_e (eq 4.6: γ = D_e |J(d*)|, `shape` in SI).
+double surface_energy_J_m2(const AggregationSpec& a, const aggregation::MorseParameters& shape) {
+  if (a.surface_energy_J_m2) return *a.surface_energy_J_m2;
+  if (a.de_star) return aggregation::surface_energy_for_de_star(*a.de_star);
+  return *a.pair_density_Pa * std::abs(aggregation::flat_contact(shape).integral);
+}
+
+// The strength in physical terms (docs/model.md eqs 4.7–4.8): De*, the estimate γβ/2 of the
+// largest Morse stress and, in a wall-driven simple shear, its ratio to the viscous stress μγ̇
+// of the plasma (fluid.viscosity_cP).
+AggregationStrength aggregation_strength(const Scene& s, const LatticeSetup& L, double gamma_J_m2) {
+  AggregationStrength st;
+  st.surface_energy_J_m2 = gamma_J_m2;
+  st.de_star = aggregation::de_star_for_surface_energy(gamma_J_m2);
+  st.peak_stress_Pa = aggregation::peak_adhesion_stress(gamma_J_m2, s.aggregation->decay_per_um * 1e6);
+  st.shear_rate_per_s = wall_shear_rate_per_s(L);
+  if (st.shear_rate_per_s) {
+    const double viscous_stress_Pa = s.fluid.viscosity_cP * 1e-3 * *st.shear_rate_per_s;  // μγ̇
+    st.adhesion_to_viscous_stress = st.peak_stress_Pa / viscous_stress_Pa;
+  }
+  return st;
+}
+
 }  // namespace
 
 MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechanics) {
@@ -233,19 +257,15 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     p.beta_per_m = a.decay_per_um * 1e6;
     p.cutoff_m = a.cutoff_um.value_or(a.zero_force_distance_um + 5.0 / a.decay_per_um) * 1e-6;
     try {
-      // De* = γ/E_S and γ are fitted through the flat contact (aggregation/morse_units.hpp:
-      // D_e = γ/|J(d*)|); SI throughout, then the layer's own conversion.
+      // γ (given, or De* × 2.6e−8 J/m²) is fitted through the flat contact
+      // (aggregation/morse_units.hpp: D_e = γ/|J(d*)|, docs/model.md eq 4.6); SI throughout,
+      // then the layer's own conversion.
       const aggregation::MorseParameters shape{1.0, p.r0_m, p.beta_per_m, p.cutoff_m};
-      const double Es_N_m = spec.shear_modulus_dyn_cm * membrane::kDynPerCm;
-      if (a.de_star && !(Es_N_m > 0.0))
-        reject(s, "aggregation.de_star = " + num(*a.de_star) + " is γ/E_S, but membrane.shear_modulus_dyn_cm = " +
-                      num(spec.shear_modulus_dyn_cm) + " dyn/cm: give E_S > 0, or the strength as "
-                      "aggregation.surface_energy_J_m2 or aggregation.pair_density_Pa");
-      if (a.pair_density_Pa) p.De_Pa = *a.pair_density_Pa;
-      if (a.surface_energy_J_m2) p.De_Pa = aggregation::pair_density_for(*a.surface_energy_J_m2, shape);
-      if (a.de_star) p.De_Pa = aggregation::pair_density_for_de_star(*a.de_star, Es_N_m, shape);
+      const double gamma_J_m2 = surface_energy_J_m2(a, shape);
+      p.De_Pa = a.pair_density_Pa ? *a.pair_density_Pa : aggregation::pair_density_for(gamma_J_m2, shape);
       M.aggregation = aggregation::to_lattice(p, ms);
       M.aggregation_flat_gap = aggregation::flat_contact(*M.aggregation).gap;
+      M.aggregation_strength = aggregation_strength(s, L, gamma_J_m2);
     } catch (const std::invalid_argument& e) {
       reject(s, "[aggregation] with aggregation.zero_force_distance_um = " + num(a.zero_force_distance_um) +
                     " µm, aggregation.decay_per_um = " + num(a.decay_per_um) + " /µm, aggregation.cutoff_um = " +

@@ -192,13 +192,13 @@ struct PopulationPlacement {
 };
 
 // [aggregation]: Morse aggregation between the membranes of different cells (docs/model.md
-// §4; docs/verification-aggregation.md). The strength is exactly one of: the
-// dimensionless surface energy De* = γ/E_S (the thesis's levels 1…5), the adhesion
-// energy γ of a flat contact, or the 2D pair density D_e itself; the first two are
-// turned into D_e by fitting the flat contact (aggregation/morse_units.hpp).
+// §4; docs/verification-aggregation.md). The strength is exactly one of: the adhesion
+// energy γ of a flat contact, the dimensionless surface energy De* = γ / 2.6e−8 J/m² (the
+// thesis's levels 1…5; docs/model.md eq 4.7), or the 2D pair density D_e itself; the first
+// two are turned into D_e by fitting the flat contact (aggregation/morse_units.hpp).
 struct AggregationSpec {
-  std::optional<double> de_star;               // De* = γ / E_S ([membrane] shear modulus)
-  std::optional<double> surface_energy_J_m2;   // γ
+  std::optional<double> de_star;               // De* = γ / 2.6e−8 J/m² (aggregation::kDeStarUnit_J_m2)
+  std::optional<double> surface_energy_J_m2;   // γ (the primary key)
   std::optional<double> pair_density_Pa;       // D_e of the 2D pair model (J/m³)
   double zero_force_distance_um = 0.49;        // r0 (Zhang et al. 2008; docs/parameters.md)
   double decay_per_um = 3.84;                  // β (docs/parameters.md, R)

@@ -456,20 +456,22 @@ std::vector<KeySpec> make_keys() {
        .meaning = "The cell starts stretched by λ over its rest shape, which is the shape before placement scaled by "
                   "`scale`/λ (e.g. an inflated circle, verification.laplace_pressure)"},
       // [aggregation]
-      {.path = "aggregation.de_star",
-       .bound = non_negative,
-       .when_absent = note("exactly one of `de_star`, `surface_energy_J_m2`, `pair_density_Pa`"),
-       .meaning = "De* = γ/E_S with E_S = `membrane.shear_modulus_dyn_cm` (the thesis's levels 1–5); 0: no "
-                  "adhesion, but the Morse range still defines contact and dissociation for the pair probe"},
       {.path = "aggregation.surface_energy_J_m2",
        .unit = "J/m²",
-       .bound = positive,
-       .when_absent = note("exactly one of `de_star`, `surface_energy_J_m2`, `pair_density_Pa`"),
-       .meaning = "Adhesion energy γ of a flat contact (`aggregation::pair_density_for`)"},
+       .bound = non_negative,
+       .when_absent = note("exactly one of `surface_energy_J_m2`, `de_star`, `pair_density_Pa`"),
+       .meaning = "Adhesion energy γ of a flat contact (`aggregation::pair_density_for`, docs/model.md eq 4.6); "
+                  "0: no adhesion, as `de_star` = 0"},
+      {.path = "aggregation.de_star",
+       .bound = non_negative,
+       .when_absent = note("exactly one of `surface_energy_J_m2`, `de_star`, `pair_density_Pa`"),
+       .meaning = "The thesis's dimensionless surface energy (levels 1–5): γ = De* × 2.6e−8 J/m², so De* = 5 is "
+                  "γ = 1.3e−7 J/m² (docs/model.md eq 4.7); 0: no adhesion, but the Morse range still defines "
+                  "contact and dissociation for the pair probe"},
       {.path = "aggregation.pair_density_Pa",
        .unit = "Pa",
        .bound = positive,
-       .when_absent = note("exactly one of `de_star`, `surface_energy_J_m2`, `pair_density_Pa`"),
+       .when_absent = note("exactly one of `surface_energy_J_m2`, `de_star`, `pair_density_Pa`"),
        .meaning = "The 2D pair density D_e itself (Pa = J/m³)"},
       {.path = "aggregation.zero_force_distance_um",
        .unit = "µm",

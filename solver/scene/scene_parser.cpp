@@ -547,8 +547,9 @@ Scene read_scene(const Reader& r, const std::string& origin) {
     const int given = static_cast<int>(r.has(strengths[0])) + static_cast<int>(r.has(strengths[1])) +
                       static_cast<int>(r.has(strengths[2]));
     if (given != 1)
-      throw InputError(r.where_table("aggregation") + ": give exactly one of aggregation.de_star (γ/E_S, the thesis's "
-                       "levels 1-5), aggregation.surface_energy_J_m2 (γ) or aggregation.pair_density_Pa (D_e); " +
+      throw InputError(r.where_table("aggregation") + ": give exactly one of aggregation.surface_energy_J_m2 (γ, "
+                       "J/m², >= 0), aggregation.de_star (γ / 2.6e-8 J/m², the thesis's levels 1-5, >= 0) or "
+                       "aggregation.pair_density_Pa (D_e, Pa, > 0); " +
                        std::to_string(given) + " given");
     if (r.has(strengths[0])) a.de_star = r.number(strengths[0]);
     if (r.has(strengths[1])) a.surface_energy_J_m2 = r.number(strengths[1]);

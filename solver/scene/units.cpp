@@ -365,10 +365,31 @@ std::string pad(const std::string& text, std::size_t width) {
 }  // namespace
 
 namespace {
+// The aggregation strength's rows of the report (docs/model.md eqs 4.7–4.8).
+void append_aggregation_rows(const AggregationStrength& g, std::vector<std::array<std::string, 3>>& rows) {
+  rows.push_back({"surface energy γ", "De* = " + num(g.de_star) + " (γ / 2.6e-8 J/m²)",
+                  num(g.surface_energy_J_m2) + " J/m²"});
+  rows.push_back({"peak adhesion stress γβ/2", "", num(g.peak_stress_Pa) + " Pa"});
+  if (g.adhesion_to_viscous_stress)
+    rows.push_back({"adhesion / viscous stress", num(*g.adhesion_to_viscous_stress),
+                    "γβ/2 over μγ̇, γ̇ = " + num(*g.shear_rate_per_s) + " 1/s (walls)"});
+}
+
 // The transport's rows of the report, and the rows as an aligned table.
 void append_transport_rows(const Scene& s, const LatticeSetup& L, std::vector<std::array<std::string, 3>>& rows);
 std::string format_rows(const Scene& s, const LatticeSetup& L, const std::vector<std::array<std::string, 3>>& rows);
 }  // namespace
+
+std::optional<double> wall_shear_rate_per_s(const LatticeSetup& L) {
+  using fluid::SideType;
+  const fluid::BoundaryConfig& b = L.boundaries;
+  const bool walls_in_y = b.bottom.type != SideType::periodic && b.top.type != SideType::periodic;
+  const bool periodic_in_x = b.left.type == SideType::periodic && b.right.type == SideType::periodic;
+  const bool no_force = L.body_force[0] == 0.0 && L.body_force[1] == 0.0;
+  const double relative_speed = std::abs(b.top.ux - b.bottom.ux);  // lattice (a still wall has ux = 0)
+  if (!walls_in_y || !periodic_in_x || !no_force || !(relative_speed > 0.0)) return std::nullopt;
+  return relative_speed / L.grid.ny / L.scales.time_s;  // per step over n_y h, then per second
+}
 
 std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
   const UnitScales& u = L.scales;
@@ -455,6 +476,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
     if (const auto& a = M->aggregation)
       rows.push_back({"aggregation (Morse)", "D_e " + num(a->De) + ", r0 " + num(a->r0) + ", r_c " + num(a->cutoff),
                       "flat-contact gap " + num(M->aggregation_flat_gap * u.length_m * um) + " µm"});
+    if (const auto& g = M->aggregation_strength) append_aggregation_rows(*g, rows);
     if (const auto& r = M->repulsion)
       rows.push_back({"repulsion", "P " + num(r->pressure) + ", d " + num(r->range) + (r->walls ? ", walls" : ""),
                       "d = " + num(r->range * u.length_m * um) + " µm"});

@@ -45,6 +45,18 @@ struct CellSetup {
   double min_edge = 0.0, max_edge = 0.0;  // marker spacing
 };
 
+// The strength of [aggregation] in physical terms (docs/model.md §4, eqs 4.6–4.8), whichever
+// key gave it: shown by `erythro check`, recorded in run.h5's /metadata.
+struct AggregationStrength {
+  double surface_energy_J_m2 = 0.0;  // γ of the flat contact (eq 4.6: D_e |J(d*)|)
+  double de_star = 0.0;              // γ / 2.6e−8 J/m² (eq 4.7)
+  double peak_stress_Pa = 0.0;       // γβ/2: the estimate of the largest Morse stress (eq 4.8)
+  // Only in a wall-driven simple shear (wall_shear_rate_per_s): γ̇, and σ_M / (μγ̇) with μ the
+  // plasma viscosity fluid.viscosity_cP.
+  std::optional<double> shear_rate_per_s;
+  std::optional<double> adhesion_to_viscous_stress;
+};
+
 // The membranes, present only when the scene declares [[cells]].
 struct MembraneSetup {
   ib::KernelType kernel = ib::KernelType::cosine4;
@@ -60,6 +72,7 @@ struct MembraneSetup {
   // Morse aggregation between cells (lattice units), only with [aggregation].
   std::optional<aggregation::MorseParameters> aggregation;
   double aggregation_flat_gap = 0.0;  // flat-contact equilibrium gap d* (h), shown by `check`
+  std::optional<AggregationStrength> aggregation_strength;  // with [aggregation]
   // Short-range repulsion between cells and against walls (lattice units), only with [repulsion].
   std::optional<aggregation::RepulsionParameters> repulsion;
 };
@@ -158,6 +171,12 @@ struct LatticeSetup {
 // Converts and checks. Throws InputError naming the scene file, the key, its value
 // and the allowed range when the set-up is impossible or unstable.
 LatticeSetup derive_lattice(const Scene& scene);
+
+// The shear rate γ̇ [1/s] of a wall-driven simple shear: walls at bottom and top, at least
+// one moving, left/right periodic, no body force; γ̇ = relative wall speed / channel height
+// (lattice: |u_top − u_bottom| / n_y per step, the profile of initial.type = "shear").
+// Otherwise none. `L` needs its grid, scales, boundaries and body force.
+std::optional<double> wall_shear_rate_per_s(const LatticeSetup& L);
 
 // Human-readable table of the derived parameters (h, Δt, τ, ν, Ma, Re, steps...)
 // printed by `erythro check`.

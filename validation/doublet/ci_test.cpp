@@ -1,7 +1,8 @@
 // validation.doublet_shear_ci (CI): the fast subset of the doublet study on a coarse
-// lattice (h = 0.5 µm): an aggregated doublet (De* = 1) stays together and turns as one
-// body through a quarter revolution, and its contact zone is larger than that of a
-// weakly aggregated one (De* = 0.25). docs/validation-doublet.md.
+// lattice (h = 0.5 µm): an aggregated doublet (old-reading De* = 1, γ = E_S0 = 6e-6 J/m²)
+// stays together and turns as one body through a quarter revolution, and its contact zone
+// is larger than that of a weakly aggregated one (old-reading De* = 0.25, γ = 0.25 E_S0).
+// docs/validation-doublet.md.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -15,8 +16,9 @@
 using namespace erythro;
 
 namespace {
-constexpr double kStrong = 1.0;  // De* of the strongly aggregated run (largest level the study asserts)
-constexpr double kWeak = 0.25;   // De* of the weakly aggregated run
+// Levels k of the old reading γ = k·E_S0 (docs/model.md eq 4.7, the documented alternative).
+constexpr double kStrong = 1.0;  // the strongly aggregated run (largest level the study asserts)
+constexpr double kWeak = 0.25;   // the weakly aggregated run
 }  // namespace
 
 TEST(DoubletShear, CiSubset) {
@@ -24,19 +26,20 @@ TEST(DoubletShear, CiSubset) {
   io::ResultRecord rec("validation.doublet_shear_ci", "doublet");
   rec.set_requirement(
       "A 2D RBC doublet in simple shear (100 1/s, thesis moduli, cytoplasm 6 cP by flood fill, Morse aggregation) "
-      "with surface energy De* = 1 stays aggregated and turns as one body through a quarter revolution, and its "
-      "contact zone is larger than at De* = 0.25; coarse lattice h = 0.5 um.");
+      "with surface energy gamma = E_S0 = 6e-6 J/m2 (old-reading De* = 1, gamma = De* E_S0) stays aggregated and "
+      "turns as one body through a quarter revolution, and its contact zone is larger than at old-reading De* = 0.25; "
+      "coarse lattice h = 0.5 um.");
   rec.set_reference(
       "Thesis ch. III (docs/model.md section 6): doublets at 100 1/s rotate as one when aggregated; Zhang, Johnson & "
       "Popel 2008 (J Biomech 41:47): a rouleau rotates or separates depending on the relative strength of the "
       "intercellular interaction and the viscous forces. validation.doublet_surface_energy is the full study.");
   vv::DoubletShearConfig strong = vv::ci_config();
-  strong.de_star = kStrong;
+  strong.old_reading_de_star = kStrong;
   strong.strain = 6.0;
   strong.stop_theta_deg = -5.0;  // the line of centres has passed the flow direction: a quarter turn as one body
   strong.pictures = true;
   vv::DoubletShearConfig weak = vv::ci_config();
-  weak.de_star = kWeak;
+  weak.old_reading_de_star = kWeak;
   weak.strain = 6.0;
   weak.stop_theta_deg = -5.0;
   const std::vector<vv::DoubletShearResult> runs =

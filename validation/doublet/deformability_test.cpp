@@ -12,6 +12,7 @@
 #include "doublet_cases.hpp"
 #include "doublet_outcome.hpp"
 #include "doublet_record.hpp"
+#include "doublet_scene.hpp"
 
 using namespace erythro;
 
@@ -31,8 +32,8 @@ TEST(DoubletShear, Deformability50) {
   rec.set_reference(
       "Thesis ch. III (docs/model.md section 6): a deformability difference retards aggregation, case III dissociates; "
       "thesis Table III-2 lists the dimensionless shear rates (its definition is not in our copy: Ca_i = "
-      "mu*gamma*a/E_S,i and Ca/De* are reported).");
-  const double de = vv::deformability_de_star();
+      "mu*gamma*a/E_S,i and Ca/De* are reported, De* the old-reading level gamma/E_S0).");
+  const double de = vv::deformability_old_reading_de_star();  // γ = de·E_S0
   const auto cases = vv::deformability_cases();
   std::vector<vv::DoubletRun> plan;
   for (const auto& cs : cases) plan.push_back({vv::deformability_config(cs), std::string("case ") + cs.name});
@@ -59,7 +60,8 @@ TEST(DoubletShear, Deformability50) {
                           vv::fmt("; max |dD| %.3f", vv::max_deformation_change(r, 0)) +
                           vv::fmt(" / %.3f", vv::max_deformation_change(r, 1)));
   }
-  rec.set_parameter("de_star", de);
+  rec.set_parameter("old_reading_de_star", de);
+  rec.set_parameter("surface_energy_J_m2", vv::surface_energy_J_m2(plan.front().config));
   rec.set_parameter("thesis", "a deformability difference retards aggregation; case III dissociates");
   double spread = 0;
   for (double p : progress) spread = std::max(spread, std::abs(p - progress[0]));

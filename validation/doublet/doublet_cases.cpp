@@ -28,12 +28,12 @@ std::vector<DeformabilityCase> deformability_cases() {
   return {{"I", 0.0}, {"II", 3.0}, {"III", 4.5}, {"IV", 12.0}};
 }
 
-double deformability_de_star() { return 0.5; }
+double deformability_old_reading_de_star() { return 0.5; }
 
 DoubletShearConfig deformability_config(const DeformabilityCase& cs) {
   DoubletShearConfig c = study_config();
   c.shear_rate = 50.0;
-  c.de_star = deformability_de_star();
+  c.old_reading_de_star = deformability_old_reading_de_star();
   c.Es1_N_m = c.Es0_N_m + cs.delta_Es * 1e-6;  // 1e-3 dyn/cm = 1e-6 N/m
   c.initial_gap_m = 1.0e-6;  // rims 1 µm apart (within r_c = 1.79 µm): the approach is part of the run
   return c;
@@ -55,7 +55,7 @@ DoubletShearConfig rigid_config(const RigidLevel& level) {
   // value of the thesis cell, 100 E_S/a at Ca = 0.0782): 100 E_S/a of a 60× stiffer
   // membrane exceeds the explicit IB limit; a stiff membrane keeps its area by tension.
   c.area_modulus = 100.0 * level.capillary / 0.0782;
-  c.de_star = 0.0;
+  c.old_reading_de_star = 0.0;
   c.strain = 12.0;
   c.stop_theta_deg = -92.0;
   return c;

@@ -13,10 +13,10 @@ DoubletShearConfig study_config();
 // CI lattice: h = 0.5 µm (a/h = 7.8, 60 × 60 nodes), same groups.
 DoubletShearConfig ci_config();
 
-// Item 5: surface-energy levels at 100 1/s.
+// Item 5: surface-energy levels at 100 1/s: levels k of the old reading, γ = k·E_S0.
 std::vector<double> surface_energy_levels();
 // Item 5, second start: rims 1.0 µm apart (3.3 h on the study lattice: the film between the
-// membranes resolved) instead of d*, at the levels that bracket the transition from it
+// membranes resolved) instead of d*, at the (old-reading) levels that bracket the transition from it
 // (docs/validation-doublet.md §3 "Longer runs and other starts").
 double wide_start_gap_m();
 std::vector<double> wide_start_levels();
@@ -26,8 +26,9 @@ struct DeformabilityCase {
   double delta_Es;  // ×1e-3 dyn/cm
 };
 std::vector<DeformabilityCase> deformability_cases();
-double deformability_de_star();
-// The run of one case: 50 1/s, De* above, second cell E_S0 + ΔE_S, start gap below.
+// The level k of the old reading (γ = k·E_S0, doublet_scene.hpp surface_energy_J_m2).
+double deformability_old_reading_de_star();
+// The run of one case: 50 1/s, the level above, second cell E_S0 + ΔE_S, start gap below.
 DoubletShearConfig deformability_config(const DeformabilityCase& c);
 // Item 7: rigid-limit sequence for one ellipse (a/b = 2): capillary number and viscosity ratio.
 struct RigidLevel {

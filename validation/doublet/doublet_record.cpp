@@ -2,7 +2,9 @@
 
 #include <cstdio>
 
+#include "aggregation/morse_units.hpp"
 #include "doublet_outcome.hpp"
+#include "doublet_scene.hpp"
 
 namespace erythro::vv {
 
@@ -32,8 +34,10 @@ void add_mapping(io::ResultRecord& rec, const DoubletShearConfig& c, const Doubl
                                          fmt("r_c = %.4g h, ", r.cutoff_lat) + fmt("flat-contact gap d* = %.4g h", r.flat_gap_lat));
   rec.set_parameter("morse_physical", fmt("r0 = %.3g um, ", c.r0_m * 1e6) + fmt("beta = %.3g /um, ", c.beta_per_m * 1e-6) +
                                           fmt("r_c = r0 + %.0f/beta", c.cutoff_k));
-  rec.set_parameter("surface_energy_reading", "De* = gamma/E_S0 (docs/verification-aggregation.md section 3): "
-                                              "D_e = De* E_S0 / |J(d*)|");
+  rec.set_parameter("surface_energy_reading",
+                    "levels and labels De* = k are the old reading gamma = k E_S0 (docs/model.md eq 4.7, the documented "
+                    "alternative), given as aggregation.surface_energy_J_m2; D_e = gamma / |J(d*)|; column de_star is "
+                    "the project's De* = gamma / 2.6e-8 J/m2");
   rec.set_parameter("stability_max_dt_factor", r.stability_factor);
 }
 
@@ -78,7 +82,9 @@ void add_row(io::ResultRecord& rec, const std::string& label, const DoubletShear
   const double TJ = r.aspect_quadrant > 0 ? jeffery_period(r.aspect_quadrant) : -1;
   rec.add_run({{"run", label},
                {"shear_rate_1_s", c.shear_rate},
-               {"de_star", c.de_star},
+               {"old_reading_de_star", c.old_reading_de_star},
+               {"surface_energy_J_m2", surface_energy_J_m2(c)},
+               {"de_star", aggregation::de_star_for_surface_energy(surface_energy_J_m2(c))},
                {"Es0_dyn_cm", c.Es0_N_m * 1e3},
                {"Es1_dyn_cm", c.Es1_N_m * 1e3},
                {"capillary0", r.capillary0},

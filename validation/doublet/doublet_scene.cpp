@@ -7,11 +7,17 @@
 
 #include "common/scene_case.hpp"
 #include "geometry/shapes.hpp"
+#include "membrane/membrane_units.hpp"
 
 namespace erythro::vv {
 
 const char* theta_series(const DoubletShearConfig& c) {
   return c.cells == 2 ? "pair_angle_deg" : "cell_0_inclination_deg";
+}
+
+double surface_energy_J_m2(const DoubletShearConfig& c) {
+  const double Es0_dyn_cm = c.Es0_N_m * 1e3;  // membrane.shear_modulus_dyn_cm below (1 dyn/cm = 1e-3 N/m)
+  return c.old_reading_de_star * (Es0_dyn_cm * membrane::kDynPerCm);
 }
 
 DoubletScene doublet_scene(const DoubletShearConfig& c) {
@@ -49,7 +55,7 @@ DoubletScene doublet_scene(const DoubletShearConfig& c) {
     o.push_back(set("cells[0].radius_um", a_um));
     o.push_back(set("cells[1].radius_um", a_um));
     o.push_back(set("cells[1].shear_modulus_dyn_cm", c.Es1_N_m * 1e3));
-    o.push_back(set("aggregation.de_star", c.de_star));
+    o.push_back(set("aggregation.surface_energy_J_m2", surface_energy_J_m2(c)));
     o.push_back(set("aggregation.zero_force_distance_um", c.r0_m * 1e6));
     o.push_back(set("aggregation.decay_per_um", c.beta_per_m * 1e-6));
     o.push_back(set("aggregation.cutoff_um", (c.r0_m + c.cutoff_k / c.beta_per_m) * 1e6));

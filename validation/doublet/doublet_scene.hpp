@@ -21,6 +21,11 @@ struct DoubletScene {
 
 DoubletScene doublet_scene(const DoubletShearConfig& c);
 
+// The surface energy γ [J/m²] of the run: the old reading's level k times E_S0 (docs/model.md
+// eq 4.7, the documented alternative), with E_S0 as the scene reads it back from
+// membrane.shear_modulus_dyn_cm: bit for bit the γ the former `aggregation.de_star = k` gave.
+double surface_energy_J_m2(const DoubletShearConfig& c);
+
 // The series of the run's angle θ: the pair's line of centres, or the single cell's long axis.
 const char* theta_series(const DoubletShearConfig& c);
 

@@ -7,10 +7,11 @@
 //   - the membrane of docs/model.md §3 (neo-Hookean tension, bending about the rest
 //     curvature, area penalty; rest shape = initial shape), one E_S per cell;
 //   - the cytoplasm viscosity by the flood-fill index field (docs/model.md §5, eqs 26–27);
-//   - Morse aggregation between the cells (docs/model.md §4, thesis eq 13) at surface-energy
-//     level De* = γ/E_S0 (docs/verification-aggregation.md §3; aggregation.de_star).
+//   - Morse aggregation between the cells (docs/model.md §4, thesis eq 13) at surface energy
+//     γ = k·E_S0, the level k of the OLD reading De* = γ/E_S (docs/model.md eq 4.7, the documented
+//     alternative; the project's De* is γ / 2.6e−8 J/m²), given as aggregation.surface_energy_J_m2.
 // Hemodynamic time mapping (docs/model.md §10, eq 10.7): the physical inputs fix the
-// dimensionless groups Ca = μγ̇a/E_S, E_B* = E_B/(a²E_S), k_A a/E_S, De* = γ/E_S,
+// dimensionless groups Ca = μγ̇a/E_S, E_B* = E_B/(a²E_S), k_A a/E_S, γ/E_S,
 // λ = μ_in/μ_ex, r0/a, βa and the box/a; the particle Reynolds number ργ̇a²/μ is chosen
 // (small, stated) through the scene's density, which sets the lattice shear rate.
 // The doublet diagnostics are the pair probe's series (simulation/probes/pair_probe.hpp),
@@ -40,7 +41,7 @@ struct DoubletShearConfig {
   double Es0_N_m = 6e-6, Es1_N_m = 6e-6;  // E_S of cell 0 / cell 1 (6e-3 dyn/cm)
   double Eb_J = 3.6e-19;           // E_B = 3.6e-12 dyn·cm (thesis), both cells
   double area_modulus = 100.0;     // k_A in units of E_S0/a (as validation/rbc)
-  double de_star = 2.0;            // γ = De*·E_S0 (surface energy; the same for both cells)
+  double old_reading_de_star = 2.0;  // level k of the old reading: γ = k·E_S0 (surface_energy_J_m2(); both cells)
   double r0_m = 0.49e-6;           // Morse zero-force separation (docs/parameters.md)
   double beta_per_m = 3.84e6;      // Morse decay (docs/parameters.md, confidence R)
   double cutoff_k = 5.0;           // r_c = r0 + k/β (docs/verification-aggregation.md §1)

@@ -2,7 +2,7 @@
 // "no dissociation at 100 1/s" result of validation.doublet_surface_energy depend on the
 // run length or the start? docs/validation-doublet.md §3 "Longer runs and other starts".
 // Run: vv_doublet --gtest_also_run_disabled_tests --gtest_filter=DoubletExplore.*
-// Environment (all optional): DOUBLET_DE="0,0.25" (levels), DOUBLET_THETA0 (deg, line of
+// Environment (all optional): DOUBLET_DE="0,0.25" (levels k of the old reading, γ = k·E_S0), DOUBLET_THETA0 (deg, line of
 // centres at start, default 90), DOUBLET_GAP_UM (rim gap at start, µm; default d*),
 // DOUBLET_TURN_DEG (stop once θ fell this far below θ0, default 360), DOUBLET_STRAIN
 // (cap, default 30), DOUBLET_H_UM (lattice spacing, default 0.3), DOUBLET_KEEP (strain units
@@ -59,7 +59,7 @@ TEST(DoubletExplore, DISABLED_LongRunsAndStarts) {
   for (double de : levels) {
     vv::DoubletShearConfig c = vv::study_config();
     c.h_m = env_or("DOUBLET_H_UM", 0.3) * 1e-6;
-    c.de_star = de;
+    c.old_reading_de_star = de;  // γ = de·E_S0
     c.theta0_deg = theta0;
     c.initial_gap_m = gap_um > 0 ? gap_um * 1e-6 : -1.0;
     c.strain = env_or("DOUBLET_STRAIN", 30.0);

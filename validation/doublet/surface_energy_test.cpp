@@ -1,5 +1,6 @@
 // validation.doublet_surface_energy (full): issue 6 item 5. The doublet at 100 1/s over
-// surface-energy levels De*: outcome (rotates as one / dissociates), contact mode, contact
+// surface-energy levels (old reading, De* = k means γ = k·E_S0; docs/model.md eq 4.7): outcome
+// (rotates as one / dissociates), contact mode, contact
 // area, the tumbling period against Jeffery's period of the doublet's equivalent
 // ellipse, and a resolution check of the membrane gap. docs/validation-doublet.md.
 #include <gtest/gtest.h>
@@ -29,11 +30,12 @@ TEST(DoubletShear, SurfaceEnergy100) {
   vv::Stopwatch total;
   io::ResultRecord rec("validation.doublet_surface_energy", "doublet");
   rec.set_requirement(
-      "At 100 1/s (thesis set-up mapped to h = 0.3 um, lattice Re = 0.1) each surface-energy level De* = 0, 0.25, "
-      "0.5, 1 is classified (rotates as one / dissociates); the outcome is monotone in De*; the contact area grows "
-      "with De*; an aggregated pair tumbles with a period within 30 % of Jeffery's for its equivalent ellipse; the "
-      "non-adhering pair's membrane gap opens more on the thesis lattice (h = 0.15 um) than on the study lattice; from "
-      "a second start with the rims 1.0 um apart the non-adhering pair dissociates and De* = 0.25 rotates as one.");
+      "At 100 1/s (thesis set-up mapped to h = 0.3 um, lattice Re = 0.1) each surface-energy level of the old "
+      "reading De* = gamma/E_S0 = 0, 0.25, 0.5, 1 (gamma = De* x 6e-6 J/m2) is classified (rotates as one / "
+      "dissociates); the outcome is monotone in De*; the contact area grows with De*; an aggregated pair tumbles "
+      "with a period within 30 % of Jeffery's for its equivalent ellipse; the non-adhering pair's membrane gap opens "
+      "more on the thesis lattice (h = 0.15 um) than on the study lattice; from a second start with the rims 1.0 um "
+      "apart the non-adhering pair dissociates and De* = 0.25 rotates as one.");
   rec.set_reference(
       "Thesis ch. III (docs/model.md section 6; De* = 1..5 at 100 1/s; contact modes flat / sigmoid / relaxed sigmoid); "
       "Zhang, Johnson & Popel 2008 J Biomech 41:47 (a rouleau rotates or separates depending on the relative "
@@ -46,20 +48,20 @@ TEST(DoubletShear, SurfaceEnergy100) {
   std::vector<vv::DoubletRun> plan;
   for (double de : levels) {
     vv::DoubletShearConfig c = vv::study_config();
-    c.de_star = de;
+    c.old_reading_de_star = de;
     plan.push_back({c, vv::fmt("De*=%.2g", de)});
   }
   for (double de : wide_levels) {
     vv::DoubletShearConfig c = vv::study_config();
-    c.de_star = de;
+    c.old_reading_de_star = de;
     c.initial_gap_m = vv::wide_start_gap_m();
     plan.push_back({c, vv::fmt("De*=%.2g gap 1um", de)});
   }
   vv::DoubletShearConfig fine = vv::study_config();  // the thesis lattice h = 0.15 µm
   fine.h_m = 0.15e-6;
-  fine.de_star = 0.0;
+  fine.old_reading_de_star = 0.0;
   vv::DoubletShearConfig fine5 = fine;
-  fine5.de_star = 0.5;
+  fine5.old_reading_de_star = 0.5;
   fine5.pictures = true;  // the aggregated doublet and its flow at the thesis lattice, for the report
   plan.push_back({fine, "De*=0 h=0.15"});
   plan.push_back({fine5, "De*=0.5 h=0.15"});

@@ -2,6 +2,7 @@
 // (aggregation/morse_units.hpp) and small configurations of CellContacts.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -116,11 +117,34 @@ TEST(MorseUnits, FlatContactGap) {
   // The matching pair density reproduces the surface energy.
   const double De = pair_density_for(0.02, sharp);
   EXPECT_NEAR(De * std::abs(flat_contact_integral(sharp, fc.gap)), 0.02, 1e-14);
-  // De* = γ/E_S: De* = 4 at E_S = 0.005 is γ = 0.02.
-  EXPECT_DOUBLE_EQ(pair_density_for_de_star(4.0, 0.005, sharp), De);
-  EXPECT_THROW(pair_density_for_de_star(-1.0, 0.005, sharp), std::invalid_argument);
-  EXPECT_THROW(pair_density_for_de_star(1.0, 0.0, sharp), std::invalid_argument);
   EXPECT_THROW(pair_density_for(-0.1, sharp), std::invalid_argument);
+}
+
+// De* = γ / 2.6e-8 J/m² (docs/model.md eq 4.7): the thesis's 1.3e-7 J/m² (ch. IV) is De* = 5,
+// Zhang et al.'s 5.2e-8 J/m² is De* = 2.
+TEST(MorseUnits, DeStarIsInUnitsOf2point6e8JoulePerSquareMetre) {
+  EXPECT_DOUBLE_EQ(surface_energy_for_de_star(5.0), 1.3e-7);
+  EXPECT_DOUBLE_EQ(surface_energy_for_de_star(2.0), 5.2e-8);
+  EXPECT_DOUBLE_EQ(de_star_for_surface_energy(1.3e-7), 5.0);
+  EXPECT_EQ(surface_energy_for_de_star(0.0), 0.0);
+  EXPECT_THROW(surface_energy_for_de_star(-1.0), std::invalid_argument);
+  EXPECT_THROW(surface_energy_for_de_star(std::nan("")), std::invalid_argument);
+  // The largest Morse stress γβ/2 (eq 4.8): De* = 1…5 at β = 3.84 µm⁻¹ is 0.05–0.25 Pa.
+  EXPECT_NEAR(peak_adhesion_stress(surface_energy_for_de_star(1.0), 3.84e6), 0.04992, 1e-15);
+  EXPECT_NEAR(peak_adhesion_stress(surface_energy_for_de_star(5.0), 3.84e6), 0.2496, 1e-15);
+}
+
+// Eq 4.8 against the Morse shape it stands for: w(d) = γ[e^{−2β(d−d*)} − 2e^{−β(d−d*)}] (depth γ at
+// d*) has its largest attraction −w' = γβ/2 at d − d* = ln2/β.
+TEST(MorseUnits, PeakAdhesionStressIsTheLargestSlopeOfAMorseWell) {
+  const double gamma = 2.0, beta = 3.0;
+  double largest = 0.0;
+  for (int i = 0; i <= 20000; ++i) {
+    const double x = 3.0 * i / 20000.0;  // d − d*
+    const double pull = 2.0 * gamma * beta * (std::exp(-beta * x) - std::exp(-2.0 * beta * x));  // −w'(d)
+    largest = std::max(largest, pull);
+  }
+  EXPECT_NEAR(peak_adhesion_stress(gamma, beta), largest, 1e-6 * largest);  // sampling: (βΔd/2)² ≈ 5e-8
 }
 
 TEST(CellContacts, TwoTrianglesMatchHandSum) {

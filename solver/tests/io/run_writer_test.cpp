@@ -111,3 +111,39 @@ TEST(RunWriter, RecordsTheCellPopulationsSeedAndPlacedCells) {
     EXPECT_EQ(values, expected) << name;
   }
 }
+
+// /metadata records the aggregation strength in physical terms (docs/model.md eqs 4.7–4.8); the
+// ratio to the viscous stress only when the scene has a wall-driven shear.
+TEST(RunWriter, RecordsTheAggregationStrength) {
+  for (const bool sheared : {true, false}) {
+    const auto dir = fresh_dir("erythro_writer_aggregation");
+    {
+      io::RunWriter w(dir.string());
+      scene::LatticeSetup setup = small_setup();
+      setup.membrane.emplace();
+      setup.membrane->aggregation = aggregation::MorseParameters{1e-3, 2.0, 0.5, 12.0};
+      scene::AggregationStrength g;
+      g.surface_energy_J_m2 = 1.3e-7;
+      g.de_star = 5.0;
+      g.peak_stress_Pa = 0.2496;
+      if (sheared) {
+        g.shear_rate_per_s = 100.0;
+        g.adhesion_to_viscous_stress = 2.08;
+      }
+      setup.membrane->aggregation_strength = g;
+      w.on_start(scene::Scene{}, setup);
+      w.on_finish(sim::RunSummary{});
+    }
+    auto file = io::h5::open_file_read((dir / "run.h5").string());
+    auto meta = io::h5::open_group(file.id(), "metadata");
+    EXPECT_EQ(io::h5::read_attr_double(meta.id(), "aggregation_surface_energy_J_m2"), 1.3e-7);
+    EXPECT_EQ(io::h5::read_attr_double(meta.id(), "aggregation_de_star"), 5.0);
+    EXPECT_EQ(io::h5::read_attr_double(meta.id(), "aggregation_peak_adhesion_stress_Pa"), 0.2496);
+    EXPECT_EQ(io::h5::has_attr(meta.id(), "aggregation_adhesion_to_viscous_stress"), sheared);
+    EXPECT_EQ(io::h5::has_attr(meta.id(), "aggregation_shear_rate_1_s"), sheared);
+    if (sheared) {
+      EXPECT_EQ(io::h5::read_attr_double(meta.id(), "aggregation_adhesion_to_viscous_stress"), 2.08);
+      EXPECT_EQ(io::h5::read_attr_double(meta.id(), "aggregation_shear_rate_1_s"), 100.0);
+    }
+  }
+}

@@ -208,7 +208,7 @@ TEST(CellSimulation, PairProbeDissociationEndsARunByStopRule) {
       "[boundaries.bottom]\ntype = \"wall\"\n[boundaries.top]\ntype = \"wall\"\n[run]\nsteps = 400\n"
       "[output]\nfields_interval_steps = 0\ndiagnostics_interval_steps = 50\n"
       "[membrane]\nshear_modulus_dyn_cm = 6e-3\n"
-      "[aggregation]\nde_star = 0.0\n"
+      "[aggregation]\nsurface_energy_J_m2 = 0.0\n"
       "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [5, 5]\nmarkers = 64\n"
       "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [12, 5]\nmarkers = 64\n"
       "[[stop_when]]\nseries = \"pair_dissociated\"\nabove = 0.5\nafter_steps = 100\n";

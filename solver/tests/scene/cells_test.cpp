@@ -6,10 +6,13 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <vector>
 
+#include "aggregation/morse_units.hpp"
 #include "common/error.hpp"
 #include "geometry/polygon.hpp"
 #include "geometry/shapes.hpp"
+#include "membrane/membrane_units.hpp"
 #include "input_error_matchers.hpp"
 #include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
@@ -356,10 +359,11 @@ const std::string two_cells =
     "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [12.3, 5]\nmarkers = 64\n";
 
 // [aggregation] → lattice Morse parameters: r0 = 0.49 µm / 0.25 µm = 1.96 h, β = 3.84 µm⁻¹ × 0.25 µm
-// = 0.96 /h, default r_c = r0 + 5/β = 1.96 + 5.208 h; De* = γ/E_S is linear in γ, so De* = 2 gives
-// the pair density of γ = 2 E_S = 1.2e-5 J/m² (E_S = 6e-3 dyn/cm), and the flat-contact gap lies below r0.
+// = 0.96 /h, default r_c = r0 + 5/β = 1.96 + 5.208 h; γ = 1.2e-5 J/m² (the former `de_star = 2`,
+// read then as γ = 2 E_S with E_S = 6e-3 dyn/cm) gives a positive pair density, and the
+// flat-contact gap lies below r0.
 TEST(SceneAggregation, ConvertsTheSurfaceEnergy) {
-  const LatticeSetup L = derive(pair_channel + "[aggregation]\nde_star = 2.0\n" + two_cells);
+  const LatticeSetup L = derive(pair_channel + "[aggregation]\nsurface_energy_J_m2 = 1.2e-5\n" + two_cells);
   ASSERT_TRUE(L.membrane && L.membrane->aggregation);
   const auto& a = *L.membrane->aggregation;
   EXPECT_NEAR(a.r0, 1.96, 1e-12);
@@ -368,30 +372,105 @@ TEST(SceneAggregation, ConvertsTheSurfaceEnergy) {
   EXPECT_GT(a.De, 0.0);
   EXPECT_GT(L.membrane->aggregation_flat_gap, 0.0);
   EXPECT_LT(L.membrane->aggregation_flat_gap, a.r0);
-  const LatticeSetup G = derive(pair_channel + "[aggregation]\nsurface_energy_J_m2 = 1.2e-5\n" + two_cells);
-  EXPECT_NEAR(G.membrane->aggregation->De, a.De, 1e-12 * a.De);
   const LatticeSetup P = derive(pair_channel + "[aggregation]\npair_density_Pa = 2.0\n" + two_cells);
   EXPECT_GT(P.membrane->aggregation->De, 0.0);
 }
 
-// De* = 0: no adhesion (D_e = 0), but the Morse range stays (the pair probe's contact and
-// dissociation of a non-adhering control pair).
+// The literal 1.2e-5 J/m² the tests and scenes/doublet_shear.toml now give is bit for bit the γ
+// of the old reading (γ = De*·E_S, E_S = membrane.shear_modulus_dyn_cm × 1e-3 N/m) at De* = 2,
+// so the pair density, and every result, is unchanged by the migration.
+TEST(SceneAggregation, MigratedSurfaceEnergyIsTheOldReadingsExactly) {
+  const Scene s = parse_scene(pair_channel + "[aggregation]\nsurface_energy_J_m2 = 1.2e-5\n" + two_cells, "m.toml");
+  const double Es_N_m = s.membrane.value_or(MembraneSpec{}).shear_modulus_dyn_cm * membrane::kDynPerCm;
+  EXPECT_EQ(*s.aggregation->surface_energy_J_m2, 2.0 * Es_N_m);
+  // The old code path (cell_checks.cpp before the migration): D_e = pair_density_for(De*·E_S, shape), SI.
+  const AggregationSpec& a = *s.aggregation;
+  const aggregation::MorseParameters shape{1.0, a.zero_force_distance_um * 1e-6, a.decay_per_um * 1e6,
+                                           (a.zero_force_distance_um + 5.0 / a.decay_per_um) * 1e-6};
+  const LatticeSetup L = derive_lattice(s);
+  aggregation::MorsePhysical old{aggregation::pair_density_for(2.0 * Es_N_m, shape), shape.r0, shape.beta,
+                                 shape.cutoff};
+  const membrane::LatticeScales ms{L.scales.length_m, L.scales.time_s, L.scales.density_kg_m3};
+  EXPECT_EQ(L.membrane->aggregation->De, aggregation::to_lattice(old, ms).De);
+}
+
+// De* = γ / 2.6e-8 J/m² (docs/model.md eq 4.7): De* = 5 is the thesis's 1.3e-7 J/m² (ch. IV) and
+// gives the same D_e as that surface energy; it no longer involves the membrane's shear modulus.
+TEST(SceneAggregation, DeStarIsTheSurfaceEnergyInUnitsOfTheThesis) {
+  const LatticeSetup D = derive(pair_channel + "[aggregation]\nde_star = 5.0\n" + two_cells);
+  const LatticeSetup G = derive(pair_channel + "[aggregation]\nsurface_energy_J_m2 = 1.3e-7\n" + two_cells);
+  ASSERT_TRUE(D.membrane->aggregation_strength && G.membrane->aggregation_strength);
+  EXPECT_DOUBLE_EQ(D.membrane->aggregation_strength->surface_energy_J_m2, 1.3e-7);
+  EXPECT_DOUBLE_EQ(G.membrane->aggregation_strength->de_star, 5.0);
+  EXPECT_DOUBLE_EQ(D.membrane->aggregation->De, G.membrane->aggregation->De);
+  const LatticeSetup soft = derive(pair_channel + "[membrane]\nshear_modulus_dyn_cm = 4e-3\n[aggregation]\nde_star = 5.0\n" +
+                                   two_cells);
+  EXPECT_DOUBLE_EQ(soft.membrane->aggregation->De, D.membrane->aggregation->De);
+  // Zhang et al.'s 5.2e-8 J/m² is De* = 2.
+  const LatticeSetup Z = derive(pair_channel + "[aggregation]\nsurface_energy_J_m2 = 5.2e-8\n" + two_cells);
+  EXPECT_DOUBLE_EQ(Z.membrane->aggregation_strength->de_star, 2.0);
+}
+
+// The strength in physical terms (docs/model.md eqs 4.6–4.8): γβ/2, and against μγ̇ only in a
+// wall-driven simple shear. Channel 10 µm high, top wall at 100 µm/s, bottom still: γ̇ = 10 1/s,
+// μ = 1 cP: μγ̇ = 0.01 Pa; γ = 1.3e-7 J/m², β = 3.84 µm⁻¹: γβ/2 = 0.2496 Pa.
+TEST(SceneAggregation, StrengthAgainstTheViscousStressOfTheWalls) {
+  const std::vector<std::string> moving_top = {"boundaries.top.type=\"moving_wall\"",
+                                               "boundaries.top.velocity_um_s=[100.0, 0.0]"};
+  const std::string text = pair_channel + "[aggregation]\nde_star = 5.0\n" + two_cells;
+  const LatticeSetup L = derive(text, moving_top);
+  const AggregationStrength& g = *L.membrane->aggregation_strength;
+  const double peak = 0.5 * 1.3e-7 * 3.84e6;
+  EXPECT_NEAR(g.peak_stress_Pa, peak, 1e-12 * peak);
+  ASSERT_TRUE(g.shear_rate_per_s && g.adhesion_to_viscous_stress);
+  EXPECT_NEAR(*g.shear_rate_per_s, 10.0, 1e-9);
+  EXPECT_NEAR(*g.adhesion_to_viscous_stress, peak / (1e-3 * 10.0), 1e-9);
+  // Still walls: no shear, no ratio. D_e given directly: γ = D_e |J(d*)|.
+  const LatticeSetup still = derive(text);
+  EXPECT_FALSE(still.membrane->aggregation_strength->shear_rate_per_s);
+  EXPECT_FALSE(still.membrane->aggregation_strength->adhesion_to_viscous_stress);
+  const LatticeSetup P = derive(pair_channel + "[aggregation]\npair_density_Pa = 0.1\n" + two_cells);
+  const aggregation::MorseParameters shape{1.0, 0.49e-6, 3.84e6, 0.49e-6 + 5.0 / 3.84e6};
+  EXPECT_NEAR(P.membrane->aggregation_strength->surface_energy_J_m2,
+              0.1 * std::abs(aggregation::flat_contact(shape).integral), 1e-12 * 1.3e-7);
+  // `erythro check` shows the same numbers.
+  const std::string report = format_lattice_report(parse_scene(text, "a.toml", moving_top), L);
+  EXPECT_CONTAINS(report, "surface energy γ");
+  EXPECT_CONTAINS(report, "De* = 5 (γ / 2.6e-8 J/m²)");
+  EXPECT_CONTAINS(report, "1.3e-07 J/m²");
+  EXPECT_CONTAINS(report, "peak adhesion stress γβ/2");
+  EXPECT_CONTAINS(report, "0.2496 Pa");
+  EXPECT_CONTAINS(report, "adhesion / viscous stress");
+  EXPECT_CONTAINS(report, "24.96");
+  EXPECT_CONTAINS(report, "γ̇ = 10 1/s");
+}
+
+// γ = 0 (or De* = 0): no adhesion (D_e = 0), but the Morse range stays (the pair probe's contact
+// and dissociation of a non-adhering control pair).
 TEST(SceneAggregation, ZeroSurfaceEnergyKeepsTheRange) {
-  const LatticeSetup L = derive(pair_channel + "[aggregation]\nde_star = 0.0\n" + two_cells);
-  ASSERT_TRUE(L.membrane && L.membrane->aggregation);
-  EXPECT_EQ(L.membrane->aggregation->De, 0.0);
-  EXPECT_NEAR(L.membrane->aggregation->cutoff, 1.96 + 5.0 / 0.96, 1e-9);
+  for (const char* zero : {"surface_energy_J_m2 = 0.0\n", "de_star = 0.0\n"}) {
+    const LatticeSetup L = derive(pair_channel + "[aggregation]\n" + zero + two_cells);
+    ASSERT_TRUE(L.membrane && L.membrane->aggregation);
+    EXPECT_EQ(L.membrane->aggregation->De, 0.0);
+    EXPECT_NEAR(L.membrane->aggregation->cutoff, 1.96 + 5.0 / 0.96, 1e-9);
+  }
 }
 
 TEST(SceneAggregation, RejectsBadInput) {
   EXPECT_CONTAINS(error_of([] { derive(pair_channel + "[aggregation]\nzero_force_distance_um = 0.5\n" + two_cells); }),
-                  "give exactly one of aggregation.de_star");
+                  "give exactly one of aggregation.surface_energy_J_m2 (γ, J/m², >= 0), aggregation.de_star");
   EXPECT_CONTAINS(error_of([] { derive(pair_channel + "[aggregation]\nde_star = 1\npair_density_Pa = 3\n" + two_cells); }),
+                  "2 given");
+  EXPECT_CONTAINS(error_of([] {
+                    derive(pair_channel + "[aggregation]\nde_star = 1\nsurface_energy_J_m2 = 2.6e-8\n" + two_cells);
+                  }),
                   "2 given");
   EXPECT_CONTAINS(error_of([] {
                     derive(pair_channel + "[aggregation]\nde_star = 1\ncutoff_um = 0.3\n" + two_cells);
                   }),
                   "must exceed aggregation.zero_force_distance_um");
+  EXPECT_CONTAINS(error_of([] { derive(pair_channel + "[aggregation]\nsurface_energy_J_m2 = -1e-7\n" + two_cells); }),
+                  "key 'aggregation.surface_energy_J_m2' = -1e-07 is out of range: must be in [0, 1e+30] (J/m²)");
 }
 
 }  // namespace
