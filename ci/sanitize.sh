@@ -12,7 +12,8 @@ targets=(erythro unit_fluid unit_scene unit_io unit_geometry unit_ib unit_membra
          unit_transport unit_analysis vv_fluid vv_membrane vv_interior vv_aggregation vv_transport vv_suspension)
 tests='^(unit\.(fluid|scene|io|cli|scenes_doc_current|geometry|ib|membrane|interior|aggregation|transport|analysis)'
 tests+='|verification\.(manufactured|couette|conservation|galilean_symmetry|membrane_rest_in_fluid|membrane_forces'
-tests+='|interior_fill_agreement|aggregation_forces|transport_manufactured|transport_hb_coupling|channel_diagnostics))$'
+tests+='|interior_fill_agreement|aggregation_forces|transport_manufactured|transport_hb_coupling|channel_diagnostics'
+tests+='|transport_arteriole_no|transport_arteriole_no_o2))$'
 start=$(date +%s)
 "$root/ci/install-deps.sh"
 cmake --preset sanitize -S "$root" >/dev/null

@@ -293,6 +293,28 @@ struct HemoglobinSpec {
   std::string heme_weights = "area_fraction";
 };
 
+// [no_o2]: the coupled NO/O2 reactions of an arteriole's layers (docs/model.md §7c; rates R1–R5,
+// parameters docs/parameters.md §4), on the compartments of [[no_o2.layers]]. It sets the
+// sources and sinks of both species every transport step from their concentrations.
+struct NoO2Spec {
+  std::string no_species = "NO", o2_species = "O2";
+  double wall_shear_stress_Pa = 2.4;        // R_max = 50 µM/s × τ_w/2.4 Pa (R1)
+  double blood_no_scavenging_per_s = 382.5; // λ_b (Hct 40 %): the core's rate by R4
+  double core_po2_torr = 70.0;              // the PO2 the core's exchange holds
+  double core_o2_exchange_per_s = 1.0e4;    // k_ex of that exchange
+  double no_consumption_per_s = 1.0;        // smooth muscle and tissue (R2)
+  double sm_o2_max_consumption_uM_s = 5.0;  // Q_max of R5 in the smooth muscle
+  double tissue_o2_max_consumption_uM_s = 50.0;
+};
+
+// [[no_o2.layers]]: a band y_um[0] <= y < y_um[1] of one compartment ("core", "plasma",
+// "endothelium", "smooth_muscle", "tissue"); a node takes the band holding its centre, plasma
+// where none does.
+struct CompartmentLayerSpec {
+  std::string compartment;
+  std::array<double, 2> y_um{0.0, 0.0};
+};
+
 struct LimitsSpec {
   double min_tau_margin = 0.005;   // reject τ < 0.5 + margin
   double max_tau = 10.0;           // reject τ > this (the wall error grows as (τ − ½)²)
@@ -334,6 +356,8 @@ struct Scene {
   std::optional<TransportSpec> transport;  // [transport]; absent: no transport
   std::vector<SpeciesSpec> species;        // [[species]] (needs [transport])
   std::vector<TransportLayerSpec> transport_layers;  // [[transport.layers]] (needs [[species]])
+  std::optional<NoO2Spec> no_o2;                     // [no_o2] (needs the two species)
+  std::vector<CompartmentLayerSpec> compartment_layers;  // [[no_o2.layers]]
   std::optional<HemoglobinSpec> hemoglobin;  // [hemoglobin] (needs cells and an O2 species)
   std::vector<StopWhenSpec> stop_when;       // [[stop_when]]
 };

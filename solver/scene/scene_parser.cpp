@@ -386,6 +386,48 @@ int exactly_one(const Reader& r, const std::string& table, const std::string& a,
   return na ? 0 : 1;
 }
 
+// [no_o2] and [[no_o2.layers]] (scene.hpp NoO2Spec, CompartmentLayerSpec).
+void read_no_o2(const Reader& r, Scene& s) {
+  if (!r.has("no_o2")) {
+    if (r.find("no_o2.layers")) throw InputError(r.where_table("no_o2") + ": [[no_o2.layers]] needs [no_o2]");
+    return;
+  }
+  if (!s.transport) throw InputError(r.where_table("no_o2") + ": [no_o2] needs [transport] and its two [[species]]");
+  NoO2Spec n;
+  n.no_species = r.text("no_o2.no_species");
+  n.o2_species = r.text("no_o2.o2_species");
+  for (const auto& [key, name] : {std::pair{"no_o2.no_species", n.no_species}, std::pair{"no_o2.o2_species", n.o2_species}})
+    if (std::none_of(s.species.begin(), s.species.end(), [&](const SpeciesSpec& sp) { return sp.name == name; }))
+      throw InputError(r.where_table("no_o2") + ": " + key + " = \"" + name + "\" names no [[species]] entry");
+  if (n.no_species == n.o2_species)
+    throw InputError(r.where_table("no_o2") + ": no_o2.no_species and no_o2.o2_species name the same species");
+  n.wall_shear_stress_Pa = r.number("no_o2.wall_shear_stress_Pa");
+  n.blood_no_scavenging_per_s = r.number("no_o2.blood_no_scavenging_per_s");
+  n.core_po2_torr = r.number("no_o2.core_po2_torr");
+  n.core_o2_exchange_per_s = r.number("no_o2.core_o2_exchange_per_s");
+  n.no_consumption_per_s = r.number("no_o2.no_consumption_per_s");
+  n.sm_o2_max_consumption_uM_s = r.number("no_o2.sm_o2_max_consumption_uM_s");
+  n.tissue_o2_max_consumption_uM_s = r.number("no_o2.tissue_o2_max_consumption_uM_s");
+  s.no_o2 = n;
+  const toml::node* layers = r.find("no_o2.layers");
+  const std::size_t count = layers ? layers->as_array()->size() : 0;
+  if (count == 0) throw InputError(r.where_table("no_o2") + ": [no_o2] needs at least one [[no_o2.layers]] band");
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::string p = "no_o2.layers[" + std::to_string(i) + "].";
+    const toml::node* entry = layers->as_array()->get(i);
+    for (const char* required : {"compartment", "y_um"})
+      if (!r.has(p + required))
+        throw InputError(r.where(entry) + ": missing key '" + p + required + "' (required; " +
+                         range_text(*find_key(std::string("no_o2.layers.") + required)) + ")");
+    CompartmentLayerSpec l;
+    l.compartment = r.text(p + "compartment");
+    l.y_um = r.vec2(p + "y_um");
+    if (!(l.y_um[0] < l.y_um[1]))
+      r.fail(*r.find(p + "y_um"), p + "y_um", "is out of range: it must be [from, to] with from < to (µm)");
+    s.compartment_layers.push_back(l);
+  }
+}
+
 Scene read_scene(const Reader& r, const std::string& origin) {
   Scene s;
   s.name = r.text("scene.name", std::filesystem::path(origin).stem().string());
@@ -670,9 +712,14 @@ void read_stop_when(const Reader& r, Scene& s) {
     w.series = r.text(p + "series");
     const int conditions = static_cast<int>(r.has(p + "below")) + static_cast<int>(r.has(p + "above")) +
                            static_cast<int>(r.has(p + "change_below"));
-    if (conditions != 1)
+    if (conditions != 1) {
+      std::string given;  // name the keys given, so a message about one of them names it
+      for (const char* c : {"below", "above", "change_below"})
+        if (r.has(p + c)) given += std::string(given.empty() ? ": '" : ", '") + p + c + "'";
       throw InputError(r.where(entry) + ": [[stop_when]] entry " + std::to_string(i) +
-                       " needs exactly one of below, above, change_below (has " + std::to_string(conditions) + ")");
+                       " needs exactly one of below, above, change_below (has " + std::to_string(conditions) + given +
+                       ")");
+    }
     if (r.has(p + "below")) w.below = r.number(p + "below");
     if (r.has(p + "above")) w.above = r.number(p + "above");
     if (r.has(p + "change_below")) w.change_below = r.number(p + "change_below");
@@ -769,6 +816,7 @@ void read_transport(const Reader& r, Scene& s) {
       s.transport_layers.push_back(l);
     }
   }
+  read_no_o2(r, s);
   if (r.has("hemoglobin")) {
     if (!s.transport)
       throw InputError(r.where_table("hemoglobin") + ": [hemoglobin] needs [transport] and an O2 [[species]] entry");

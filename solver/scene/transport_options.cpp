@@ -118,6 +118,18 @@ void append_transport_option_rows(const TransportSetup& T, std::vector<std::arra
   if (T.hemoglobin)
     rows.push_back({"hemoglobin coupling", T.hb_coupling, "mean P: " + T.mean_pressure + ", heme weights " + T.heme_weights});
   if (T.velocity) rows.push_back({"transport velocity", vec(*T.velocity), "lattice units (still medium)"});
+  if (T.axisymmetric_inner_radius)
+    rows.push_back({"geometry", "axisymmetric",
+                    "x along the axis, y the radius from " + num(*T.axisymmetric_inner_radius) + " h (model.md §7b)"});
+  if (const auto& n = T.no_o2) {
+    const auto& core = n->model[transport::Compartment::core];
+    rows.push_back({"no_o2 compartments", std::to_string(n->bands.size()) + " bands",
+                    n->core_radius_um > 0.0 ? "core NO rate " + num(core.no_decay) + " 1/s (R4: R " +
+                                                  num(n->core_radius_um) + " µm, cell-free layer " +
+                                                  num(n->cell_free_layer_um) + " µm), PO2 " +
+                                                  num(core.o2_held_torr) + " Torr"
+                                            : std::string("no core")});
+  }
   for (std::size_t k = 0; k < T.layers.size(); ++k) {
     const TransportLayerSetup& l = T.layers[k];
     rows.push_back({"layer " + std::to_string(k) + " (" + T.species[static_cast<std::size_t>(l.species)].name + ")",

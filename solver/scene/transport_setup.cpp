@@ -6,6 +6,7 @@
 #include <string>
 
 #include "scene/units_detail.hpp"
+#include "transport/reactions.hpp"
 #include "transport/transport_units.hpp"
 
 namespace erythro::scene::detail {
@@ -59,6 +60,91 @@ void set_axisymmetric(const Scene& s, TransportSetup& T) {
   if (const auto& v = s.transport->velocity_um_s; v && (*v)[1] != 0.0)
     reject(s, "transport.velocity_um_s = [" + num((*v)[0]) + ", " + num((*v)[1]) +
                   "] µm/s: an axisymmetric medium moves along its axis only; the radial (second) component must be 0");
+}
+
+transport::Compartment compartment_of(const std::string& name) {
+  using transport::Compartment;
+  if (name == "core") return Compartment::core;
+  if (name == "endothelium") return Compartment::endothelium;
+  if (name == "smooth_muscle") return Compartment::smooth_muscle;
+  if (name == "tissue") return Compartment::tissue;
+  return Compartment::plasma;  // the schema admits no other name
+}
+
+// [no_o2] (docs/model.md §7c): the compartment model from the scene's values, the core's NO
+// rate by R4 from its band and the plasma band(s) above it, the bands in lattice units. The
+// reactions of both species come from the model alone: their own sources, sinks and band
+// reactions are refused rather than silently replaced.
+void set_no_o2(const Scene& s, TransportSetup& T) {
+  const NoO2Spec& spec = *s.no_o2;
+  NoO2Setup out;
+  for (std::size_t i = 0; i < s.species.size(); ++i) {
+    if (s.species[i].name == spec.no_species) out.no_species = static_cast<int>(i);
+    if (s.species[i].name == spec.o2_species) out.o2_species = static_cast<int>(i);
+  }
+  if (!s.cells.empty() || !s.cell_populations.empty() || s.hemoglobin)
+    reject(s, "[no_o2] is the continuum model (the RBC core as one phase): remove [[cells]], [[cell_populations]] "
+              "and [hemoglobin]");
+  for (const int i : {out.no_species, out.o2_species}) {
+    const SpeciesSpec& sp = s.species[static_cast<std::size_t>(i)];
+    if (sp.source_uM_per_s != 0.0 || sp.decay_per_s != 0.0)
+      reject(s, "species \"" + sp.name + "\": [no_o2] sets its reactions; remove source_uM_per_s and decay_per_s");
+    for (const TransportLayerSpec& l : s.transport_layers)
+      if (l.species == sp.name && (l.decay_per_s || l.source_uM_per_s))
+        reject(s, "[[transport.layers]] of species \"" + sp.name + "\": [no_o2] sets its reactions; such a band may "
+                  "set diffusivity_um2_s only");
+  }
+  const double h = s.domain.spacing_um, height = s.domain.size_um[1];
+  double core_top = -1.0;
+  for (std::size_t i = 0; i < s.compartment_layers.size(); ++i) {
+    const CompartmentLayerSpec& l = s.compartment_layers[i];
+    if (l.y_um[0] < 0.0 || l.y_um[1] > height * (1.0 + 1e-12))
+      reject(s, "no_o2.layers[" + std::to_string(i) + "].y_um = " + vec(l.y_um) + " µm must lie inside [0, " +
+                    num(height) + "] (domain.size_um[1])");
+    for (std::size_t j = 0; j < i; ++j) {
+      const auto& o = s.compartment_layers[j].y_um;
+      if (l.y_um[0] < o[1] && o[0] < l.y_um[1])
+        reject(s, "no_o2.layers[" + std::to_string(i) + "].y_um = " + vec(l.y_um) + " overlaps no_o2.layers[" +
+                      std::to_string(j) + "].y_um = " + vec(o));
+    }
+    const transport::Compartment c = compartment_of(l.compartment);
+    if (c == transport::Compartment::core) {
+      if (core_top >= 0.0) reject(s, "[[no_o2.layers]]: at most one \"core\" band (the RBC core)");
+      core_top = l.y_um[1];
+    }
+    out.bands.push_back({l.y_um[0] / h, l.y_um[1] / h, c});
+  }
+  // The cell-free layer: the plasma band(s) directly above the core, up to the next compartment.
+  double lumen = core_top;
+  for (bool grew = core_top >= 0.0; grew;) {
+    grew = false;
+    for (const CompartmentLayerSpec& l : s.compartment_layers)
+      if (l.compartment == "plasma" && std::abs(l.y_um[0] - lumen) < 1e-9 * h) {
+        lumen = l.y_um[1];
+        grew = true;
+      }
+  }
+  transport::NoO2Model& m = out.model;
+  m = transport::NoO2Model::arteriole_defaults();
+  using transport::Compartment;
+  m[Compartment::endothelium].no_R_max = transport::no_r_max_from_shear(spec.wall_shear_stress_Pa);
+  m[Compartment::smooth_muscle].no_decay = spec.no_consumption_per_s;
+  m[Compartment::tissue].no_decay = spec.no_consumption_per_s;
+  m[Compartment::smooth_muscle].o2_Q_max = spec.sm_o2_max_consumption_uM_s;
+  m[Compartment::tissue].o2_Q_max = spec.tissue_o2_max_consumption_uM_s;
+  for (auto& c : m.compartments) {
+    c.D_NO = s.species[static_cast<std::size_t>(out.no_species)].diffusivity_um2_s;
+    c.D_O2 = s.species[static_cast<std::size_t>(out.o2_species)].diffusivity_um2_s;
+  }
+  if (core_top >= 0.0) {
+    out.core_radius_um = lumen;
+    out.cell_free_layer_um = lumen - core_top;
+    m[Compartment::core].no_decay = transport::no_core_scavenging_rate(spec.blood_no_scavenging_per_s, lumen,
+                                                                     out.cell_free_layer_um);  // R4
+    m[Compartment::core].o2_exchange = spec.core_o2_exchange_per_s;
+    m[Compartment::core].o2_held_torr = spec.core_po2_torr;
+  }
+  T.no_o2 = out;
 }
 
 }  // namespace
@@ -139,6 +225,7 @@ TransportSetup derive_transport(const Scene& s, const LatticeSetup& L) {
   }
 
   if (s.domain.geometry == "axisymmetric") set_axisymmetric(s, T);
+  if (s.no_o2) set_no_o2(s, T);
 
   if (const auto& hb = s.hemoglobin) {
     transport::HbParameters p;

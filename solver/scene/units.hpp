@@ -17,6 +17,7 @@
 #include "membrane/membrane_energy.hpp"
 #include "membrane/stability.hpp"
 #include "scene/scene.hpp"
+#include "transport/compartments.hpp"
 #include "transport/hb_kinetics.hpp"
 #include "transport/transport_lattice.hpp"
 #include "transport/transport_units.hpp"
@@ -112,6 +113,20 @@ struct TransportLayerSetup {
   double diffusivity_um2_s = 0.0, decay_per_s = 0.0, source_uM_per_s = 0.0;
 };
 
+// [no_o2] in the transport's terms (docs/model.md §7c): the compartment model (rates in µM, Torr,
+// s: transport::update_reactions converts them), the two species' indices and the bands in
+// lattice units (y from the bottom side, node centres at y + ½).
+struct NoO2Setup {
+  transport::NoO2Model model;
+  int no_species = -1, o2_species = -1;
+  struct Band {
+    double y_lo = 0.0, y_hi = 0.0;
+    transport::Compartment compartment = transport::Compartment::plasma;
+  };
+  std::vector<Band> bands;
+  double core_radius_um = 0.0, cell_free_layer_um = 0.0;  // the core band's top, the plasma beside it
+};
+
 // [transport]: the transport's own time step and its coupling to the flow
 // (docs/architecture.md "Time steps and coupling").
 struct TransportSetup {
@@ -140,6 +155,7 @@ struct TransportSetup {
   // domain.geometry = "axisymmetric": the radius of the bottom side in lattice units (0: the
   // axis); absent for a planar domain (docs/model.md §7b).
   std::optional<double> axisymmetric_inner_radius;
+  std::optional<NoO2Setup> no_o2;  // [no_o2]
 };
 
 // Everything the simulation needs, in lattice units, plus derived numbers to show.

@@ -8,6 +8,7 @@
 
 #include "common/error.hpp"
 #include "simulation/transport_layers.hpp"
+#include "transport/compartments.hpp"
 #include "transport/hb_kinetics.hpp"
 #include "transport/subpixel_diffusivity.hpp"
 
@@ -61,6 +62,21 @@ TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geo
       for (const auto& m : cell.mask) c[m.node] = cell.fractional ? m.phi * sp.cell_initial + (1.0 - m.phi) * sp.initial
                                                                   : sp.cell_initial;
     initialize(i, c);
+  }
+  if (const auto& n = setup_.no_o2) {
+    // [no_o2] (docs/model.md §7c): the compartment of each node centre, the reactions from the
+    // initial concentrations, and the start again so that they act time-centred (eq T4).
+    const Grid& g = domain_.grid;
+    compartment_ids_.assign(N, static_cast<std::uint8_t>(transport::Compartment::plasma));
+    for (const auto& band : n->bands)
+      for (int y = 0; y < g.ny; ++y)
+        if (y + 0.5 >= band.y_lo && y + 0.5 < band.y_hi)
+          for (int x = 0; x < g.nx; ++x) compartment_ids_[g.index(x, y)] = static_cast<std::uint8_t>(band.compartment);
+    update_no_o2_reactions();
+    for (const int i : {n->no_species, n->o2_species}) {
+      const auto C = lattices_[static_cast<std::size_t>(i)].concentration();
+      initialize(static_cast<std::size_t>(i), std::vector<double>(C.begin(), C.end()));
+    }
   }
   if (setup_.hemoglobin) {
     // Each cell starts at the given saturation, or in equilibrium with its initial PO2.
@@ -181,7 +197,16 @@ void TransportPhysics::release_oxygen() {
     for (const auto& w : nodes_[c].heme) q[w.node] += w.phi * released[c];  // w = 1: transport::distribute_release
 }
 
+// [no_o2]: the sources and sinks of NO and O2 from this step's concentrations (R1–R5 and the
+// core's exchange, transport::update_reactions; lagged one step, the sinks implicit).
+void TransportPhysics::update_no_o2_reactions() {
+  const scene::NoO2Setup& n = *setup_.no_o2;
+  transport::update_reactions(n.model, compartment_ids_, setup_.units, lattices_[static_cast<std::size_t>(n.no_species)],
+                              lattices_[static_cast<std::size_t>(n.o2_species)]);
+}
+
 void TransportPhysics::step(std::span<const double> fluid_ux, std::span<const double> fluid_uy) {
+  if (setup_.no_o2) update_no_o2_reactions();
   // face-flux corrections from this step's Ĉ, before the sources are rewritten (eq T11)
   for (std::size_t i = 0; i < lattices_.size(); ++i)
     if (corrections_[i]) corrections_[i]->evaluate(lattices_[i]);
@@ -247,9 +272,12 @@ void TransportPhysics::restore_state(const StateRecord& r, const std::string& pr
 std::span<const double> TransportPhysics::readout(std::size_t i) const {
   const transport::TransportLattice& lat = lattices_[i];
   if (setup_.readout != "source_corrected") return lat.concentration();
-  readout_.resize(lat.grid().size());
-  for (std::size_t n = 0; n < readout_.size(); ++n) readout_[n] = lat.source_corrected_concentration(n);
-  return readout_;
+  // one buffer per species: the observers hold every species' span at once
+  readout_.resize(lattices_.size());
+  std::vector<double>& out = readout_[i];
+  out.resize(lat.grid().size());
+  for (std::size_t n = 0; n < out.size(); ++n) out[n] = lat.source_corrected_concentration(n);
+  return out;
 }
 
 double TransportPhysics::released(std::size_t c) const {

@@ -8,6 +8,7 @@
 // explicit, cell-implicit or cell-implicit with the outflow predictor, eqs H1–H3) for the
 // species named by [hemoglobin]. Advanced with its own time step; the simulation decides
 // when (docs/architecture.md "Time steps and coupling").
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
@@ -86,6 +87,7 @@ class TransportPhysics {
   void apply_species_fields(std::size_t i);
   void apply_compartments();
   void release_oxygen();
+  void update_no_o2_reactions();
 
   scene::TransportSetup setup_;
   geometry::Domain domain_;
@@ -101,7 +103,8 @@ class TransportPhysics {
   std::vector<double> initial_amount_, inflow_;
   std::vector<double> floor_;                     // per species: the default lower limit of C (µM), set by initialize
   std::vector<double> ux_, uy_;                   // scaled velocity (scratch)
-  mutable std::vector<double> readout_;           // Ĉ (scratch)
+  mutable std::vector<std::vector<double>> readout_;  // Ĉ per species (scratch)
+  std::vector<std::uint8_t> compartment_ids_;     // [no_o2]: transport::Compartment per node
 };
 
 }  // namespace erythro::sim

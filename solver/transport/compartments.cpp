@@ -63,8 +63,8 @@ void update_reactions(const NoO2Model& model, std::span<const std::uint8_t> ids,
             : 0.0;
     qno[n] = units.source(eNOS_per_C * std::max(Co2[n], 0.0));  // = R1(P) dt
     kno[n] = units.rate(p.no_decay);
-    qo2[n] = 0.0;
-    ko2[n] = units.rate(eNOS_per_C + mm_per_C);
+    qo2[n] = units.source(p.o2_exchange * model.alpha * p.o2_held_torr);  // the core's exchange (eq 7.11)
+    ko2[n] = units.rate(eNOS_per_C + mm_per_C + p.o2_exchange);
   }
 }
 

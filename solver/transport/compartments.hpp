@@ -7,6 +7,9 @@
 //   endothelium   : NO production R1, O2 use 1:1 with it
 //   smooth_muscle : NO first-order consumption R2, O2 consumption R5
 //   tissue        : as smooth muscle with its own constants
+//   core          : the RBC core as one homogeneous phase (docs/model.md §7c): first-order NO
+//                   scavenging at the core rate (R4) and O2 held near a PO2 by an exchange
+//                   k_ex (C − α P_held), implicit
 #include <array>
 #include <cstdint>
 #include <span>
@@ -16,8 +19,15 @@
 
 namespace erythro::transport {
 
-enum class Compartment : std::uint8_t { plasma = 0, rbc = 1, endothelium = 2, smooth_muscle = 3, tissue = 4 };
-inline constexpr int kCompartmentCount = 5;
+enum class Compartment : std::uint8_t {
+  plasma = 0,
+  rbc = 1,
+  endothelium = 2,
+  smooth_muscle = 3,
+  tissue = 4,
+  core = 5
+};
+inline constexpr int kCompartmentCount = 6;
 
 struct CompartmentProperties {
   double D_NO = 3300.0;  // µm²/s
@@ -28,6 +38,8 @@ struct CompartmentProperties {
   double o2_Q_max = 0.0;    // Michaelis–Menten O2 consumption, µM/s (R5)
   double Km_O2 = 1.0;       // Torr
   double C_ref_NO = 27e-3;  // µM (27 nM)
+  double o2_exchange = 0.0;  // k_ex of the core's O2 exchange, 1/s (eq 7.11)
+  double o2_held_torr = 0.0; // the PO2 the exchange holds, Torr
 };
 
 struct NoO2Model {
@@ -53,7 +65,7 @@ void apply_diffusivities(const NoO2Model& model, std::span<const std::uint8_t> i
 //   O2 : k = [R1 + R5](P, C_NO) / C_O2, i.e. each O2 sink written as a first-order
 //        rate at the current P, applied implicitly to the new C: the O2 concentration
 //        cannot turn negative. (The 1:1 EC coupling is then exact at steady state and
-//        to O(Δt) in transients.)
+//        to O(Δt) in transients.) The core's exchange adds q = k_ex α P_held, k += k_ex.
 // Hb release into RBC nodes is added afterwards (distribute_release) by the caller.
 void update_reactions(const NoO2Model& model, std::span<const std::uint8_t> ids, const TransportUnits& units,
                       TransportLattice& no, TransportLattice& o2);

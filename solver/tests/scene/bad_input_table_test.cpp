@@ -83,7 +83,7 @@ std::vector<std::string> out_of_range_values(const KeySpec& k) {
 // exist (--set adds none), and [hemoglobin] and [aggregation] are read only when the scene has
 // them (without them a set key creates a table that is refused as a whole first).
 bool settable(const toml::table& scene, const std::string& key, std::string& path) {
-  for (const char* array : {"fluid.layers", "transport.layers", "cells", "species", "stop_when"}) {
+  for (const char* array : {"fluid.layers", "transport.layers", "no_o2.layers", "cells", "species", "stop_when"}) {
     const std::string prefix = std::string(array) + ".";
     if (key.rfind(prefix, 0) != 0) continue;
     const toml::array* a = scene.at_path(array).as_array();
@@ -92,7 +92,7 @@ bool settable(const toml::table& scene, const std::string& key, std::string& pat
     return true;
   }
   path = key;
-  for (const char* gated : {"hemoglobin", "aggregation"})
+  for (const char* gated : {"hemoglobin", "aggregation", "no_o2"})
     if (key.rfind(std::string(gated) + ".", 0) == 0 && !scene.contains(gated)) return false;
   return true;
 }

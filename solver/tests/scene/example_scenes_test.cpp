@@ -54,5 +54,22 @@ TEST(ExampleScenes, CapsuleShear) {
   EXPECT_LE(static_cast<double>(L.grid.size()) * static_cast<double>(L.total_steps), max_node_updates);
 }
 
+TEST(ExampleScenes, ContinuumArterioleInBothGeometries) {
+  // The [no_o2] scenes: the same five compartments, the core's NO rate by R4 for a 3 µm
+  // cell-free layer in a 25 µm lumen (docs/model.md §7c), planar and axisymmetric.
+  for (const std::string name : {"arteriole_no_o2.toml", "arteriole_no_o2_axisymmetric.toml"}) {
+    Scene s;
+    const LatticeSetup L = load(name, s);
+    ASSERT_TRUE(L.transport && L.transport->no_o2) << name;
+    EXPECT_EQ(L.transport->axisymmetric_inner_radius.has_value(), name != "arteriole_no_o2.toml") << name;
+    const NoO2Setup& n = *L.transport->no_o2;
+    EXPECT_EQ(n.bands.size(), 5u);
+    EXPECT_DOUBLE_EQ(n.cell_free_layer_um, 3.0);
+    EXPECT_DOUBLE_EQ(n.core_radius_um, 25.0);
+    EXPECT_NEAR(n.model[transport::Compartment::core].no_decay, 0.5 * 382.5 * (1.0 + 625.0 / 484.0), 1e-9);
+    EXPECT_DOUBLE_EQ(n.model[transport::Compartment::endothelium].no_R_max, 50.0);
+  }
+}
+
 }  // namespace
 }  // namespace erythro::scene

@@ -62,6 +62,13 @@ diffusivity_um2_s = 2800.0
 [[transport.layers]]
 species = "O2"
 y_um = [0.0, 5.0]
+[[species]]
+name = "NO"
+diffusivity_um2_s = 3300.0
+[no_o2]
+[[no_o2.layers]]
+compartment = "core"
+y_um = [0.0, 5.0]
 [hemoglobin]
 )";
 
@@ -140,6 +147,18 @@ const std::map<std::string, Accessor>& accessors() {
         {"species.initial_uM", [](const Scene& s) -> Value { return s.species.at(0).initial_uM; }},
         {"species.source_uM_per_s", [](const Scene& s) -> Value { return s.species.at(0).source_uM_per_s; }},
         {"species.decay_per_s", [](const Scene& s) -> Value { return s.species.at(0).decay_per_s; }},
+        {"no_o2.no_species", [](const Scene& s) -> Value { return s.no_o2->no_species; }},
+        {"no_o2.o2_species", [](const Scene& s) -> Value { return s.no_o2->o2_species; }},
+        {"no_o2.wall_shear_stress_Pa", [](const Scene& s) -> Value { return s.no_o2->wall_shear_stress_Pa; }},
+        {"no_o2.blood_no_scavenging_per_s",
+         [](const Scene& s) -> Value { return s.no_o2->blood_no_scavenging_per_s; }},
+        {"no_o2.core_po2_torr", [](const Scene& s) -> Value { return s.no_o2->core_po2_torr; }},
+        {"no_o2.core_o2_exchange_per_s", [](const Scene& s) -> Value { return s.no_o2->core_o2_exchange_per_s; }},
+        {"no_o2.no_consumption_per_s", [](const Scene& s) -> Value { return s.no_o2->no_consumption_per_s; }},
+        {"no_o2.sm_o2_max_consumption_uM_s",
+         [](const Scene& s) -> Value { return s.no_o2->sm_o2_max_consumption_uM_s; }},
+        {"no_o2.tissue_o2_max_consumption_uM_s",
+         [](const Scene& s) -> Value { return s.no_o2->tissue_o2_max_consumption_uM_s; }},
         {"hemoglobin.species", [](const Scene& s) -> Value { return s.hemoglobin->species; }},
         {"hemoglobin.k_off_per_s", [](const Scene& s) -> Value { return s.hemoglobin->k_off_per_s; }},
         {"hemoglobin.heme_uM", [](const Scene& s) -> Value { return s.hemoglobin->heme_uM; }},
@@ -260,6 +279,7 @@ TEST(SceneSchema, TheStructInitialisersAgreeWithTheSchema) {
   s.transport.emplace();
   s.species.emplace_back();
   s.hemoglobin.emplace();
+  s.no_o2.emplace();
   for (const KeySpec* k : keys_with_literal_defaults())
     EXPECT_EQ(accessors().at(k->path)(s), literal_value(*k)) << k->path << " = " << k->when_absent.text;
 }

@@ -13,6 +13,7 @@
 #include "simulation/simulation.hpp"
 #include "simulation/transport_physics.hpp"
 #include "transport/hb_kinetics.hpp"
+#include "transport/reactions.hpp"
 
 namespace erythro::sim {
 namespace {
@@ -147,6 +148,59 @@ TEST(TransportScene, AxisymmetricRunBalancesTheRWeightedAmount) {
     EXPECT_GT(rec.series("NO_mean_uM").back(), 0.0);
     EXPECT_LT(rec.series("NO_mean_uM").back(), 1.0);
   }
+}
+
+// [no_o2] (docs/model.md §7c) on a 2-node-wide planar stack.
+std::string no_o2_scene(const std::string& species_extra = "", const std::string& layers_extra = "") {
+  return "[domain]\nsize_um = [1, 20]\nspacing_um = 0.5\n"
+         "[boundaries.bottom]\ntype = \"wall\"\n[boundaries.top]\ntype = \"wall\"\n"
+         "[transport]\ncoupling = \"none\"\ntime_step_s = 1e-5\n"
+         "[[species]]\nname = \"NO\"\ndiffusivity_um2_s = 3300\n" + species_extra +
+         "[[species]]\nname = \"O2\"\ndiffusivity_um2_s = 2800\ninitial_uM = 91\n"
+         "[no_o2]\n[[no_o2.layers]]\ncompartment = \"core\"\ny_um = [0, 8]\n"
+         "[[no_o2.layers]]\ncompartment = \"plasma\"\ny_um = [8, 10]\n"
+         "[[no_o2.layers]]\ncompartment = \"endothelium\"\ny_um = [10, 11]\n"
+         "[[no_o2.layers]]\ncompartment = \"tissue\"\ny_um = [11, 20]\n" +
+         layers_extra + "[run]\nsteps = 100\n";
+}
+
+TEST(TransportScene, NoO2BuildsTheCompartmentModel) {
+  const scene::LatticeSetup L = derive(no_o2_scene());
+  ASSERT_TRUE(L.transport->no_o2.has_value());
+  const scene::NoO2Setup& n = *L.transport->no_o2;
+  EXPECT_EQ(n.no_species, 0);
+  EXPECT_EQ(n.o2_species, 1);
+  EXPECT_DOUBLE_EQ(n.cell_free_layer_um, 2.0);  // the plasma band above the core
+  EXPECT_DOUBLE_EQ(n.core_radius_um, 10.0);
+  EXPECT_NEAR(n.model[transport::Compartment::core].no_decay, transport::no_core_scavenging_rate(382.5, 10.0, 2.0),
+              1e-12);
+  EXPECT_DOUBLE_EQ(n.model[transport::Compartment::core].o2_held_torr, 70.0);
+  // A run: the EC makes NO, the core takes it up, the mass balance closes.
+  const scene::Scene s = scene::parse_scene(no_o2_scene(), "t.toml");
+  Simulation sim(s, scene::derive_lattice(s));
+  SeriesRecorder rec;
+  EXPECT_EQ(sim.run(rec).status, RunStatus::completed);
+  EXPECT_GT(rec.series("NO_mean_uM").back(), 0.0);
+  EXPECT_LT(rec.series("NO_max_mass_balance_residual").back(), 1e-13);
+  EXPECT_LT(rec.series("O2_max_mass_balance_residual").back(), 1e-13);
+}
+
+TEST(TransportScene, NoO2RefusesWhatItWouldOverride) {
+  EXPECT_CONTAINS(error_of([] { derive(no_o2_scene("decay_per_s = 1\n")); }), "[no_o2] sets its reactions");
+  EXPECT_CONTAINS(error_of([] {
+                    derive(no_o2_scene("", "[[no_o2.layers]]\ncompartment = \"tissue\"\ny_um = [15, 25]\n"));
+                  }),
+                  "inside [0, 20]");
+  EXPECT_CONTAINS(error_of([] {
+                    derive(no_o2_scene("", "[[no_o2.layers]]\ncompartment = \"core\"\ny_um = [12, 13]\n"));
+                  }),
+                  "overlaps");
+  EXPECT_CONTAINS(error_of([] {
+                    std::string t = no_o2_scene();
+                    t.replace(t.find("[no_o2]\n"), 8, "[no_o2]\no2_species = \"O3\"\n");
+                    derive(t);
+                  }),
+                  "names no [[species]] entry");
 }
 
 struct Record : SeriesRecorder {
