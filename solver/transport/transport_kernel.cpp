@@ -124,7 +124,7 @@ template <class S, bool Vel, bool DField, bool React, bool Decay, bool Trt, bool
     // Axisymmetric (docs/model.md eq 7.9): the source's antisymmetric part carries the velocity
     // times Λ⁺/Λ⁻, which makes the steady state the conservative cylindrical finite-volume scheme
     // (with 1, the steady flux gains (Λ⁺ − Λ⁻) r q_tot (u + D/r e_r), a point source at the axis).
-    if constexpr (Axi) src_m *= (1.0 / op - 0.5) / (1.0 / om - 0.5);
+    if constexpr (Axi) src_m *= DField ? a.source_velocity_scale[n] : a.uniform_source_velocity_scale;
     double out[Q];
 #pragma GCC unroll 9
     for (int i = 0; i < Q; ++i) {

@@ -35,6 +35,10 @@ struct KernelArgs {
   // bottom and top sides; null for a planar lattice. The kernel carries φ = r C and writes φ to C.
   const double* row_radius = nullptr;
   double bottom_radius = 0.0, top_radius = 0.0;
+  // TRT with a source (eq 7.9): the antisymmetric source carries the velocity times Λ⁺/Λ⁻, per
+  // node with a D field, else the uniform value.
+  const double* source_velocity_scale = nullptr;
+  double uniform_source_velocity_scale = 1.0;
   // Per-row accumulators (size ny): Σ q_tot, boundary inflow, Σ Σ_i g*_i, Σ |Σ_i g*_i|.
   double* row_source = nullptr;
   double* row_boundary = nullptr;

@@ -136,6 +136,7 @@ void TransportLattice::set_collision(CollisionModel c) {
   }
   collision_ = c;
   rates_stale_ = true;
+  drift_stale_ = true;  // the source scaling of eq 7.9 depends on the collision
 }
 
 std::span<double> TransportLattice::diffusivity() {
@@ -225,17 +226,29 @@ void TransportLattice::set_axisymmetric(double inner_radius) {
   drift_stale_ = true;
 }
 
-// Eq 7.7: the velocity the φ lattice advects with, u + (D/r) e_r (x axial, y radial).
+// Eq 7.7: the velocity the φ lattice advects with, u + (D/r) e_r (x axial, y radial), and the
+// source scaling Λ⁺/Λ⁻ of TRT (eq 7.9; Λ⁻ = D/c_s², Λ⁺ = Λ/Λ⁻; 1 for BGK).
 void TransportLattice::refresh_drift() {
   if (!drift_stale_) return;
   const std::size_t N = grid_.size(), nx = static_cast<std::size_t>(grid_.nx);
+  const bool trt = collision_.kind == Collision::trt;
+  const auto scale_for = [&](double D) {
+    const double lambda_minus = kInvCs2 * D;
+    return trt ? collision_.magic / (lambda_minus * lambda_minus) : 1.0;
+  };
   drift_ux_.assign(N, 0.0);
   drift_uy_.assign(N, 0.0);
-  for (std::size_t n = 0; n < N; ++n) {
-    const double D = D_field_.empty() ? uniform_D_ : D_field_[n];
-    drift_ux_[n] = ux_.empty() ? 0.0 : ux_[n];
-    drift_uy_[n] = (uy_.empty() ? 0.0 : uy_[n]) + D / row_radius_[n / nx];
+  source_velocity_scale_.assign(D_field_.empty() ? 0 : N, 1.0);
+  for (std::size_t y = 0, n = 0; y < row_radius_.size(); ++y) {
+    const double r = row_radius_[y];
+    for (std::size_t x = 0; x < nx; ++x, ++n) {
+      const double D = D_field_.empty() ? uniform_D_ : D_field_[n];
+      drift_ux_[n] = ux_.empty() ? 0.0 : ux_[n];
+      drift_uy_[n] = (uy_.empty() ? 0.0 : uy_[n]) + D / r;
+      if (!D_field_.empty()) source_velocity_scale_[n] = scale_for(D);
+    }
   }
+  uniform_source_velocity_scale_ = scale_for(uniform_D_);
   drift_stale_ = false;
 }
 
@@ -285,7 +298,12 @@ void TransportLattice::step() {
   detail::stream_collide(a);
   if (axisymmetric()) {  // the kernel wrote φ = r C (eq 7.7)
     const std::size_t nx = static_cast<std::size_t>(grid_.nx);
-    for (std::size_t n = 0; n < C_.size(); ++n) C_[n] /= row_radius_[n / nx];
+#pragma omp parallel for schedule(static) if (grid_.worth_threading())
+    for (int y = 0; y < grid_.ny; ++y) {
+      const double r = row_radius_[static_cast<std::size_t>(y)];
+      const std::size_t n0 = static_cast<std::size_t>(y) * nx;
+      for (std::size_t x = 0; x < nx; ++x) C_[n0 + x] /= r;
+    }
   }
   g_.swap(g_next_);
   ++steps_done_;
@@ -307,10 +325,17 @@ void TransportLattice::weight_for_axisymmetry(detail::KernelArgs& a) {
   refresh_drift();
   a.ux = drift_ux_.data();
   a.uy = drift_uy_.data();
+  a.source_velocity_scale = source_velocity_scale_.empty() ? nullptr : source_velocity_scale_.data();
+  a.uniform_source_velocity_scale = uniform_source_velocity_scale_;
   if (!source_.empty()) {
     const std::size_t nx = static_cast<std::size_t>(grid_.nx);
     weighted_source_.resize(source_.size());
-    for (std::size_t n = 0; n < source_.size(); ++n) weighted_source_[n] = row_radius_[n / nx] * source_[n];
+#pragma omp parallel for schedule(static) if (grid_.worth_threading())
+    for (int y = 0; y < grid_.ny; ++y) {
+      const double r = row_radius_[static_cast<std::size_t>(y)];
+      const std::size_t n0 = static_cast<std::size_t>(y) * nx;
+      for (std::size_t x = 0; x < nx; ++x) weighted_source_[n0 + x] = r * source_[n0 + x];
+    }
     a.source = weighted_source_.data();
   }
   a.row_radius = row_radius_.data();

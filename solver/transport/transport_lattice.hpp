@@ -231,6 +231,8 @@ class TransportLattice {
   // Axisymmetric (eq 7.7): radius per row, the velocity with the drift D/r and the source r q
   // handed to the kernel; the drift is rebuilt when the velocity or D changed.
   std::vector<double> row_radius_, drift_ux_, drift_uy_, weighted_source_;
+  std::vector<double> source_velocity_scale_;  // Λ⁺/Λ⁻ per node with a D field (eq 7.9)
+  double uniform_source_velocity_scale_ = 1.0;
   bool drift_stale_ = true;
   void refresh_drift();
   void refuse_radial_velocity() const;

@@ -1,7 +1,9 @@
 // Transport step speed per species relative to the fluid step (issue 7 item 11;
 // docs/transport.md §8). Times FluidLattice::step() (D2Q9 BGK, periodic) and
 // TransportLattice::step() for D2Q5 / D2Q9, pure diffusion and the full configuration
-// of a scene species (per-node D, velocity, source + sink), at 256² and 1024², with
+// of a scene species (per-node D, velocity, source + sink), and the axisymmetric lattice against
+// the planar one in the same configuration (D2Q5 TRT, axial velocity; docs/model.md §7b), at
+// 256² and 1024², with
 // the threads OpenMP gives (OMP_NUM_THREADS). Median of `repeats` timings after a
 // warm-up; prints a table. Speed is reported, never asserted (label `benchmark`).
 //   transport_benchmark [repeats=5]
@@ -45,6 +47,16 @@ void full_configuration(transport::TransportLattice& lat) {
   for (auto& q : lat.source()) q = 1e-4;
   for (auto& k : lat.decay_rate()) k = 1e-3;
 }
+// The configuration of an arteriole species: per-node D, an axial velocity, a source and a sink
+// (no radial velocity: the axisymmetric lattice takes none).
+void axial_configuration(transport::TransportLattice& lat) {
+  const std::size_t N = lat.grid().size();
+  std::vector<double> ux(N, 0.01), uy(N, 0.0);
+  lat.set_velocity(ux, uy);
+  for (auto& d : lat.diffusivity()) d = 0.2;
+  for (auto& q : lat.source()) q = 1e-4;
+  for (auto& k : lat.decay_rate()) k = 1e-3;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,6 +85,19 @@ int main(int argc, char** argv) {
                       full ? "D(x),u,q,k" : "diffusion");
         std::printf("%4d^2 %-34s %10.1f %14.2f\n", n, name, rate, fluid_rate / rate);
       }
+    }
+    // Planar and axisymmetric side by side (the drift D/r, the source r q, C = φ/r per step).
+    const transport::Side zero{transport::SideKind::zero_flux, 0.0}, held{transport::SideKind::fixed_concentration, 1.0};
+    for (bool axisymmetric : {false, true}) {
+      transport::TransportLattice lat(g, transport::Stencil::d2q5, {{}, {}, zero, held});
+      if (axisymmetric) lat.set_axisymmetric(0.0);
+      lat.set_collision({transport::Collision::trt, 0.25});
+      axial_configuration(lat);
+      lat.initialize_uniform(1.0);
+      const double rate = mlups([&] { lat.step(); }, g.size(), steps, repeats);
+      std::printf("%4d^2 %-34s %10.1f %14.2f\n", n,
+                  axisymmetric ? "transport D2Q5 TRT axisym., D,u,q,k" : "transport D2Q5 TRT planar, D,u,q,k", rate,
+                  fluid_rate / rate);
     }
   }
   return 0;
