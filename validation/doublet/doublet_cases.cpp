@@ -39,6 +39,22 @@ DoubletShearConfig deformability_config(const DeformabilityCase& cs) {
   return c;
 }
 
+std::vector<double> de_star_levels() { return {1.0, 2.0, 3.0, 4.0, 5.0}; }
+
+DoubletShearConfig de_star_config(double de_star) {
+  DoubletShearConfig c = study_config();
+  c.de_star = de_star;
+  return c;
+}
+
+double deformability_de_star() { return 5.0; }
+
+DoubletShearConfig deformability_de_star_config(const DeformabilityCase& cs) {
+  DoubletShearConfig c = deformability_config(cs);
+  c.de_star = deformability_de_star();
+  return c;
+}
+
 std::vector<RigidLevel> rigid_levels() { return {{0.005, 5.0}, {0.0025, 6.5}, {0.00125, 8.0}}; }
 
 DoubletShearConfig rigid_config(const RigidLevel& level) {

@@ -30,6 +30,15 @@ std::vector<DeformabilityCase> deformability_cases();
 double deformability_old_reading_de_star();
 // The run of one case: 50 1/s, the level above, second cell E_S0 + ΔE_S, start gap below.
 DoubletShearConfig deformability_config(const DeformabilityCase& c);
+// Issue 21 items 2, 3, 5: the same studies under the project's De* (γ = De* × 2.6e−8 J/m²,
+// docs/model.md eq 4.7): the thesis's levels De* = 1…5 at 100 1/s (study lattice, the d* start
+// and the 1.0 µm start of surface_energy_levels / wide_start_levels) ...
+std::vector<double> de_star_levels();
+DoubletShearConfig de_star_config(double de_star);
+// ... and cases I–IV at 50 1/s at De* = 5 (γ = 1.3e−7 J/m², the thesis's ch. IV value; its ch. III
+// level at 50 1/s is not in our copy), otherwise deformability_config's run.
+double deformability_de_star();
+DoubletShearConfig deformability_de_star_config(const DeformabilityCase& c);
 // Item 7: rigid-limit sequence for one ellipse (a/b = 2): capillary number and viscosity ratio.
 struct RigidLevel {
   double capillary, viscosity_ratio;

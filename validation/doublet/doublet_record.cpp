@@ -1,10 +1,15 @@
 #include "doublet_record.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include "aggregation/morse_units.hpp"
 #include "doublet_outcome.hpp"
 #include "doublet_scene.hpp"
+#include "geometry/polygon.hpp"
+#include "geometry/shapes.hpp"
+#include "scene/units.hpp"
 
 namespace erythro::vv {
 
@@ -34,10 +39,16 @@ void add_mapping(io::ResultRecord& rec, const DoubletShearConfig& c, const Doubl
                                          fmt("r_c = %.4g h, ", r.cutoff_lat) + fmt("flat-contact gap d* = %.4g h", r.flat_gap_lat));
   rec.set_parameter("morse_physical", fmt("r0 = %.3g um, ", c.r0_m * 1e6) + fmt("beta = %.3g /um, ", c.beta_per_m * 1e-6) +
                                           fmt("r_c = r0 + %.0f/beta", c.cutoff_k));
-  rec.set_parameter("surface_energy_reading",
-                    "levels and labels De* = k are the old reading gamma = k E_S0 (docs/model.md eq 4.7, the documented "
-                    "alternative), given as aggregation.surface_energy_J_m2; D_e = gamma / |J(d*)|; column de_star is "
-                    "the project's De* = gamma / 2.6e-8 J/m2");
+  if (c.de_star >= 0)
+    rec.set_parameter("surface_energy_reading",
+                      "levels and labels De* = k are the project's De* (docs/model.md eq 4.7, issue 21): gamma = k x "
+                      "2.6e-8 J/m2, given as aggregation.surface_energy_J_m2; D_e = gamma / |J(d*)|; column "
+                      "old_reading_de_star is gamma / E_S0 (the documented alternative reading)");
+  else
+    rec.set_parameter("surface_energy_reading",
+                      "levels and labels De* = k are the old reading gamma = k E_S0 (docs/model.md eq 4.7, the documented "
+                      "alternative), given as aggregation.surface_energy_J_m2; D_e = gamma / |J(d*)|; column de_star is "
+                      "the project's De* = gamma / 2.6e-8 J/m2");
   rec.set_parameter("stability_max_dt_factor", r.stability_factor);
 }
 
@@ -82,9 +93,11 @@ void add_row(io::ResultRecord& rec, const std::string& label, const DoubletShear
   const double TJ = r.aspect_quadrant > 0 ? jeffery_period(r.aspect_quadrant) : -1;
   rec.add_run({{"run", label},
                {"shear_rate_1_s", c.shear_rate},
-               {"old_reading_de_star", c.old_reading_de_star},
+               {"old_reading_de_star", old_reading_level(c)},
                {"surface_energy_J_m2", surface_energy_J_m2(c)},
                {"de_star", aggregation::de_star_for_surface_energy(surface_energy_J_m2(c))},
+               {"peak_adhesion_stress_Pa", r.peak_adhesion_stress_Pa},
+               {"adhesion_to_viscous_stress", r.adhesion_to_viscous_stress},
                {"Es0_dyn_cm", c.Es0_N_m * 1e3},
                {"Es1_dyn_cm", c.Es1_N_m * 1e3},
                {"capillary0", r.capillary0},
@@ -122,6 +135,29 @@ void add_health_metrics(io::ResultRecord& rec, const std::string& label, const D
                   0.0, io::Comparison::at_most,
                   "0.5 % as in validation.rbc_shear: the area penalty and the tension hold dA/A ~ 1e-3; a leak or a "
                   "failing membrane exceeds it"});
+}
+
+double max_marker_spacing_h(const DoubletShearConfig& c, const DoubletShearResult& r) {
+  const double a = c.a_m / c.h_m;
+  const geometry::Polygon rest = c.shape == CellShape::biconcave
+                                     ? geometry::biconcave(c.markers, a)
+                                     : geometry::ellipse(c.markers, a, a / c.ellipse_axis_ratio);
+  double edge = 0;
+  for (std::size_t m = 0; m < rest.size(); ++m) {
+    const std::size_t n = (m + 1) % rest.size();
+    edge = std::max(edge, std::hypot(rest.x[n] - rest.x[m], rest.y[n] - rest.y[m]));
+  }
+  return edge * (1.0 + r.max_edge_strain);
+}
+
+void add_marker_spacing_metric(io::ResultRecord& rec, const std::string& label, const DoubletShearConfig& c,
+                               const DoubletShearResult& r) {
+  rec.add_metric({label + "_max_marker_spacing",
+                  "largest rest edge x (1 + max over samples, cells and edges of |l/l0 - 1|), in h", "h",
+                  max_marker_spacing_h(c, r), scene::kMaxMarkerSpacing, 0.0, io::Comparison::at_most,
+                  "membrane integrity: the IB kernel sees a closed membrane only while neighbouring markers are at "
+                  "most h apart (the scene's default limits.max_marker_spacing; fluid leaks between markers further "
+                  "apart); rest spacing 0.19 um = 0.64 h (study lattice), 0.39 h (CI lattice)"});
 }
 
 void print_run(const std::string& label, const DoubletShearResult& r) {

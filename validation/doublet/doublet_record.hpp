@@ -20,6 +20,12 @@ void add_histories(io::ResultRecord& rec, const std::string& label, const Double
 void add_row(io::ResultRecord& rec, const std::string& label, const DoubletShearConfig& c, const DoubletShearResult& r);
 // Run health: finished without divergence; max |A/A0 − 1| ≤ 0.5 % (the rbc case's bound).
 void add_health_metrics(io::ResultRecord& rec, const std::string& label, const DoubletShearResult& r);
+// Membrane integrity, marker spacing: the largest marker spacing of the run (h), bounded by an
+// upper estimate (largest rest edge × (1 + the largest edge strain)); the metric asserts ≤ h
+// (scene::kMaxMarkerSpacing, the scene's default limits.max_marker_spacing).
+double max_marker_spacing_h(const DoubletShearConfig& c, const DoubletShearResult& r);
+void add_marker_spacing_metric(io::ResultRecord& rec, const std::string& label, const DoubletShearConfig& c,
+                               const DoubletShearResult& r);
 // One summary line and a coarse history on stdout.
 void print_run(const std::string& label, const DoubletShearResult& r);
 

@@ -5,6 +5,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "aggregation/morse_units.hpp"
 #include "common/scene_case.hpp"
 #include "geometry/shapes.hpp"
 #include "membrane/membrane_units.hpp"
@@ -15,9 +16,20 @@ const char* theta_series(const DoubletShearConfig& c) {
   return c.cells == 2 ? "pair_angle_deg" : "cell_0_inclination_deg";
 }
 
-double surface_energy_J_m2(const DoubletShearConfig& c) {
+namespace {
+double scene_Es0_N_m(const DoubletShearConfig& c) {
   const double Es0_dyn_cm = c.Es0_N_m * 1e3;  // membrane.shear_modulus_dyn_cm below (1 dyn/cm = 1e-3 N/m)
-  return c.old_reading_de_star * (Es0_dyn_cm * membrane::kDynPerCm);
+  return Es0_dyn_cm * membrane::kDynPerCm;
+}
+}  // namespace
+
+double surface_energy_J_m2(const DoubletShearConfig& c) {
+  if (c.de_star >= 0) return aggregation::surface_energy_for_de_star(c.de_star);  // docs/model.md eq 4.7
+  return c.old_reading_de_star * scene_Es0_N_m(c);
+}
+
+double old_reading_level(const DoubletShearConfig& c) {
+  return c.de_star >= 0 ? surface_energy_J_m2(c) / scene_Es0_N_m(c) : c.old_reading_de_star;
 }
 
 DoubletScene doublet_scene(const DoubletShearConfig& c) {

@@ -87,6 +87,13 @@ void fill_mapping(const DoubletShearConfig& c, const scene::LatticeSetup& setup,
   r.beta_lat = morse.beta;
   r.cutoff_lat = morse.cutoff;
   r.flat_gap_lat = aggregation::flat_contact(morse).gap;
+  if (M.aggregation_strength) {  // as the scene derives it (run.h5 /metadata, `erythro check`)
+    const scene::AggregationStrength& g = *M.aggregation_strength;
+    r.surface_energy_J_m2 = g.surface_energy_J_m2;
+    r.de_star = g.de_star;
+    r.peak_adhesion_stress_Pa = g.peak_stress_Pa;
+    r.adhesion_to_viscous_stress = g.adhesion_to_viscous_stress.value_or(-1.0);
+  }
   // Explicit-update margin of the stiffer membrane at 20 % stretch, the slower viscosity.
   membrane::StabilityInput si;
   si.kernel = c.kernel;

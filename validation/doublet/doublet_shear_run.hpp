@@ -9,7 +9,8 @@
 //   - the cytoplasm viscosity by the flood-fill index field (docs/model.md §5, eqs 26–27);
 //   - Morse aggregation between the cells (docs/model.md §4, thesis eq 13) at surface energy
 //     γ = k·E_S0, the level k of the OLD reading De* = γ/E_S (docs/model.md eq 4.7, the documented
-//     alternative; the project's De* is γ / 2.6e−8 J/m²), given as aggregation.surface_energy_J_m2.
+//     alternative), or, with DoubletShearConfig::de_star set, γ = De* × 2.6e−8 J/m² (the project's
+//     De*, issue 21); either way given as aggregation.surface_energy_J_m2.
 // Hemodynamic time mapping (docs/model.md §10, eq 10.7): the physical inputs fix the
 // dimensionless groups Ca = μγ̇a/E_S, E_B* = E_B/(a²E_S), k_A a/E_S, γ/E_S,
 // λ = μ_in/μ_ex, r0/a, βa and the box/a; the particle Reynolds number ργ̇a²/μ is chosen
@@ -42,6 +43,8 @@ struct DoubletShearConfig {
   double Eb_J = 3.6e-19;           // E_B = 3.6e-12 dyn·cm (thesis), both cells
   double area_modulus = 100.0;     // k_A in units of E_S0/a (as validation/rbc)
   double old_reading_de_star = 2.0;  // level k of the old reading: γ = k·E_S0 (surface_energy_J_m2(); both cells)
+  double de_star = -1.0;           // ≥ 0: the project's De* instead, γ = De* × 2.6e−8 J/m² (docs/model.md eq 4.7);
+                                   // old_reading_de_star is then unused
   double r0_m = 0.49e-6;           // Morse zero-force separation (docs/parameters.md)
   double beta_per_m = 3.84e6;      // Morse decay (docs/parameters.md, confidence R)
   double cutoff_k = 5.0;           // r_c = r0 + k/β (docs/verification-aggregation.md §1)
@@ -80,6 +83,9 @@ struct DoubletShearResult {
   double reynolds_physical = 0;    // ργ̇a²/μ
   double De_lat = 0, r0_lat = 0, beta_lat = 0, cutoff_lat = 0;
   double flat_gap_lat = 0;         // d* of the flat contact
+  // The adhesion strength as the scene derives it (scene::AggregationStrength; 0 / −1 without
+  // aggregation): γ, the project's De*, σ_M = γβ/2 (docs/model.md eq 4.8) and σ_M/(μγ̇).
+  double surface_energy_J_m2 = 0, de_star = 0, peak_adhesion_stress_Pa = 0, adhesion_to_viscous_stress = -1;
   double stability_factor = 0;
   // Histories (every sample_strain): strain, θ (deg, unwrapped; doublet: line of centres,
   // single: long axis), contact area per cell, centre separation (µm), smallest
