@@ -48,6 +48,9 @@ restart cells_aggregation "$SRC/verification/aggregation/doublet.toml" 300 131 \
 RESTART_THREADS=1 restart transport_cells "$SRC/solver/tests/cli/checkpoint/transport_cells.toml" 600 320
 restart transport_no_fluid "$SRC/scenes/rbc_deoxygenation.toml" 300 110 --set output.fields_interval_steps=100 \
   --set output.diagnostics_interval_steps=10
+# An axisymmetric lattice with the [no_o2] compartment reactions (two species, lagged rates).
+restart transport_no_o2_axisymmetric "$SRC/scenes/arteriole_no_o2_axisymmetric.toml" 3000 1100 \
+  --set output.fields_interval_steps=1000 --set output.diagnostics_interval_steps=100 --set monitor.interval_steps=100
 
 # Checkpoints by wall time (one every millisecond): the restart continues from whichever
 # step the last one holds.
