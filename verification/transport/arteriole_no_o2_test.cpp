@@ -138,6 +138,10 @@ void coupled_case(const std::string& case_name, const std::vector<double>& width
       double previous = 0.0;
       const std::vector<double> spacings =
           refined && *refined == cfl ? std::vector<double>{0.5, 0.25} : std::vector<double>{0.5};
+      // speed against error (issue 20 item 8): the worst deviation at the three points vs wall time
+      char series_name[64];
+      std::snprintf(series_name, sizeof series_name, "%s, CFL %g um", g.c_str(), cfl);
+      io::SpeedErrorSeries speed{series_name, {}, {}, {}};
       for (double h : spacings) {
         const CoupledRun r = run_coupled(case_name, axisymmetric, cfl, h, reference);
         EXPECT_TRUE(r.run.converged) << g << " " << cfl << " " << h;
@@ -152,7 +156,11 @@ void coupled_case(const std::string& case_name, const std::vector<double>& width
                                                               {"wall_time_s", r.run.wall_time_s}};
         for (const auto& [k, v] : r.value) row[k] = v;
         record.add_run(row, r.run.scene_text);
+        speed.wall_time_s.push_back(r.run.wall_time_s);
+        speed.error.push_back(r.worst_error);
+        speed.label.push_back("h=" + std::to_string(h).substr(0, 4));
       }
+      if (spacings.size() > 1) record.add_speed_error(speed);
     }
   }
   EXPECT_TRUE(record.add_metric({"reference_agreement",
