@@ -104,12 +104,11 @@ TEST(DoubletShear, DissociationMap) {
   }
 
   // Per level: the bracket, its midpoint, the stress ratio there, and where it lands.
-  io::Series upper{"critical_shear_rate_separate", "Dissociation map: shear rate at which the doublet separates "
-                   "(upper end of the bracket; dashed: 115 1/s, aggregates of normal blood break above)",
-                   "De*", "shear rate (1/s)", {}, {}, {}};
-  io::Series lower{"critical_shear_rate_hold", "Dissociation map: highest shear rate at which the doublet holds "
-                   "(lower end of the bracket; dashed: 46 1/s, aggregates of normal blood persist below)",
-                   "De*", "shear rate (1/s)", {}, {}, {}};
+  // The bracket's ends against De*, the window's bounds dashed (the report draws each series).
+  io::Series upper{"critical_shear_rate_separate", "Separates at (dashed: breaks above 115 1/s)", "De*",
+                   "shear rate (1/s)", {}, {}, {}};
+  io::Series lower{"critical_shear_rate_hold", "Holds at (dashed: persists below 46 1/s)", "De*",
+                   "shear rate (1/s)", {}, {}, {}};
   int inconsistent = 0, inversions = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const std::string key = vv::fmt("critical shear rate De*=%.2g", levels[i]);
