@@ -39,6 +39,17 @@ DoubletShearConfig de_star_config(double de_star);
 // level at 50 1/s is not in our copy), otherwise deformability_config's run.
 double deformability_de_star();
 DoubletShearConfig deformability_de_star_config(const DeformabilityCase& c);
+// Issue 21 item 4, the dissociation map: per De*, the critical shear rate bisected (geometric
+// midpoints) in [lo, hi] 1/s, the rims 1.0 µm apart at start (wide_start_gap_m, the film resolved);
+// otherwise de_star_config's run (study lattice, lattice Re fixed: the same steps per strain unit
+// at every shear rate, docs/model.md eq 10.7), k_A lowered below 50 1/s (doublet_cases.cpp).
+std::vector<double> dissociation_map_levels();
+struct ShearBracket {
+  double lo, hi;  // 1/s
+  int steps;      // bisection steps after the two ends
+};
+ShearBracket dissociation_map_bracket();
+DoubletShearConfig dissociation_map_config(double de_star, double shear_rate);
 // Item 7: rigid-limit sequence for one ellipse (a/b = 2): capillary number and viscosity ratio.
 struct RigidLevel {
   double capillary, viscosity_ratio;
