@@ -396,9 +396,11 @@ void read_no_o2(const Reader& r, Scene& s) {
   NoO2Spec n;
   n.no_species = r.text("no_o2.no_species");
   n.o2_species = r.text("no_o2.o2_species");
-  for (const auto& [key, name] : {std::pair{"no_o2.no_species", n.no_species}, std::pair{"no_o2.o2_species", n.o2_species}})
+  for (const auto& entry : {std::pair{"no_o2.no_species", n.no_species}, std::pair{"no_o2.o2_species", n.o2_species}}) {
+    const std::string& name = entry.second;  // (not a structured binding: clang's lambdas cannot capture one)
     if (std::none_of(s.species.begin(), s.species.end(), [&](const SpeciesSpec& sp) { return sp.name == name; }))
-      throw InputError(r.where_table("no_o2") + ": " + key + " = \"" + name + "\" names no [[species]] entry");
+      throw InputError(r.where_table("no_o2") + ": " + entry.first + " = \"" + name + "\" names no [[species]] entry");
+  }
   if (n.no_species == n.o2_species)
     throw InputError(r.where_table("no_o2") + ": no_o2.no_species and no_o2.o2_species name the same species");
   n.wall_shear_stress_Pa = r.number("no_o2.wall_shear_stress_Pa");
