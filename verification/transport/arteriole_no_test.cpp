@@ -14,7 +14,7 @@
 // radius 25 µm, λ_b = 382.5 s⁻¹ (Hct 40 %), EC 2.5 µm, SM 10 µm, tissue 100 µm, k = 1 s⁻¹,
 // R_max = 50 µM/s, D_NO = 3300 µm²/s.
 // Scaling: h = h0/m (every interface midway between node rows; CI: h0 = 2.5 µm, m = 1, 2, 4, the
-// 5 µm layer; full: h0 = 0.5 µm, m = 1, 2, 3, the 2, 3 and 5 µm layers), τ = 5 for D_NO (Δt ∝ h²),
+// 5 µm layer; full: h0 = 0.5 µm, m = 1, 2, 3, the 2 and 3 µm layers), τ = 5 for D_NO (Δt ∝ h²),
 // D2Q5 TRT with Λ = ¼ and the readout Ĉ (eq T7): the steady lattice state is then exactly the
 // finite-volume scheme (eq 7.9), whatever τ, so τ is chosen large for a large Δt (measured: τ = 2
 // gives the same errors to 4 digits, three times slower).
@@ -226,7 +226,10 @@ TEST(TransportArterioleNo, LayersOfAnArterioleSecondOrder) {
   arteriole_case("verification.transport_arteriole_no", 2.5, {1, 2, 4}, {5.0});
 }
 
-// Full tier: the 2, 3 and 5 µm layers, h = 0.5, 0.25, 1/6 µm (every interface between rows).
+// Full tier: the 2 and 3 µm layers, h = 0.5, 0.25, 1/6 µm (every interface between rows); the
+// 5 µm layer is the CI case's (2.5, 1.25, 0.625 µm). Measured with the 5 µm layer here too: orders
+// 1.999 (C), 1.999 (interface C), 1.999/2.006 (interface flux, planar/axisymmetric), 85 s in all;
+// left to CI to keep the whole V&V under 25 minutes.
 TEST(TransportArterioleNoFull, LayersOfAnArterioleSecondOrder) {
-  arteriole_case("verification.transport_arteriole_no_full", 0.5, {1, 2, 3}, {2.0, 3.0, 5.0});
+  arteriole_case("verification.transport_arteriole_no_full", 0.5, {1, 2, 3}, {2.0, 3.0});
 }
