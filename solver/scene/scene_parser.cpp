@@ -12,6 +12,7 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <initializer_list>
 #include <array>
 #include <cstdint>
 #include <filesystem>
@@ -386,6 +387,24 @@ int exactly_one(const Reader& r, const std::string& table, const std::string& a,
   return na ? 0 : 1;
 }
 
+// The required keys of entry `i` of the array of tables `array` (e.g. "fluid.layers"): a missing one
+// is named with its allowed range (the schema's entry "<array>.<key>").
+void require_entry_keys(const Reader& r, const std::string& array, std::size_t i,
+                        std::initializer_list<const char*> keys) {
+  const std::string p = array + "[" + std::to_string(i) + "].";
+  for (const char* key : keys)
+    if (!r.has(p + key))
+      throw InputError(r.where(r.find(array)->as_array()->get(i)) + ": missing key '" + p + key + "' (required; " +
+                       range_text(*find_key(array + "." + key)) + ")");
+}
+
+// A band [from, to] in µm (y_um, x_um of a layer entry): from < to.
+std::array<double, 2> read_band(const Reader& r, const std::string& path) {
+  const std::array<double, 2> band = r.vec2(path);
+  if (!(band[0] < band[1])) r.fail(*r.find(path), path, "is out of range: it must be [from, to] with from < to (µm)");
+  return band;
+}
+
 // [no_o2] and [[no_o2.layers]] (scene.hpp NoO2Spec, CompartmentLayerSpec).
 void read_no_o2(const Reader& r, Scene& s) {
   if (!r.has("no_o2")) {
@@ -416,16 +435,10 @@ void read_no_o2(const Reader& r, Scene& s) {
   if (count == 0) throw InputError(r.where_table("no_o2") + ": [no_o2] needs at least one [[no_o2.layers]] band");
   for (std::size_t i = 0; i < count; ++i) {
     const std::string p = "no_o2.layers[" + std::to_string(i) + "].";
-    const toml::node* entry = layers->as_array()->get(i);
-    for (const char* required : {"compartment", "y_um"})
-      if (!r.has(p + required))
-        throw InputError(r.where(entry) + ": missing key '" + p + required + "' (required; " +
-                         range_text(*find_key(std::string("no_o2.layers.") + required)) + ")");
+    require_entry_keys(r, "no_o2.layers", i, {"compartment", "y_um"});
     CompartmentLayerSpec l;
     l.compartment = r.text(p + "compartment");
-    l.y_um = r.vec2(p + "y_um");
-    if (!(l.y_um[0] < l.y_um[1]))
-      r.fail(*r.find(p + "y_um"), p + "y_um", "is out of range: it must be [from, to] with from < to (µm)");
+    l.y_um = read_band(r, p + "y_um");
     s.compartment_layers.push_back(l);
   }
 }
@@ -633,10 +646,7 @@ void read_layers(const Reader& r, Scene& s) {
   const std::size_t count = layers->as_array()->size();
   for (std::size_t i = 0; i < count; ++i) {
     const std::string p = "fluid.layers[" + std::to_string(i) + "].";
-    for (const char* required : {"y_um", "viscosity_cP"})
-      if (!r.has(p + required))
-        throw InputError(r.where(layers->as_array()->get(i)) + ": missing key '" + p + required + "' (required; " +
-                         range_text(*find_key(std::string("fluid.layers.") + required)) + ")");
+    require_entry_keys(r, "fluid.layers", i, {"y_um", "viscosity_cP"});
     ViscosityLayerSpec layer;
     layer.y_um = r.vec2(p + "y_um");
     if (r.has(p + "x_um")) layer.x_um = r.vec2(p + "x_um");
@@ -760,10 +770,7 @@ void read_transport(const Reader& r, Scene& s) {
     const std::size_t count = species->as_array()->size();
     for (std::size_t i = 0; i < count; ++i) {
       const std::string p = "species[" + std::to_string(i) + "].";
-      for (const char* required : {"name", "diffusivity_um2_s"})
-        if (!r.has(p + required))
-          throw InputError(r.where(species->as_array()->get(i)) + ": missing key '" + p + required + "' (required; " +
-                           range_text(*find_key(std::string("species.") + required)) + ")");
+      require_entry_keys(r, "species", i, {"name", "diffusivity_um2_s"});
       SpeciesSpec sp;
       sp.name = r.text(p + "name");
       for (const SpeciesSpec& other : s.species)
@@ -795,23 +802,13 @@ void read_transport(const Reader& r, Scene& s) {
     const std::size_t count = layers->as_array()->size();
     for (std::size_t i = 0; i < count; ++i) {
       const std::string p = "transport.layers[" + std::to_string(i) + "].";
-      const toml::node* entry = layers->as_array()->get(i);
-      for (const char* required : {"species", "y_um"})
-        if (!r.has(p + required))
-          throw InputError(r.where(entry) + ": missing key '" + p + required + "' (required; " +
-                           range_text(*find_key(std::string("transport.layers.") + required)) + ")");
+      require_entry_keys(r, "transport.layers", i, {"species", "y_um"});
       TransportLayerSpec l;
       l.species = r.text(p + "species");
       if (std::none_of(s.species.begin(), s.species.end(), [&](const SpeciesSpec& sp) { return sp.name == l.species; }))
         r.fail(*r.find(p + "species"), p + "species", "names no [[species]] entry");
-      l.y_um = r.vec2(p + "y_um");
-      if (!(l.y_um[0] < l.y_um[1]))
-        r.fail(*r.find(p + "y_um"), p + "y_um", "is out of range: it must be [from, to] with from < to (µm)");
-      if (r.has(p + "x_um")) {
-        l.x_um = r.vec2(p + "x_um");
-        if (!((*l.x_um)[0] < (*l.x_um)[1]))
-          r.fail(*r.find(p + "x_um"), p + "x_um", "is out of range: it must be [from, to] with from < to (µm)");
-      }
+      l.y_um = read_band(r, p + "y_um");
+      if (r.has(p + "x_um")) l.x_um = read_band(r, p + "x_um");
       if (r.has(p + "diffusivity_um2_s")) l.diffusivity_um2_s = r.number(p + "diffusivity_um2_s");
       if (r.has(p + "decay_per_s")) l.decay_per_s = r.number(p + "decay_per_s");
       if (r.has(p + "source_uM_per_s")) l.source_uM_per_s = r.number(p + "source_uM_per_s");

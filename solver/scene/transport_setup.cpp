@@ -132,10 +132,6 @@ void set_no_o2(const Scene& s, TransportSetup& T) {
   m[Compartment::tissue].no_decay = spec.no_consumption_per_s;
   m[Compartment::smooth_muscle].o2_Q_max = spec.sm_o2_max_consumption_uM_s;
   m[Compartment::tissue].o2_Q_max = spec.tissue_o2_max_consumption_uM_s;
-  for (auto& c : m.compartments) {
-    c.D_NO = s.species[static_cast<std::size_t>(out.no_species)].diffusivity_um2_s;
-    c.D_O2 = s.species[static_cast<std::size_t>(out.o2_species)].diffusivity_um2_s;
-  }
   if (core_top >= 0.0) {
     out.core_radius_um = lumen;
     out.cell_free_layer_um = lumen - core_top;

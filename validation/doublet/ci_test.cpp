@@ -69,7 +69,5 @@ TEST(DoubletShear, CiSubset) {
                   cs - cw, 0.02, 0.0, io::Comparison::at_least,
                   "a higher surface energy flattens the faces into contact (more markers within the Morse range); "
                   "measured +0.04-0.06, 0.02 is above the one-marker resolution 0.01"});
-  rec.set_wall_time(total.seconds());
-  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
-  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  vv::finish_record(rec, total.seconds());
 }

@@ -133,9 +133,7 @@ TEST(DoubletShear, DeStar100) {
   rec.set_parameter("thesis (Fig. III-3)",
                     "at 100 1/s every level De* = 1..5 stays aggregated and tumbles as one; the contact changes from "
                     "flat to sigmoid to relaxed sigmoid with De*");
-  rec.set_wall_time(total.seconds());
-  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
-  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  vv::finish_record(rec, total.seconds());
 }
 
 TEST(DoubletShear, DeformabilityDeStar50) {
@@ -230,9 +228,7 @@ TEST(DoubletShear, DeformabilityDeStar50) {
                   "cases II-IV: max over cases of (max edge strain of the stiff cell - that of the soft cell)", "",
                   excess, 0.0, 0.0, io::Comparison::at_most,
                   "under the same adhesion and viscous loads a larger E_S gives a smaller membrane strain"});
-  rec.set_wall_time(total.seconds());
-  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
-  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  vv::finish_record(rec, total.seconds());
 }
 
 TEST(DoubletShear, DeStarCi) {
@@ -272,7 +268,5 @@ TEST(DoubletShear, DeStarCi) {
                   1e-9, io::Comparison::relative, why});
   rec.add_metric({"records_adhesion_to_viscous_stress", "(gamma beta / 2) / (mu gamma_dot) of the run (scene-derived)",
                   "", r.adhesion_to_viscous_stress, ratio_expected, 1e-9, io::Comparison::relative, why});
-  rec.set_wall_time(total.seconds());
-  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
-  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  vv::finish_record(rec, total.seconds());
 }

@@ -117,7 +117,5 @@ TEST(DoubletShear, Deformability50) {
                   "thesis: a deformability difference retards aggregation; the stiffer partner conforms less to the "
                   "softer one, so fewer markers come within the Morse range (the effect is small here: -4 % from I "
                   "to IV, see the page)"});
-  rec.set_wall_time(total.seconds());
-  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
-  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  vv::finish_record(rec, total.seconds());
 }

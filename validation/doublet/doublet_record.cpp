@@ -1,5 +1,7 @@
 #include "doublet_record.hpp"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -173,6 +175,12 @@ void print_run(const std::string& label, const DoubletShearResult& r) {
                 r.theta_h[i], r.contact0_h[i], r.contact1_h[i], r.separation_h[i], r.gap_h[i], r.D0_h[i], r.D1_h[i],
                 r.sigmoid_h[i], r.bow_h[i], r.aspect_h[i]);
   std::fflush(stdout);
+}
+
+void finish_record(io::ResultRecord& rec, double wall_time_s) {
+  rec.set_wall_time(wall_time_s);
+  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), wall_time_s);
+  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
 }
 
 }  // namespace erythro::vv

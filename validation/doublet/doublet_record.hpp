@@ -29,4 +29,8 @@ void add_marker_spacing_metric(io::ResultRecord& rec, const std::string& label, 
 // One summary line and a coarse history on stdout.
 void print_run(const std::string& label, const DoubletShearResult& r);
 
+// The end of every doublet case: the wall time, the record written (its path printed), and
+// each metric an EXPECT of the test, so that a failing metric names itself.
+void finish_record(io::ResultRecord& rec, double wall_time_s);
+
 }  // namespace erythro::vv

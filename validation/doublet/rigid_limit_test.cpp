@@ -64,7 +64,5 @@ TEST(DoubletShear, RigidLimit) {
                   std::abs(gaps.back()), 0.10, 0.0, io::Comparison::at_most,
                   "a rigid ellipse here is slowed by the walls (2a/H = 0.26: a few %) and lattice Re = 0.1; 10 % "
                   "bounds that (measured +6.3 %)"});
-  rec.set_wall_time(total.seconds());
-  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
-  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  vv::finish_record(rec, total.seconds());
 }

@@ -208,7 +208,5 @@ TEST(DoubletShear, SurfaceEnergy100) {
                   "fluid film between them is not resolved and the pair cannot separate; the start gap d* = 0.41 um is "
                   "1.4h at h = 0.3 but 2.7h at h = 0.15, where the extensional quadrant opens it (measured x2.2 in "
                   "the exploration); 1.5 separates the two behaviours"});
-  rec.set_wall_time(total.seconds());
-  std::printf("written: %s (%.1f s)\n", rec.write_to_results_dir().c_str(), total.seconds());
-  for (const auto& m : rec.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  vv::finish_record(rec, total.seconds());
 }
