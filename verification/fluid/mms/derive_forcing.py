@@ -25,6 +25,9 @@ import sys
 
 import sympy as sp
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "common"))
+from generated_file import write_or_check  # noqa: E402
+
 x, y, k, U, nu = sp.symbols("x y k U nu", real=True)
 rho0 = sp.Integer(1)
 
@@ -116,16 +119,7 @@ def main():
         print("fx = convection_x + grad_p_x - nu*laplacian_ux =", sp.expand(sp.expand_trig(fx)))
         print("fy = convection_y + grad_p_y - nu*laplacian_uy =", sp.expand(sp.expand_trig(fy)))
         return 0
-    if "--check" in sys.argv:
-        current = target.read_text() if target.exists() else ""
-        if current != text:
-            print(f"{target} is stale: rerun {pathlib.Path(__file__).name}", file=sys.stderr)
-            return 1
-        print(f"{target} is up to date")
-        return 0
-    target.write_text(text)
-    print(f"wrote {target}")
-    return 0
+    return write_or_check(target, text, __file__)
 
 
 if __name__ == "__main__":

@@ -27,6 +27,9 @@ import sys
 
 import sympy as sp
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[2] / "common"))
+from generated_file import write_or_check  # noqa: E402
+
 r, z, R, L, C0, A, D0, U = sp.symbols("r z R L C0 A D0 U", real=True, positive=True)
 k = 2 * sp.pi / L
 
@@ -84,16 +87,7 @@ def main():
         for name, expr in fields:
             print(f"{name} = {expr}")
         return 0
-    if "--check" in sys.argv:
-        current = target.read_text() if target.exists() else ""
-        if current != text:
-            print(f"{target} is stale: rerun {pathlib.Path(__file__).name}", file=sys.stderr)
-            return 1
-        print(f"{target} is up to date")
-        return 0
-    target.write_text(text)
-    print(f"wrote {target}")
-    return 0
+    return write_or_check(target, text, __file__)
 
 
 if __name__ == "__main__":
