@@ -24,16 +24,32 @@ variable-step BDF2 in time (first step backward Euler), (modified) Newton on the
 system with an exact sparse Jacobian (scipy.sparse splu) refreshed every 4th iterate;
 Newton stops at |ΔC| < 1e-9 C_b and |ΔS| < 1e-11.
 
+Lumped variant (--lumped M): the cell-mean ("lumped") saturation of the lattice model instead
+of the local one. ONE S for the whole cell,
+    dS/dt = −(k_off/M) [S − (1 − S)(P̄/P50)^n],   P̄ = Σ_j φ_j V_j C_j / (α Σ_j φ_j V_j)
+(heme-volume-weighted mean over the control volumes with φ > 0; P̄ clipped at 0), and the release
+C_heme (−dS/dt) spread uniformly over the heme volume: CV j gets φ_j C_heme (k_off/M) R̄ in its C
+equation (R̄ the one lumped rate). M > 0 is a rate modifier (M = 1: the plain k_off). Unknowns: C of
+all CVs and the one S; same time points, BDF2 and stopping rule; full Newton with the exact
+Jacobian, solved as a bordered system (splu of the diffusion block I − γΔt V⁻¹L, factored once per
+step since it does not depend on the state, plus the rank-one coupling C_heme φ_j ∂R̄/∂C_k and the S
+unknown eliminated exactly by a scalar Schur complement). Bound O2 = C_heme S Σ φV; the output S̄ is S.
+--hb-diffusion does not apply (one S has no gradient).
+
 Usage:  reference_rbc.py [--study] [--planar] [--levels 0 1 2] [--t-end T] [--box L]
-                         [--hb-diffusion D] [--d-out D] [--out DIR]
+                         [--hb-diffusion D] [--d-out D] [--lumped M] [--out DIR]
   default: one run at --levels[0], prints the half-time and 90 %/99 % times;
   --study: the given (three) grids/time schedules refined together by 2, observed order
            and Richardson estimate; writes reference_S[_planar].csv and study[_planar].json;
   --planar: the same Evans–Fung section as a PLANAR 2D cell (per unit depth), the exact
-           continuum counterpart of the 2D lattice model, with local kinetics.
+           continuum counterpart of the 2D lattice model, with local kinetics;
+  --lumped M: lumped (cell-mean) saturation with rate modifier M (above); with --study writes
+           reference_S[_planar]_lumped_M<M>.csv and study[_planar]_lumped_M<M>.json (<M> as %g).
 Regenerate (PROVENANCE.md):
   reference_rbc.py --study --levels 0 1 2 --t-end 1.8            (3D cell, ~3 min)
   reference_rbc.py --study --levels 0 1 2 --t-end 2.4 --planar   (planar, ~3.5 min)
+  reference_rbc.py --study --levels 0 1 2 --t-end 1.8 --lumped 1    (3D, lumped S, M = 1)
+  reference_rbc.py --study --levels 0 1 2 --t-end 1.8 --lumped 0.5  (3D, lumped S, M = 0.5)
 """
 import argparse
 import json
@@ -225,6 +241,82 @@ class Model:
         return float((self.bcoef * (x[:self.n] - C_B)).sum())
 
 
+class LumpedModel(Model):
+    """Lumped (cell-mean) saturation, option --lumped M: unknowns x = (C of all n CVs, one S).
+    R̄ = (k_off/M)[S − (1 − S) q], q = (P̄/P50)^n, P̄ = Σ w_j C_j / α (w = φV / Σ φV over the cell CVs);
+    f_C = V⁻¹(L C + b C_b) + u R̄ with u_j = φ_j C_heme on the cell CVs (0 elsewhere); f_S = −R̄."""
+
+    def __init__(self, level, m_rate):
+        super().__init__(level, 0.0)
+        if not m_rate > 0.0:
+            raise ValueError("--lumped M needs M > 0")
+        self.m_rate = m_rate
+        self.k_eff = K_OFF / m_rate
+        self.w = self.vphi / self.vphi.sum()
+        self.u = np.zeros(self.n)
+        self.u[self.cell] = self.phi_c * C_HEME
+        self.Lv = (sp.diags(1.0 / self.vol_f) @ self.Lc).tocsc()  # ∂f_C/∂C without the kinetics
+
+    def initial(self):
+        phi = self.phi.ravel()
+        c = phi * ALPHA * P0 + (1.0 - phi) * C_B
+        return np.concatenate([c, [hill(P0)]])
+
+    def kinetics(self, x):
+        """R̄ (1/s), ∂R̄/∂P̄·(1/α) = ∂R̄/∂C̄ (per µM of the weighted mean C̄) and ∂R̄/∂S."""
+        s = x[self.n]
+        cbar = float(self.w @ x[:self.n][self.cell])
+        cbar = max(cbar, 0.0)
+        q = (cbar / (ALPHA * P50)) ** N_HILL
+        R = self.k_eff * (s - (1.0 - s) * q)
+        dR_dcbar = -self.k_eff * (1.0 - s) * N_HILL * q / cbar if cbar > 0.0 else 0.0
+        dR_ds = self.k_eff * (1.0 + q)
+        return R, dR_dcbar, dR_ds
+
+    def rhs(self, x):
+        c = x[:self.n]
+        R = self.kinetics(x)[0]
+        fc = (self.Lc @ c + self.bcoef * C_B) / self.vol_f + self.u * R
+        return np.concatenate([fc, [-R]])
+
+    def jacobian(self, x):
+        """Exact Jacobian as an explicit sparse matrix (dense m×m outer product on the cell
+        block): for checks on coarse grids only; run() uses the bordered solve."""
+        n = self.n
+        _, dRc, dRs = self.kinetics(x)
+        v = np.zeros(n)
+        v[self.cell] = dRc * self.w
+        Jcc = self.Lv + sp.coo_matrix((np.outer(self.u[self.cell], v[self.cell]).ravel(),
+                                       (np.repeat(self.cell, self.m), np.tile(self.cell, self.m))), shape=(n, n))
+        return sp.bmat([[Jcc, sp.csr_matrix((self.u * dRs)[:, None])],
+                        [sp.csr_matrix(-v[None, :]), sp.csr_matrix([[-dRs]])]], format="csc")
+
+    def factor(self, gdt):
+        """splu of B = I − γΔt V⁻¹L (state independent) and y = B⁻¹u."""
+        lu = spla.splu((sp.identity(self.n, format="csc") - gdt * self.Lv).tocsc())
+        return lu, lu.solve(self.u)
+
+    def solve(self, fac, gdt, x, r):
+        """Solve (I − γΔt J(x)) d = r exactly. With v = ∂R̄/∂C (= ∂R̄/∂C̄ · w on the cell CVs):
+            B d_C − γΔt u δ = r_C,   d_S + γΔt δ = r_S,   δ = vᵀd_C + ∂R̄/∂S d_S,
+        so d_C = B⁻¹r_C + γΔt δ B⁻¹u and δ = (vᵀB⁻¹r_C + ∂R̄/∂S r_S) / (1 + γΔt (∂R̄/∂S − vᵀB⁻¹u))."""
+        lu, yu = fac
+        n = self.n
+        _, dRc, dRs = self.kinetics(x)
+        z = lu.solve(r[:n])
+        vz = dRc * float(self.w @ z[self.cell])
+        vy = dRc * float(self.w @ yu[self.cell])
+        delta = (vz + dRs * r[n]) / (1.0 + gdt * (dRs - vy))
+        return np.concatenate([z + gdt * delta * yu, [r[n] - gdt * delta]])
+
+    def s_mean(self, x):
+        return float(x[self.n])
+
+    def o2_total(self, x):
+        """Free + bound O2 in the half domain (µM·µm³ per radian); bound = C_heme S Σ φV."""
+        return float((self.vol_f * x[:self.n]).sum() + C_HEME * x[self.n] * self.vphi.sum())
+
+
 def schedule(level, t_end):
     """Level-0 time points: dt0 = 2 µs growing by 1.08 per step up to 5 ms; level k halves
     every interval k times (time points nest, as the grids do)."""
@@ -239,7 +331,32 @@ def schedule(level, t_end):
     return t
 
 
-def run(level, t_end, d_hb=0.0, verbose=False):
+def bdf2_coefficients(times, k, first):
+    """(a0, a1, γ) of step k: backward Euler on the first step, then variable-step BDF2,
+    x_k − a0 x_{k−1} + a1 x_{k−2} = γ Δt f(x_k), ω = Δt_k / Δt_{k−1}."""
+    if first:
+        return 1.0, 0.0, 1.0
+    dt = times[k] - times[k - 1]
+    w = dt / (times[k - 1] - times[k - 2])
+    return (1.0 + w) ** 2 / (1.0 + 2.0 * w), w * w / (1.0 + 2.0 * w), (1.0 + w) / (1.0 + 2.0 * w)
+
+
+def run_info(mod, level, times, newton_its, t0, tot0, out_int, x, verbose):
+    """The run's summary (printed with verbose): grid, steps, Newton iterations, wall time, O2 balance."""
+    wall = time.time() - t0
+    balance = (tot0 - mod.o2_total(x) - out_int) / (tot0 - mod.o2_total(x))
+    info = dict(level=level, nr=mod.nr, nz=mod.nz, h_core=0.2 / 2 ** level, steps=len(times) - 1,
+                newton=newton_its, wall_s=wall, cell_cvs=mod.m, o2_balance_rel=balance,
+                cell_volume_um3=float((4.0 if PLANAR else 4.0 * math.pi) * mod.vphi.sum()))
+    if verbose:
+        print(json.dumps(info), flush=True)
+    return info
+
+
+def run(level, t_end, d_hb=0.0, verbose=False, lumped=None):
+    """lumped: None for the local model, else the rate modifier M of the lumped model."""
+    if lumped is not None:
+        return run_lumped(level, t_end, lumped, verbose)
     mod = Model(level, d_hb)
     times = schedule(level, t_end)
     x = mod.initial()
@@ -251,13 +368,7 @@ def run(level, t_end, d_hb=0.0, verbose=False):
     I = sp.identity(mod.n + mod.m, format="csc")
     for k in range(1, len(times)):
         dt = times[k] - times[k - 1]
-        if x_old is None:  # backward Euler
-            a0, a1, gam = 1.0, 0.0, 1.0
-        else:  # variable-step BDF2, ω = dt_n / dt_{n-1}
-            w = dt / (times[k - 1] - times[k - 2])
-            a0 = (1.0 + w) ** 2 / (1.0 + 2.0 * w)
-            a1 = w * w / (1.0 + 2.0 * w)
-            gam = (1.0 + w) / (1.0 + 2.0 * w)
+        a0, a1, gam = bdf2_coefficients(times, k, x_old is None)
         base = a0 * x - (a1 * x_old if x_old is not None else 0.0)
         y = x.copy()
         lu = None
@@ -278,14 +389,41 @@ def run(level, t_end, d_hb=0.0, verbose=False):
         o = mod.outflow(x)
         out_int += 0.5 * (o + out_prev) * dt
         out_prev = o
-    wall = time.time() - t0
-    balance = (tot0 - mod.o2_total(x) - out_int) / (tot0 - mod.o2_total(x))
-    info = dict(level=level, nr=mod.nr, nz=mod.nz, h_core=0.2 / 2 ** level, steps=len(times) - 1,
-                newton=newton_its, wall_s=wall, cell_cvs=mod.m, o2_balance_rel=balance,
-                cell_volume_um3=float((4.0 if PLANAR else 4.0 * math.pi) * mod.vphi.sum()))
-    if verbose:
-        print(json.dumps(info), flush=True)
-    return times, np.array(S), info
+    return times, np.array(S), run_info(mod, level, times, newton_its, t0, tot0, out_int, x, verbose)
+
+
+def run_lumped(level, t_end, m_rate, verbose=False):
+    """run() for the lumped model: same time points, BDF2 coefficients, stopping rule and
+    O2 balance; full Newton (exact Jacobian every iterate, bordered solve)."""
+    mod = LumpedModel(level, m_rate)
+    times = schedule(level, t_end)
+    x = mod.initial()
+    x_old = None
+    S = [mod.s_mean(x)]
+    tot0 = mod.o2_total(x)
+    out_int, out_prev = 0.0, mod.outflow(x)
+    newton_its, t0 = 0, time.time()
+    for k in range(1, len(times)):
+        dt = times[k] - times[k - 1]
+        a0, a1, gam = bdf2_coefficients(times, k, x_old is None)
+        base = a0 * x - (a1 * x_old if x_old is not None else 0.0)
+        fac = mod.factor(gam * dt)
+        y = x.copy()
+        for it in range(40):
+            F = y - base - gam * dt * mod.rhs(y)
+            dy = mod.solve(fac, gam * dt, y, -F)
+            y += dy
+            newton_its += 1
+            if np.max(np.abs(dy[:mod.n])) < 1e-9 * C_B and abs(dy[mod.n]) < 1e-11:
+                break
+        else:
+            raise RuntimeError(f"Newton did not converge at t = {times[k]}")
+        x_old, x = x, y
+        S.append(mod.s_mean(x))
+        o = mod.outflow(x)
+        out_int += 0.5 * (o + out_prev) * dt
+        out_prev = o
+    return times, np.array(S), run_info(mod, level, times, newton_its, t0, tot0, out_int, x, verbose)
 
 
 def main():
@@ -298,7 +436,13 @@ def main():
     ap.add_argument("--d-out", type=float, default=2800.0, help="D_O2 in the medium, µm²/s")
     ap.add_argument("--planar", action="store_true", help="planar 2D section instead of the 3D cell")
     ap.add_argument("--box", type=float, default=6.0, help="half-width L of the held box, µm")
+    ap.add_argument("--lumped", type=float, default=None, metavar="M",
+                    help="lumped (cell-mean) saturation with rate modifier M > 0 (absent: local kinetics)")
     args = ap.parse_args()
+    if args.lumped is not None and not args.lumped > 0.0:
+        ap.error("--lumped M needs M > 0")
+    if args.lumped is not None and args.hb_diffusion != 0.0:
+        ap.error("--hb-diffusion does not apply to --lumped (one S for the cell)")
     global L_BOX, PLANAR, D_OUT
     L_BOX = args.box
     D_OUT = args.d_out
@@ -306,14 +450,14 @@ def main():
     s0, sf = hill(P0), hill(C_B / ALPHA)
     t_end = args.t_end if args.t_end else 2.5
     if not args.study:
-        t, S, info = run(args.levels[0], t_end, args.hb_diffusion, verbose=True)
+        t, S, info = run(args.levels[0], t_end, args.hb_diffusion, verbose=True, lumped=args.lumped)
         frac = (S - sf) / (s0 - sf)
         for q in (0.5, 0.1, 0.01):
             k = np.argmax(frac <= q)
             print(f"(S - Sf)/(S0 - Sf) = {q}: t = {t[k]:.4g} s" if frac[k] <= q else f"not reached {q}")
         return
     t0 = time.time()
-    res = [run(lv, t_end, args.hb_diffusion, verbose=True) for lv in args.levels]
+    res = [run(lv, t_end, args.hb_diffusion, verbose=True, lumped=args.lumped) for lv in args.levels]
     tc = res[0][0]
     curves = []
     for t, S, _ in res:  # restrict every level to the coarse time points (they nest)
@@ -340,9 +484,20 @@ def main():
                  t_half_s=tq(0.5), t_90_s=tq(0.1), t_99_s=tq(0.01), total_wall_s=time.time() - t0)
     print(json.dumps(study, indent=1))
     tag = ("_planar" if PLANAR else "") + ("" if args.hb_diffusion == 0 else f"_dhb{args.hb_diffusion:g}")
+    if args.lumped is not None:
+        tag += f"_lumped_M{args.lumped:g}"
     with open(f"{args.out}/reference_S{tag}.csv", "w") as fh:
-        fh.write("# single RBC deoxygenation, cell-averaged saturation (volume-weighted); "
-                 "reference_rbc.py --study; PROVENANCE.md\n")
+        if args.lumped is None:
+            fh.write("# single RBC deoxygenation, cell-averaged saturation (volume-weighted); "
+                     "reference_rbc.py --study; PROVENANCE.md\n")
+        else:
+            cmd = " ".join(["reference_rbc.py --study --levels"] + [str(lv) for lv in args.levels]
+                           + [f"--t-end {t_end:g}"] + (["--planar"] if PLANAR else [])
+                           + ([f"--box {L_BOX:g}"] if L_BOX != 6.0 else [])
+                           + ([f"--d-out {D_OUT:g}"] if D_OUT != 2800.0 else [])
+                           + [f"--lumped {args.lumped:g}"])
+            fh.write(f"# single RBC deoxygenation, LUMPED cell-mean saturation S (one S per cell, "
+                     f"rate modifier M = {args.lumped:g}); {cmd}; PROVENANCE.md\n")
         fh.write("t_s,S_fine,S_richardson,S_mid,S_coarse\n")
         for k in range(len(tc)):
             fh.write(f"{tc[k]:.9g},{S3[k]:.9f},{S_rich[k]:.9f},{S2[k]:.9f},{S1[k]:.9f}\n")

@@ -216,7 +216,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
       if (periodic[a]) continue;
       const auto& coords = a == 0 ? cell.shape.x : cell.shape.y;
       const auto [lo, hi] = std::minmax_element(coords.begin(), coords.end());
-      const double gap = std::min(*lo, n[a] - *hi);
+      // axisymmetric: the section straddles the axis (the bottom side) by construction
+      const bool on_axis = a == 1 && s.domain.geometry == "axisymmetric";
+      const double gap = on_axis ? n[a] - *hi : std::min(*lo, n[a] - *hi);
       if (gap < s.limits.min_cell_gap)
         reject(s, "key '" + cell_key(i, "center_um") + "' = " + vec(c.center_um) + " µm places cell " +
                       std::to_string(i) + " " + num(gap) + " h from the " +

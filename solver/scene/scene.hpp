@@ -280,6 +280,9 @@ struct HemoglobinSpec {
   double hill_n = 2.7;
   double rate_modifier = 1.0;         // M > 0 in the rate's denominator (calibrated; M < 1 is faster)
   std::optional<double> initial_saturation;  // default: Hill at the cells' initial PO2
+  // "cell_mean": one S per cell from its mean P (eqs H1–H3); "local": one S per heme node from
+  // the node's own P (eq H4; still cells only).
+  std::string kinetics = "cell_mean";
   // Update of S and the cell's mean P over a step (docs/transport.md §4.2): "explicit" (P of the
   // step's start, H2), "cell_implicit" (H3), "cell_implicit_outflow" (H3 with the outflow of
   // the last step predicted).

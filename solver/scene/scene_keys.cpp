@@ -91,8 +91,8 @@ std::vector<KeySpec> make_keys() {
        .kind = Kind::string,
        .choices = {"planar", "axisymmetric"},
        .when_absent = quoted("planar"),
-       .rule = "`axisymmetric`: transport only (`transport.coupling = \"none\"`, no cells); the bottom and top "
-               "sides walls",
+       .rule = "`axisymmetric`: transport only (`transport.coupling = \"none\"`: still cells, each centred on the "
+               "axis with `angle_deg` a multiple of 90, no `[[cell_populations]]`); the bottom and top sides walls",
        .meaning = "`planar`: a 2D (x, y) section. `axisymmetric`: a body of revolution, x the axial coordinate z and "
                   "y the radius r, the bottom side at `inner_radius_um` (docs/model.md §7b)"},
       {.path = "domain.inner_radius_um",
@@ -736,6 +736,16 @@ std::vector<KeySpec> make_keys() {
        .bound = Bound{0.0, false, 1.0, false},
        .when_absent = note("Hill at the cells' initial PO2"),
        .meaning = "Initial saturation S of every cell"},
+      {.path = "hemoglobin.kinetics",
+       .kind = Kind::string,
+       .choices = {"cell_mean", "local"},
+       .when_absent = quoted("cell_mean"),
+       .rule = "`local` only in a still medium (`transport.coupling = \"none\"`: the cells do not move), with "
+               "`hemoglobin.heme_weights = \"area_fraction\"` and not with `hemoglobin.coupling = "
+               "\"cell_implicit_outflow\"`",
+       .meaning = "One saturation per cell driven by its mean P (eqs H1–H3, the thesis's model), or one per heme "
+                  "node driven by the node's own P (eq H4: local kinetics, the resolved cell of the reference "
+                  "solvers)"},
       {.path = "hemoglobin.coupling",
        .kind = Kind::string,
        .choices = {"explicit", "cell_implicit", "cell_implicit_outflow"},

@@ -829,6 +829,7 @@ void read_transport(const Reader& r, Scene& s) {
     hb.rate_modifier = r.number("hemoglobin.rate_modifier");
     if (r.has("hemoglobin.initial_saturation"))
       hb.initial_saturation = r.number("hemoglobin.initial_saturation");
+    hb.kinetics = r.text("hemoglobin.kinetics");
     hb.coupling = r.text("hemoglobin.coupling");
     hb.mean_pressure = r.text("hemoglobin.mean_pressure");
     hb.heme_weights = r.text("hemoglobin.heme_weights");

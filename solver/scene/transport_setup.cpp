@@ -57,6 +57,9 @@ void set_axisymmetric(const Scene& s, TransportSetup& T) {
                       "\": with domain.geometry = \"axisymmetric\" and domain.inner_radius_um = 0 the bottom side "
                       "is the axis, where only \"zero_flux\" (symmetry) is allowed");
   }
+  if (s.transport->interface == "node_tensor")
+    reject(s, "transport.interface = \"node_tensor\" with domain.geometry = \"axisymmetric\": the node tensor needs the "
+              "tensor lattice, which is planar; use \"face_tensor\" (or \"series\")");
   if (const auto& v = s.transport->velocity_um_s; v && (*v)[1] != 0.0)
     reject(s, "transport.velocity_um_s = [" + num((*v)[0]) + ", " + num((*v)[1]) +
                   "] µm/s: an axisymmetric medium moves along its axis only; the radial (second) component must be 0");

@@ -218,8 +218,26 @@ void check_geometry(const Scene& s) {
   if (!s.transport || s.transport->coupling != "none")
     reject(s, what + "is for the transport alone (the fluid and the cells are planar): it needs [transport] with "
                      "transport.coupling = \"none\"");
-  if (!s.cells.empty() || !s.cell_populations.empty())
-    reject(s, what + "has no cells (a planar cell would be a torus): remove [[cells]] and [[cell_populations]]");
+  // A cell is a body of revolution about the axis: its section must be centred on the axis and
+  // symmetric about it (every shape is symmetric about its own two axes: a multiple of 90°).
+  if (!s.cell_populations.empty())
+    reject(s, what + "places cells on the axis only: [[cell_populations]] (random centres) cannot be used");
+  for (std::size_t c = 0; c < s.cells.size(); ++c) {
+    const CellSpec& cell = s.cells[c];
+    const std::string key = "cells[" + std::to_string(c) + "].";
+    if (d.inner_radius_um != 0.0)
+      reject(s, what + "with domain.inner_radius_um = " + num(d.inner_radius_um) +
+                    " µm has no axis for a cell to sit on: a cell needs domain.inner_radius_um = 0");
+    if (cell.center_um[1] != 0.0)
+      reject(s, "key '" + key + "center_um' = [" + num(cell.center_um[0]) + ", " + num(cell.center_um[1]) +
+                    "]: with domain.geometry = \"axisymmetric\" a cell is a body of revolution about the axis, so its "
+                    "centre's radius (second component) must be 0");
+    const double quarter_turns = cell.angle_deg / 90.0;
+    if (quarter_turns != std::round(quarter_turns))
+      reject(s, "key '" + key + "angle_deg' = " + num(cell.angle_deg) +
+                    ": with domain.geometry = \"axisymmetric\" the cell's section must be symmetric about the axis: a "
+                    "multiple of 90 (90: a biconcave cell's axis of symmetry along the domain's axis)");
+  }
   if (s.boundaries.bottom.type == "periodic" || s.boundaries.top.type == "periodic")
     reject(s, what + "is radial along y: boundaries.bottom (the axis or the inner radius) and boundaries.top (the "
                      "outer radius) must be walls, not periodic");

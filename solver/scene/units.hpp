@@ -149,6 +149,7 @@ struct TransportSetup {
   std::optional<std::array<double, 2>> velocity;
   std::string cell_representation = "ray_cast", interface = "series", layer_mean = "harmonic";
   std::string readout = "concentration";
+  std::string hb_kinetics = "cell_mean";
   std::string hb_coupling = "cell_implicit", mean_pressure = "concentration", heme_weights = "area_fraction";
   std::vector<TransportLayerSetup> layers;
   std::optional<std::array<double, 2>> concentration_range;

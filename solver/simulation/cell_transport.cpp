@@ -9,7 +9,7 @@
 namespace erythro::sim {
 
 CellNodes cell_nodes(const geometry::Polygon& cell, const geometry::Domain& domain, const std::string& representation,
-                     const std::string& heme_weights) {
+                     const std::string& heme_weights, std::span<const double> row_radius) {
   CellNodes out;
   if (representation == "ray_cast") {
     std::vector<std::size_t> nodes;
@@ -31,6 +31,28 @@ CellNodes cell_nodes(const geometry::Polygon& cell, const geometry::Domain& doma
   }
   if (out.sample.empty()) out.sample = out.heme;
   for (const auto& c : out.heme) out.heme_sum += c.phi;
+  out.sample_norm = out.heme_volume = out.heme_sum;
+  if (!row_radius.empty()) {  // a ring of volume r h³ per radian per node (docs/model.md §7b)
+    const std::size_t nx = static_cast<std::size_t>(domain.grid.nx);
+    out.sample_norm = out.heme_volume = 0.0;
+    for (auto& c : out.sample) {
+      c.phi *= row_radius[c.node / nx];
+      out.sample_norm += c.phi;
+    }
+    for (const auto& c : out.heme) out.heme_volume += c.phi * row_radius[c.node / nx];
+  }
+  return out;
+}
+
+CellNodes single_node(const transport::AreaFraction& heme, std::span<const double> row_radius, int nx) {
+  CellNodes out;
+  out.fractional = true;
+  out.mask = out.heme = out.sample = {heme};
+  out.heme_sum = out.sample_norm = out.heme_volume = heme.phi;
+  if (!row_radius.empty()) {
+    out.sample[0].phi *= row_radius[heme.node / static_cast<std::size_t>(nx)];
+    out.sample_norm = out.heme_volume = out.sample[0].phi;
+  }
   return out;
 }
 
@@ -48,7 +70,7 @@ void HbCell::set_offset_response(const transport::TransportLattice& o2, const Ce
   for (const auto& c : nodes.heme) w_release[c.node] = c.phi;
   kappa_ = 0.0;
   for (const auto& c : nodes.sample) kappa_ += o2.source_offset_factor(c.node) * c.phi * w_release[c.node];
-  kappa_ /= nodes.heme_sum;
+  kappa_ /= nodes.sample_norm;
 }
 
 double HbCell::advance(const transport::HbParameters& hb, HbCoupling coupling, std::span<const double> C,
@@ -56,7 +78,7 @@ double HbCell::advance(const transport::HbParameters& hb, HbCoupling coupling, s
   // Heme-weighted mean P = Σ w_n C_n / (α Σ w) (w = 1: transport::mean_partial_pressure)
   double s = 0.0;
   for (const auto& c : nodes.sample) s += c.phi * C[c.node];
-  const double P = s / (nodes.heme_sum * hb.alpha);
+  const double P = s / (nodes.sample_norm * hb.alpha);
   // outflow of the last step o^{k−1} = P^{k−1} + r^{k−1} − P^k (what the lattice took out of
   // the cell's mean P besides the release): second order on the slow manifold
   const double outflow = first_ ? 0.0 : P_prev_ + r_prev_ - P;

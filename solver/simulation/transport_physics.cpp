@@ -83,11 +83,19 @@ TransportPhysics::TransportPhysics(const scene::TransportSetup& setup, const geo
     const transport::HbParameters& hb = *setup_.hemoglobin;
     const double P0 = setup_.species[static_cast<std::size_t>(setup_.hemoglobin_species)].cell_initial / hb.alpha;
     const double S0 = setup_.initial_saturation.value_or(transport::hill_saturation(P0, hb.P50, hb.n));
-    hb_.assign(nodes_.size(), HbCell(S0));
     saturation_.assign(nodes_.size(), S0);
-    if (setup_.mean_pressure == "source_corrected")
-      for (std::size_t c = 0; c < nodes_.size(); ++c)
-        hb_[c].set_offset_response(lattices_[static_cast<std::size_t>(setup_.hemoglobin_species)], nodes_[c]);
+    const transport::TransportLattice& o2 = lattices_[static_cast<std::size_t>(setup_.hemoglobin_species)];
+    const bool corrected = setup_.mean_pressure == "source_corrected";
+    if (setup_.hb_kinetics == "local") {  // eq H4: a saturation per heme node
+      for (const CellNodes& cell : nodes_) {
+        local_hb_.emplace_back(cell, S0, row_radius(), domain_.grid.nx);
+        if (corrected) local_hb_.back().set_offset_response(o2);
+      }
+    } else {
+      hb_.assign(nodes_.size(), HbCell(S0));
+      if (corrected)
+        for (std::size_t c = 0; c < nodes_.size(); ++c) hb_[c].set_offset_response(o2, nodes_[c]);
+    }
   }
 }
 
@@ -127,7 +135,7 @@ void TransportPhysics::place_cells(std::span<const geometry::Polygon> cells) {
   cells_.assign(cells.begin(), cells.end());
   nodes_.resize(cells.size());
   for (std::size_t c = 0; c < cells.size(); ++c)
-    nodes_[c] = cell_nodes(cells[c], domain_, setup_.cell_representation, setup_.heme_weights);
+    nodes_[c] = cell_nodes(cells[c], domain_, setup_.cell_representation, setup_.heme_weights, row_radius());
   apply_compartments();
   if (setup_.mean_pressure == "source_corrected" && hb_.size() == nodes_.size())
     for (std::size_t c = 0; c < nodes_.size(); ++c)
@@ -169,7 +177,7 @@ void TransportPhysics::apply_compartments() {
         const auto t = transport::subpixel_face_targets(cell, g.nx, g.ny, sp.cell_diffusivity, sp.diffusivity);
         targets.insert(targets.end(), t.begin(), t.end());
       }
-      corrections_[i] = std::make_unique<transport::FaceFluxCorrection>(g, D, targets);
+      corrections_[i] = std::make_unique<transport::FaceFluxCorrection>(g, D, targets, row_radius());
       try {
         corrections_[i]->require_stable(lat);  // before running: a clear error, not a diverged run
       } catch (const std::invalid_argument& e) {
@@ -182,9 +190,22 @@ void TransportPhysics::apply_compartments() {
 // Hb–O2 release (docs/transport.md §4.2, eqs H1–H3): per cell, S over Δt_T from the mean PO2
 // over its sample weights (hemoglobin.coupling); the O2 released, C_heme (S_old − S_new) per
 // unit heme weight, is this step's source on the cell's heme nodes, on top of the base source.
+std::span<const double> TransportPhysics::row_radius() const {
+  return lattices_.empty() ? std::span<const double>{} : lattices_.front().row_radius();
+}
+
 void TransportPhysics::release_oxygen() {
   const std::size_t o = static_cast<std::size_t>(setup_.hemoglobin_species);
   transport::TransportLattice& o2 = lattices_[o];
+  if (!local_hb_.empty()) {  // eq H4: each heme node from its own P, its release on itself
+    std::span<double> q = o2.source();
+    std::copy(base_source_[o].begin(), base_source_[o].end(), q.begin());
+    for (std::size_t c = 0; c < local_hb_.size(); ++c) {
+      local_hb_[c].advance(*setup_.hemoglobin, coupling_, o2.concentration(), setup_.time_step_s, q);
+      saturation_[c] = local_hb_[c].saturation();
+    }
+    return;
+  }
   std::vector<double> released(nodes_.size(), 0.0);
   for (std::size_t c = 0; c < nodes_.size(); ++c) {
     if (nodes_[c].heme.empty()) continue;
@@ -247,6 +268,7 @@ void TransportPhysics::save_state(StateRecord& r, const std::string& prefix) con
     r.put(cell + "y", cells_[c].y);
   }
   for (std::size_t c = 0; c < hb_.size(); ++c) hb_[c].save_state(r, prefix + "cell_" + std::to_string(c) + ".");
+  for (std::size_t c = 0; c < local_hb_.size(); ++c) local_hb_[c].save_state(r, prefix + "cell_" + std::to_string(c) + ".");
   r.put(prefix + "saturation", saturation_);
   r.put(prefix + "initial_amount", initial_amount_);
   r.put(prefix + "inflow", inflow_);
@@ -263,6 +285,8 @@ void TransportPhysics::restore_state(const StateRecord& r, const std::string& pr
   place_cells(cells);  // first: it rebuilds what depends on where the cells are
   for (std::size_t i = 0; i < lattices_.size(); ++i) lattices_[i].restore_state(r, prefix + std::to_string(i) + ".");
   for (std::size_t c = 0; c < hb_.size(); ++c) hb_[c].restore_state(r, prefix + "cell_" + std::to_string(c) + ".");
+  for (std::size_t c = 0; c < local_hb_.size(); ++c)
+    local_hb_[c].restore_state(r, prefix + "cell_" + std::to_string(c) + ".");
   r.copy_to(prefix + "saturation", saturation_);
   r.copy_to(prefix + "initial_amount", initial_amount_);
   r.copy_to(prefix + "inflow", inflow_);
@@ -281,7 +305,8 @@ std::span<const double> TransportPhysics::readout(std::size_t i) const {
 }
 
 double TransportPhysics::released(std::size_t c) const {
-  return setup_.hemoglobin->C_heme * (hb_[c].initial_saturation() - hb_[c].saturation()) * nodes_[c].heme_sum;
+  if (!local_hb_.empty()) return local_hb_[c].released(setup_.hemoglobin->C_heme);
+  return setup_.hemoglobin->C_heme * (hb_[c].initial_saturation() - hb_[c].saturation()) * nodes_[c].heme_volume;
 }
 
 double TransportPhysics::face_correction_gain(std::size_t i) const {

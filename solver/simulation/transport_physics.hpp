@@ -19,6 +19,7 @@
 #include "geometry/polygon.hpp"
 #include "scene/units.hpp"
 #include "simulation/cell_transport.hpp"
+#include "simulation/local_hb.hpp"
 #include "transport/face_flux_correction.hpp"
 #include "transport/transport_lattice.hpp"
 
@@ -60,7 +61,8 @@ class TransportPhysics {
 
   // Cell-averaged HbO2 saturation per cell; empty without [hemoglobin].
   std::span<const double> saturation() const { return saturation_; }
-  // O2 released by cell c since the start, lattice units: C_heme (S0 − S) Σ heme weights.
+  // O2 released by cell c since the start, lattice units: C_heme (S0 − S) × the heme volume
+  // (Σ heme weights; axisymmetric Σ φ r, per radian); local kinetics: Σ over its nodes.
   double released(std::size_t c) const;
   // Stored amount M = Σ g* at the start (or the last initialize) and the net amount that has
   // entered through the sides since, lattice units (eq T5: M(t) − M0 = inflow + Σ sources).
@@ -87,6 +89,7 @@ class TransportPhysics {
   void apply_species_fields(std::size_t i);
   void apply_compartments();
   void release_oxygen();
+  std::span<const double> row_radius() const;  // the lattices' r per row (empty: planar)
   void update_no_o2_reactions();
 
   scene::TransportSetup setup_;
@@ -98,7 +101,8 @@ class TransportPhysics {
   std::vector<geometry::Polygon> cells_;
   std::vector<CellNodes> nodes_;                  // per cell
   std::vector<std::unique_ptr<transport::FaceFluxCorrection>> corrections_;  // per species (may be null)
-  std::vector<HbCell> hb_;                        // per cell, with [hemoglobin]
+  std::vector<HbCell> hb_;                        // per cell, with [hemoglobin] (cell-mean kinetics)
+  std::vector<LocalHb> local_hb_;                 // per cell, with hemoglobin.kinetics = "local"
   std::vector<double> saturation_;
   std::vector<double> initial_amount_, inflow_;
   std::vector<double> floor_;                     // per species: the default lower limit of C (µM), set by initialize

@@ -7,7 +7,7 @@
 namespace erythro::transport {
 
 FaceFluxCorrection::FaceFluxCorrection(const Grid& grid, std::span<const double> node_D,
-                                       const std::vector<FaceTarget>& targets) {
+                                       const std::vector<FaceTarget>& targets, std::span<const double> row_radius) {
   const std::size_t N = grid.size(), nx = static_cast<std::size_t>(grid.nx);
   if (node_D.size() != N) throw std::invalid_argument("FaceFluxCorrection: node_D does not match the grid");
   slot_.assign(N, N);
@@ -17,6 +17,7 @@ FaceFluxCorrection::FaceFluxCorrection(const Grid& grid, std::span<const double>
       nodes_.push_back(n);
     }
   };
+  const bool axisymmetric = !row_radius.empty();
   for (const auto& t : targets) {
     const int x = static_cast<int>(t.a % nx), y = static_cast<int>(t.a / nx);
     if ((t.x_face && x + 1 >= grid.nx) || (!t.x_face && y + 1 >= grid.ny)) {
@@ -29,9 +30,20 @@ FaceFluxCorrection::FaceFluxCorrection(const Grid& grid, std::span<const double>
     Face f{t.a, b, t.a, t.a, b, b, dK, t.X};
     if (t.X != 0.0) {
       const std::size_t e = t.x_face ? nx : 1;  // transverse step
-      const bool has_room = t.x_face ? (y >= 1 && y + 1 < grid.ny) : (x >= 1 && x + 1 < grid.nx);
+      // the row next to the axis mirrors itself across it (C even in r)
+      const bool axis_row = t.x_face && y == 0 && axisymmetric && row_radius[0] == 0.5;
+      const bool has_room = t.x_face ? ((y >= 1 || axis_row) && y + 1 < grid.ny) : (x >= 1 && x + 1 < grid.nx);
       if (!has_room) throw std::invalid_argument("FaceFluxCorrection: cross term on the grid's edge");
-      f = {t.a, b, t.a + e, t.a - e, b + e, b - e, dK, t.X};
+      f = {t.a, b, t.a + e, axis_row ? t.a : t.a - e, b + e, axis_row ? b : b - e, dK, t.X};
+    }
+    if (axisymmetric) {  // eq 7.9': per radian, through a face of radius r_f
+      const double r_a = row_radius[static_cast<std::size_t>(y)];
+      const double r_b = t.x_face ? r_a : row_radius[static_cast<std::size_t>(y + 1)];
+      const double r_f = t.x_face ? r_a : r_a + 0.5;
+      f.dK *= r_f;
+      f.X *= r_f;
+      f.share_a = 1.0 / r_a;
+      f.share_b = 1.0 / r_b;
     }
     slot_of(f.a);
     slot_of(f.b);
@@ -61,8 +73,8 @@ void FaceFluxCorrection::evaluate(const TransportLattice& lattice) {
     double dF = f.dK * (read_C_[r.a] - read_C_[r.b]);
     if (f.X != 0.0)
       dF -= f.X * 0.25 * (read_C_[r.a_plus] - read_C_[r.a_minus] + read_C_[r.b_plus] - read_C_[r.b_minus]);  // eq T11
-    node_correction_[slot_[f.a]] -= dF;
-    node_correction_[slot_[f.b]] += dF;
+    node_correction_[slot_[f.a]] -= dF * f.share_a;
+    node_correction_[slot_[f.b]] += dF * f.share_b;
   }
 }
 
@@ -72,10 +84,11 @@ double FaceFluxCorrection::lagged_gain(const TransportLattice& lattice) const {
   std::vector<double> row(nodes_.size(), 0.0);
   const auto phi = [&](std::size_t m) { return lattice.source_offset_factor(m); };
   for (const auto& f : faces_) {
+    // (axisymmetric: Ĉ_m = C_m + φ_m q_m with q the per-volume source, q_m = ΔF share_m)
     double dependence = std::abs(f.dK) * (phi(f.a) + phi(f.b));
     if (f.X != 0.0) dependence += std::abs(f.X) * 0.25 * (phi(f.a_plus) + phi(f.a_minus) + phi(f.b_plus) + phi(f.b_minus));
-    row[slot_[f.a]] += dependence;
-    row[slot_[f.b]] += dependence;
+    row[slot_[f.a]] += dependence * f.share_a;
+    row[slot_[f.b]] += dependence * f.share_b;
   }
   return row.empty() ? 0.0 : *std::max_element(row.begin(), row.end());
 }

@@ -13,6 +13,12 @@
 // mass is conserved exactly, and at steady state the lattice solves the finite-volume scheme
 // with the target fluxes F*_ab = K*_ab (Ĉ_a − Ĉ_b) − X*_ab t_ab. The correction is evaluated
 // from the last step's Ĉ (explicit, one step lagged: an O(Δt) term in transients).
+//
+// Axisymmetric lattice (docs/model.md §7b, eq 7.9'): the lattice's own steady face flux is r_f K
+// (Ĉ_a − Ĉ_b) per radian, also across jumps of D (r_f: the row's r on an x-face, r_a + ½ on a
+// y-face), so a face carries r_f times the planar difference, and the pair enters the source as
+// ΔF/r_a and ΔF/r_b (the lattice multiplies its source by r): the r-weighted amount is conserved
+// exactly. On the row next to the axis the transverse difference mirrors the row across it.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -33,9 +39,11 @@ struct FaceTarget {
 class FaceFluxCorrection {
  public:
   // node_D: the lattice's per-node (scalar) D, lattice units; faces whose target equals the
-  // lattice's own flux are dropped. Throws std::invalid_argument if a face with X ≠ 0 lacks a
-  // transverse neighbour (touches the grid's edge).
-  FaceFluxCorrection(const Grid& grid, std::span<const double> node_D, const std::vector<FaceTarget>& targets);
+  // lattice's own flux are dropped. row_radius: the lattice's r per row when axisymmetric (empty:
+  // planar). Throws std::invalid_argument if a face with X ≠ 0 lacks a transverse neighbour
+  // (touches the grid's edge).
+  FaceFluxCorrection(const Grid& grid, std::span<const double> node_D, const std::vector<FaceTarget>& targets,
+                     std::span<const double> row_radius = {});
 
   // Per-node corrections from the lattice's current Ĉ (eq T11); no allocation.
   void evaluate(const TransportLattice& lattice);
@@ -61,7 +69,8 @@ class FaceFluxCorrection {
  private:
   struct Face {
     std::size_t a, b, a_plus, a_minus, b_plus, b_minus;
-    double dK, X;
+    double dK, X;                         // × r_f when axisymmetric
+    double share_a = 1.0, share_b = 1.0;  // 1/r_a, 1/r_b when axisymmetric
   };
   // The nodes whose Ĉ a face reads, each once (evaluate computes Ĉ there once per step), and per
   // face the positions of a, b, a±, b± in that list.

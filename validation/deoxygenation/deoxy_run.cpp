@@ -18,7 +18,9 @@ double diffusive_dt(double h_um, double dt_at_0p2_s) { return dt_at_0p2_s * (h_u
 
 namespace {
 
-const char* kScene = "validation/deoxygenation/deoxygenation.toml";
+const char* kPlanarScene = "validation/deoxygenation/deoxygenation.toml";
+const char* kAxisymmetricScene = "validation/deoxygenation/deoxygenation_axisymmetric.toml";
+const char* scene_of(const Setup& s) { return s.geometry == Geometry::planar ? kPlanarScene : kAxisymmetricScene; }
 
 std::string quoted(const char* s) { return std::string("\"") + s + "\""; }
 
@@ -53,9 +55,10 @@ std::vector<std::string> scene_overrides(const Setup& s) {
   // max(C_b, C0_in), catches a growing oscillation long before it is a NaN.
   const double C_ceiling = 2.0 * std::max(s.C_b_uM, C0_in);
   const double L = static_cast<double>(n) * s.h_um;
+  const bool axi = s.geometry == Geometry::axisymmetric;  // z ∈ [−L/2, L/2], r ∈ [0, L/2]
   std::vector<std::string> o = {
       set("domain.spacing_um", s.h_um),
-      set("domain.size_um", L, L),
+      set("domain.size_um", L, axi ? 0.5 * L : L),
       set("transport.time_step_s", s.dt_s),
       set("run.steps", steps),
       set("output.diagnostics_interval_steps", stride),
@@ -78,18 +81,21 @@ std::vector<std::string> scene_overrides(const Setup& s) {
       set("hemoglobin.rate_modifier", s.hb.M),
       set("hemoglobin.initial_saturation", transport::hill_saturation(s.P0_torr, s.hb.P50, s.hb.n)),
       set("hemoglobin.coupling", quoted(coupling_name(s.coupling))),
+      set("hemoglobin.kinetics", quoted(s.kinetics == Kinetics::local ? "local" : "cell_mean")),
       set("hemoglobin.mean_pressure", quoted(s.source_corrected_P ? "source_corrected" : "concentration")),
       set("hemoglobin.heme_weights", quoted(heme_weights_name(s.representation))),
       set("cells[0].radius_um", s.a_um),
       set("cells[0].center_um", (0.5 * static_cast<double>(n) + s.offset_x_h) * s.h_um,
-          (0.5 * static_cast<double>(n) + s.offset_y_h) * s.h_um),
+          axi ? 0.0 : (0.5 * static_cast<double>(n) + s.offset_y_h) * s.h_um),
       set("cells[0].markers", static_cast<long>(s.markers))};
-  for (const char* side : {"left", "right", "bottom", "top"}) o.push_back(set(std::string("species[0].") + side + "_value", s.C_b_uM));
+  for (const char* side : {"left", "right", "bottom", "top"})
+    if (!(axi && std::string(side) == "bottom"))  // the axis
+      o.push_back(set(std::string("species[0].") + side + "_value", s.C_b_uM));
   return o;
 }
 
 Result run(const Setup& s, const std::string& case_name, const std::string& label, bool keep) {
-  const scene::Scene scene = vv::case_scene(kScene, scene_overrides(s));
+  const scene::Scene scene = vv::case_scene(scene_of(s), scene_overrides(s));
   sim::SeriesRecorder recorder;
   vv::CaseRunOptions options;
   options.observers = {&recorder};
@@ -107,14 +113,19 @@ Result run(const Setup& s, const std::string& case_name, const std::string& labe
   // The cell's nodes as the transport sees them (a static property of the placed polygon).
   const geometry::Polygon& cell = r.setup.membrane->cells.at(0).shape;
   const auto& T = *r.setup.transport;
+  const bool axi = s.geometry == Geometry::axisymmetric;
+  std::vector<double> radius;  // r of each row, lattice units (eq 7.6: the axis at the bottom side)
+  if (axi)
+    for (int y = 0; y < r.setup.grid.ny; ++y) radius.push_back(y + 0.5);
   const sim::CellNodes nodes = sim::cell_nodes(cell, geometry::Domain{r.setup.grid, false, false},
-                                               T.cell_representation, T.heme_weights);
+                                               T.cell_representation, T.heme_weights, radius);
   res.interior_nodes = static_cast<long>(nodes.heme.size());
-  res.interior_area_um2 = nodes.heme_sum * s.h_um * s.h_um;
+  res.interior_area_um2 = axi ? 2.0 * M_PI * nodes.heme_volume * s.h_um * s.h_um * s.h_um : nodes.heme_sum * s.h_um * s.h_um;
   res.polygon_area_um2 = std::abs(geometry::signed_area(cell)) * s.h_um * s.h_um;
-  res.released_uM_um2 = recorder.series("cell_0_released_uM_um2").back();
-  res.medium_change_uM_um2 = recorder.series("O2_amount_change_uM_um2").back();
-  res.boundary_in_uM_um2 = recorder.series("O2_boundary_inflow_uM_um2").back();
+  const std::string per = axi ? "_uM_um3" : "_uM_um2";
+  res.released_uM_um2 = recorder.series("cell_0_released" + per).back();
+  res.medium_change_uM_um2 = recorder.series("O2_amount_change" + per).back();
+  res.boundary_in_uM_um2 = recorder.series("O2_boundary_inflow" + per).back();
   res.balance_residual = (res.medium_change_uM_um2 - res.boundary_in_uM_um2 - res.released_uM_um2) / res.released_uM_um2;
   res.max_step_residual = recorder.series("O2_max_mass_balance_residual").back();
   res.wall_s = r.wall_time_s;
@@ -127,7 +138,7 @@ std::vector<io::FieldPicture> transient_pictures(Setup s, double t_s, const std:
   s.t_end_s = t_s;
   vv::CaseRunOptions options;
   options.pictures = true;
-  vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, scene_overrides(s)), case_name, label, options);
+  vv::CaseRun r = vv::run_case_scene(vv::case_scene(scene_of(s), scene_overrides(s)), case_name, label, options);
   if (!r.ok()) throw std::runtime_error("deoxy::transient_pictures: the run diverged: " + r.summary.diagnosis);
   return std::move(r.pictures);
 }

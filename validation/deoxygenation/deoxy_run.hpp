@@ -42,7 +42,16 @@ enum class Coupling { explicit_lagged, cell_implicit, cell_implicit_outflow };
 // Membrane diffusivity (transport.interface; docs/transport.md eqs T9–T11).
 enum class InterfaceRule { series, node_tensor, face_tensor };
 
+// Which cell the lattice holds: the planar section (deoxygenation.toml) or the cell of revolution
+// on the axisymmetric lattice (deoxygenation_axisymmetric.toml: the cylinder r ≤ L, |z| ≤ L of the
+// 3D reference, the cell centred on the axis).
+enum class Geometry { planar, axisymmetric };
+// hemoglobin.kinetics: one S per cell (the thesis's model, calibrated by M) or one per heme node.
+enum class Kinetics { cell_mean, local };
+
 struct Setup {
+  Geometry geometry = Geometry::planar;
+  Kinetics kinetics = Kinetics::cell_mean;
   double h_um = 0.2;          // lattice spacing
   double dt_s = 1e-5;         // time step
   double box_half_um = 6.0;   // half-width L of the held box (same as the reference)
@@ -73,11 +82,12 @@ struct Result {
   long steps = 0;
   int nodes = 0;               // per side
   long interior_nodes = 0;             // nodes carrying heme
-  double interior_area_um2 = 0.0;      // Σ heme weights h²
+  double interior_area_um2 = 0.0;      // Σ heme weights h² (axisymmetric: the cell's volume, 2π Σ φ r h³, µm³)
   double polygon_area_um2 = 0.0;       // area of the marker polygon (exact section: 13.627)
-  double released_uM_um2 = 0.0;       // cell_0_released_uM_um2 at the end
-  double medium_change_uM_um2 = 0.0;  // O2_amount_change_uM_um2 at the end
-  double boundary_in_uM_um2 = 0.0;    // O2_boundary_inflow_uM_um2 at the end (negative: outflow)
+  // The O2 balance at the end, per unit depth (µM·µm²; axisymmetric: per radian, µM·µm³):
+  double released_uM_um2 = 0.0;       // cell_0_released_…
+  double medium_change_uM_um2 = 0.0;  // O2_amount_change_…
+  double boundary_in_uM_um2 = 0.0;    // O2_boundary_inflow_… (negative: outflow)
   double balance_residual = 0.0;      // (change − boundary_in − released) / released
   double max_step_residual = 0.0;     // O2_max_mass_balance_residual at the end
   double wall_s = 0.0;

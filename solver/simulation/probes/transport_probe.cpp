@@ -47,9 +47,10 @@ void TransportProbe::declare(std::vector<SeriesInfo>& series) const {
                       "uM*um/s", "flux across the top edge of [[transport.layers]] entry " + std::to_string(f.layer) +
                                      " (+y, mean over x)"});
   for (std::size_t c = 0; c < transport_.saturation().size(); ++c) {
-    series.push_back({"cell_" + std::to_string(c) + "_saturation", "", "cell-averaged HbO2 saturation"});
-    series.push_back({"cell_" + std::to_string(c) + "_released_uM_um2", "uM*um^2",
-                      "O2 released by the cell's haemoglobin since the start (per unit depth)"});
+    series.push_back({"cell_" + std::to_string(c) + "_saturation", "",
+                      "HbO2 saturation of the cell (local kinetics: the mean over its heme volume)"});
+    series.push_back({"cell_" + std::to_string(c) + "_released" + suffix, unit,
+                      "O2 released by the cell's haemoglobin since the start (" + per + ")"});
   }
 }
 

@@ -16,8 +16,9 @@
 //   <name>_layer_<k>_top_flux_uM_um_s for each full-width [[transport.layers]] entry k of the species whose
 //                                     top edge lies inside the domain: the flux across the lattice face nearest to
 //                                     it (eq T6, +y), averaged over x, µM·µm/s
-// and with [hemoglobin], per cell c: cell_c_saturation (cell-averaged HbO2 saturation) and
-// cell_c_released_uM_um2 (O2 released since the start, C_heme (S0 − S) × heme area).
+// and with [hemoglobin], per cell c: cell_c_saturation (the cell's HbO2 saturation; local kinetics: the mean
+// over its heme volume) and cell_c_released_uM_um2 (O2 released since the start, C_heme (S0 − S) × heme
+// area; axisymmetric: cell_c_released_uM_um3, × heme volume per radian).
 #include <vector>
 
 #include "simulation/probe.hpp"

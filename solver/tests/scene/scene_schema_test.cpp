@@ -167,6 +167,7 @@ const std::map<std::string, Accessor>& accessors() {
         {"hemoglobin.p50_torr", [](const Scene& s) -> Value { return s.hemoglobin->p50_torr; }},
         {"hemoglobin.hill_n", [](const Scene& s) -> Value { return s.hemoglobin->hill_n; }},
         {"hemoglobin.rate_modifier", [](const Scene& s) -> Value { return s.hemoglobin->rate_modifier; }},
+        {"hemoglobin.kinetics", [](const Scene& s) -> Value { return s.hemoglobin->kinetics; }},
         {"hemoglobin.coupling", [](const Scene& s) -> Value { return s.hemoglobin->coupling; }},
         {"hemoglobin.mean_pressure", [](const Scene& s) -> Value { return s.hemoglobin->mean_pressure; }},
         {"hemoglobin.heme_weights", [](const Scene& s) -> Value { return s.hemoglobin->heme_weights; }},
