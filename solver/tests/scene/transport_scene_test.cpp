@@ -259,6 +259,12 @@ TEST(TransportScene, NoO2RefusesWhatItWouldOverride) {
                     derive(t);
                   }),
                   "names no [[species]] entry");
+  EXPECT_CONTAINS(error_of([] {  // a node takes the compartment at its centre: edges must lie on faces
+                    std::string t = no_o2_scene();
+                    t.replace(t.find("y_um = [10, 11]"), 15, "y_um = [10, 10.75]");
+                    derive(t);
+                  }),
+                  "not a multiple of domain.spacing_um");
 }
 
 struct Record : SeriesRecorder {
