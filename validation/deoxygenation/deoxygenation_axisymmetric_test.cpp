@@ -88,6 +88,13 @@ double linearised_fit(const vv::Curve& run, const vv::Curve& ref, const std::vec
   return x0 - jr / jj;
 }
 
+// S − S_ref against t at the reference's times (the curves themselves overlap at plot scale).
+io::Series residual_series(const std::string& name, const std::string& title, const vv::Curve& reference,
+                           const vv::Curve& simulated) {
+  io::Series s{name, title, "t (s)", "S - S_ref", reference.t, vv::residuals(simulated, reference), {}};
+  return s;
+}
+
 void describe(io::ResultRecord& rec, double t_end) {
   rec.set_requirement(
       "The single RBC as a body of revolution on the axisymmetric lattice reproduces the cell-averaged saturation "
@@ -306,6 +313,10 @@ TEST(DeoxygenationAxisymmetric, FullStudy) {
                                      fmt("%.3f", L1.value) + ", vs the 3D cell", cell, mean[2]->at(L1.value).S));
   rec.add_series(deoxy::curve_series("S(t) lumped M = 1 vs finite volumes, h = 0.20 um", "axisymmetric lattice vs "
                                      "reference_rbc.py --lumped 1", lumped, mean[2]->at(1.0).S));
+  rec.add_series(residual_series("S - S_3D local kinetics, h = 0.15 um", "local kinetics at M = 1 minus the 3D cell "
+                                 "(max 0.0006): the lattice's error", cell, finest.S));
+  rec.add_series(residual_series("S - S_3D lumped fit, h = 0.20 um", "lumped model at its best M minus the 3D cell: "
+                                 "the model-form floor (+0.014 near 0.1 s)", cell, mean[2]->at(L1.value).S));
   rec.add_series(deoxy::curve_series("S(t) planar lumped, h = 0.20 um", "planar lattice, lumped model at M = 0.7184, vs "
                                      "the 3D cell", cell, P.S));
   rec.set_wall_time(clock.seconds());
