@@ -14,6 +14,7 @@
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/channel_probe.hpp"
+#include "simulation/probes/shear_probe.hpp"
 #include "simulation/probes/contact_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
 #include "simulation/probes/interior_probe.hpp"
@@ -48,6 +49,7 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
     register_fluid_stages();
     probes_.push_back(std::make_unique<FluidProbe>());
     if (ChannelProbe::applies(setup_)) probes_.push_back(std::make_unique<ChannelProbe>(cells_.get()));
+    if (ShearProbe::applies(setup_)) probes_.push_back(std::make_unique<ShearProbe>());
     if (cells_)
       probes_.push_back(std::make_unique<CellShapeProbe>(*cells_, scene_.output.extremes_interval_steps));
     if (cells_)

@@ -182,11 +182,13 @@ TEST(DeoxygenationAxisymmetric, FullStudy) {
   const vv::Curve cell = deoxy::cell_reference(), lumped = lumped_reference();
   const double t_end = cell.t.back();
   const std::string name = "validation.deoxygenation_axisymmetric";
-  // Local kinetics: M = 1 at every level; the fit (continuation from M = 1, RMS) at 0.3 um; on the
-  // finer levels (a run costs ≈ 35 and 100 s) one Gauss–Newton step from M = 1 with the 0.3 um
-  // Jacobian (at 0.2 um it lands 0.4 % from the full fit, measured when written: 1.0888 against
-  // 1.0845), and at 0.2 um a run at that M gives the calibrated curve.
-  const std::vector<double> local_levels{0.3, 0.2, 0.15};
+  // Local kinetics: M = 1 at h = 0.4, 0.3, 0.2 um; the fit (continuation from M = 1, RMS) at 0.3 um;
+  // at 0.4 and 0.2 um one Gauss–Newton step from M = 1 with the 0.3 um Jacobian (at 0.2 um it lands
+  // 0.4 % from the full fit, measured when written: 1.0798 against 1.0845), and at 0.2 um a run at
+  // that M gives the calibrated curve. h = 0.15 um (100 s a run) was measured when written, not
+  // rerun here: misfit 0.00056 at M = 1, M 1.050 (docs).
+  const std::vector<double> local_levels{0.4, 0.3, 0.2};
+  const std::size_t fitted = 1, finest = 2;
   std::vector<std::unique_ptr<Runner>> local;
   for (std::size_t i = 0; i < local_levels.size(); ++i) {
     local.push_back(std::make_unique<Runner>(axisymmetric_setup(local_levels[i], deoxy::Kinetics::local, t_end), name,
@@ -214,19 +216,20 @@ TEST(DeoxygenationAxisymmetric, FullStudy) {
   // The planar lumped model at its calibrated M against the same 3D cell (side by side).
   Runner planar(deoxy::case_setup(0.2, t_end), name, 5);
   planar.prefetch({{kPlanarM, 1.0}}, 5);
-  const deoxy::Fit local_fit = deoxy::fit_log_warm(*local[0], cell, "lnM", kPointM, 0.0, 1e-3, vv::MisfitNorm::rms,
-                                                   deoxy::kFdLnM, deoxy::level_priority(0));
+  const deoxy::Fit local_fit = deoxy::fit_log_warm(*local[fitted], cell, "lnM", kPointM, 0.0, 1e-3,
+                                                   vv::MisfitNorm::rms, deoxy::kFdLnM, deoxy::level_priority(fitted));
   ASSERT_EQ(local_fit.r.jacobian.size(), cell.t.size());
-  std::vector<double> local_x{local_fit.r.params[0]};
-  for (std::size_t i = 1; i < local.size(); ++i)
-    local_x.push_back(linearised_fit(local[i]->at(1.0).S, cell, local_fit.r.jacobian, 0.0));
-  const deoxy::Result& calibrated = local[1]->at(std::exp(local_x[1]));
-  const deoxy::Result& finest = local.back()->at(1.0);
+  std::vector<double> local_x;
+  for (std::size_t i = 0; i < local.size(); ++i)
+    local_x.push_back(i == fitted ? local_fit.r.params[0]
+                                  : linearised_fit(local[i]->at(1.0).S, cell, local_fit.r.jacobian, 0.0));
+  const deoxy::Result& calibrated = local[finest]->at(std::exp(local_x[finest]));
+  const deoxy::Result& plain = local[finest]->at(1.0);
   const std::vector<deoxy::Fit> mean_fits = lumped_fits.get();
 
   io::ResultRecord rec(name, "deoxygenation");
   describe(rec, t_end);
-  rec.set_parameter("levels", "local kinetics h = 0.3, 0.2, 0.15 um (fitted at 0.3 um; at 0.2 and 0.15 um one "
+  rec.set_parameter("levels", "local kinetics h = 0.4, 0.3, 0.2 um (fitted at 0.3 um; at 0.4 and 0.2 um one "
                               "Gauss-Newton step from M = 1 with the 0.3 um Jacobian); lumped h = 0.4, 0.3, 0.2 um; "
                               "planar lumped h = 0.2 um at M = 0.7184");
   std::vector<double> local_M;
@@ -239,12 +242,12 @@ TEST(DeoxygenationAxisymmetric, FullStudy) {
     local_M.push_back(M_fit);
     row["M_fitted"] = M_fit;
     row["model_runs"] = static_cast<double>(local[i]->runs());
-    if (i < 2) {
-      const vv::Misfit at_fit = i == 0 ? local_fit.r.misfit : vv::curve_misfit(calibrated.S, cell);
+    if (i != 0) {
+      const vv::Misfit at_fit = i == fitted ? local_fit.r.misfit : vv::curve_misfit(calibrated.S, cell);
       row["max_misfit_at_fit"] = at_fit.max_abs;
       row["rms_misfit_at_fit"] = at_fit.rms;
     }
-    if (i == 0) row["sensitivity_rms_dS_dlnM"] = local_fit.r.sensitivity_rms[0];
+    if (i == fitted) row["sensitivity_rms_dS_dlnM"] = local_fit.r.sensitivity_rms[0];
     rec.add_run(row, r.scene_text);
     const std::string tag = fmt("h%.2f", h);
     rec.add_metric({"local_max_misfit_M1_" + tag, "max |S - S_3D| over the transient, local kinetics, M = 1 (no "
@@ -255,18 +258,19 @@ TEST(DeoxygenationAxisymmetric, FullStudy) {
     rec.add_metric({"cell_volume_" + tag, "|2 pi sum phi r h^3 - V| / V, V = 94.0904 um^3 (the reference's cell)", "",
                     std::abs(r.interior_area_um2 - kCellVolume) / kCellVolume, kVolumeTolerance, 0.0,
                     io::Comparison::at_most, "the lattice holds the cell of revolution: the area-fraction mask weighted "
-                    "by the row's radius is second order in h; 1 % bounds it at 0.3 um"});
+                    "by the row's radius is second order in h; 1 % bounds it at 0.4 um (0.1 % measured)"});
   }
-  const double change = std::abs(local_M[2] - local_M[1]) / local_M[2];
-  rec.add_metric({"local_M_change_h0.20_h0.15", "|M(0.15) - M(0.2)| / M(0.15), local kinetics (both one Gauss-Newton "
-                  "step from M = 1 with the 0.3 um Jacobian)", "", change, kChangeTolerance, 0.0, io::Comparison::at_least,
+  const double change = std::abs(local_M[finest] - local_M[fitted]) / local_M[finest];
+  rec.add_metric({"local_M_change_h0.30_h0.20", "|M(0.2) - M(0.3)| / M(0.2), local kinetics (0.3 um: the fit; 0.2 um: "
+                  "one Gauss-Newton step from M = 1 with its Jacobian)", "", change, kChangeTolerance, 0.0,
+                  io::Comparison::at_least,
                   "DOCUMENTED DIFFERENCE: the issue's < 1 % is not met. With local kinetics M = 1 is the physics (the "
                   "reference's own law); the fitted M is the lattice's remaining error projected on the rate and "
                   "tends to 1 at about first order (the cut nodes' heme at the node centre, as in the reference's "
                   "volume-fraction mask); asserted in its measured direction so that a change below 1 % fails here "
                   "and the docs are revisited"});
-  rec.add_metric({"local_M_tends_to_1", "|ln M(0.15)| / |ln M(0.3)|: the fitted M approaches the resolved kinetics' "
-                  "M = 1 under refinement", "", std::abs(std::log(local_M[2])) / std::abs(std::log(local_M[0])), 1.0,
+  rec.add_metric({"local_M_tends_to_1", "|ln M(0.2)| / |ln M(0.4)|: the fitted M approaches the resolved kinetics' "
+                  "M = 1 under refinement", "", std::abs(std::log(local_M[finest])) / std::abs(std::log(local_M[0])), 1.0,
                   0.0, io::Comparison::at_most, "convergence of the local model to the reference's law, the only M "
                   "it should have"});
   rec.add_metric({"local_max_misfit_fit_h0.20", "max |S - S_3D| at the fitted M, h = 0.2 um", "",
@@ -305,22 +309,22 @@ TEST(DeoxygenationAxisymmetric, FullStudy) {
   const deoxy::Result& P = planar.at(kPlanarM);
   auto prow = run_row("planar_lumped", 0.2, kPlanarM, P, cell);
   rec.add_run(prow, P.scene_text);
-  rec.add_series(deoxy::curve_series("S(t) local kinetics, h = 0.15 um", "axisymmetric lattice, local kinetics, M = 1, "
-                                     "vs the 3D cell", cell, finest.S));
+  rec.add_series(deoxy::curve_series("S(t) local kinetics, h = 0.20 um", "axisymmetric lattice, local kinetics, M = 1, "
+                                     "vs the 3D cell", cell, plain.S));
   rec.add_series(deoxy::curve_series("S(t) local kinetics calibrated, h = 0.20 um", "axisymmetric lattice, local "
-                                     "kinetics, M = " + fmt("%.4f", local_M[1]) + ", vs the 3D cell", cell, calibrated.S));
+                                     "kinetics, M = " + fmt("%.4f", local_M[finest]) + ", vs the 3D cell", cell, calibrated.S));
   rec.add_series(deoxy::curve_series("S(t) lumped fit, h = 0.20 um", "axisymmetric lattice, lumped model at M = " +
                                      fmt("%.3f", L1.value) + ", vs the 3D cell", cell, mean[2]->at(L1.value).S));
   rec.add_series(deoxy::curve_series("S(t) lumped M = 1 vs finite volumes, h = 0.20 um", "axisymmetric lattice vs "
                                      "reference_rbc.py --lumped 1", lumped, mean[2]->at(1.0).S));
-  rec.add_series(residual_series("S - S_3D local kinetics, h = 0.15 um", "local kinetics at M = 1 minus the 3D cell "
-                                 "(max 0.0006): the lattice's error", cell, finest.S));
+  rec.add_series(residual_series("S - S_3D local kinetics, h = 0.20 um", "local kinetics at M = 1 minus the 3D cell "
+                                 "(max 0.0009): the lattice's error", cell, plain.S));
   rec.add_series(residual_series("S - S_3D lumped fit, h = 0.20 um", "lumped model at its best M minus the 3D cell: "
                                  "the model-form floor (+0.014 near 0.1 s)", cell, mean[2]->at(L1.value).S));
   rec.add_series(deoxy::curve_series("S(t) planar lumped, h = 0.20 um", "planar lattice, lumped model at M = 0.7184, vs "
                                      "the 3D cell", cell, P.S));
   rec.set_wall_time(clock.seconds());
-  std::printf("local M: %.4f %.4f %.4f; lumped M: %.4f %.4f %.4f (max %.5f); planar at 3D: %.5f\n", local_M[0],
+  std::printf("local M (0.4, 0.3, 0.2 um): %.4f %.4f %.4f; lumped M: %.4f %.4f %.4f (max %.5f); planar at 3D: %.5f\n", local_M[0],
               local_M[1], local_M[2], mean_fits[0].value, L2.value, L1.value, L1.r.misfit.max_abs,
               vv::curve_misfit(P.S, cell).max_abs);
   std::printf("written: %s\n", rec.write_to_results_dir().c_str());

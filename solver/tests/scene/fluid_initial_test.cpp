@@ -192,6 +192,25 @@ TEST(FluidProbe, MomentumSeriesIsTheSumOfRhoU) {
   EXPECT_NEAR(r.series.series("total_mass_kg_per_m")[0], 100 * 1000.0 * 1e-12, 1e-22);
 }
 
+TEST(ShearProbe, CouetteWallStressIsMuGammaDotAndTheRelativeViscosityOne) {
+  // Walls at ∓U (γ̇ = 2U/H), the steady Couette profile from the start: both wall stresses are
+  // μγ̇ (eq 12.5 is exact for a linear profile) and the relative viscosity is 1; walls at rest
+  // are not a simple shear and get no series.
+  Outcome r;
+  run(parse(channel, {"boundaries.top.type=moving_wall", "boundaries.top.velocity_um_s=[1e5, 0]",
+                      "boundaries.bottom.type=moving_wall", "boundaries.bottom.velocity_um_s=[-1e5, 0]",
+                      "initial.type=shear", "initial.non_equilibrium=true", "output.diagnostics_interval_steps=10"}),
+      r);
+  ASSERT_TRUE(r.series.has("shear_relative_viscosity"));
+  const double mu_gamma = 1e-3 * 2.0 * 0.1 / 10e-6;  // water: 1 cP × 2 (0.1 m/s) / 10 µm = 20 Pa
+  EXPECT_NEAR(r.series.series("wall_shear_stress_bottom_Pa").back(), mu_gamma, 1e-9 * mu_gamma);
+  EXPECT_NEAR(r.series.series("wall_shear_stress_top_Pa").back(), mu_gamma, 1e-9 * mu_gamma);
+  EXPECT_NEAR(r.series.series("shear_relative_viscosity").back(), 1.0, 1e-9);
+  Outcome channel_flow;
+  run(parse(channel, {"output.diagnostics_interval_steps=10"}), channel_flow);
+  EXPECT_FALSE(channel_flow.series.has("shear_relative_viscosity"));
+}
+
 TEST(FieldsRecorder, AtFindsTheOutputOfAStep) {
   Outcome r;
   run(parse(periodic, {"output.fields_interval_steps=5"}), r);
