@@ -52,6 +52,12 @@ restart transport_no_fluid "$SRC/scenes/rbc_deoxygenation.toml" 300 110 --set ou
 restart transport_no_o2_axisymmetric "$SRC/scenes/arteriole_no_o2_axisymmetric.toml" 3000 1100 \
   --set output.fields_interval_steps=1000 --set output.diagnostics_interval_steps=100 --set monitor.interval_steps=100
 
+# A cell of revolution with local kinetics (a saturation and a predictor's memory per heme node).
+restart transport_local_axisymmetric "$SRC/validation/deoxygenation/deoxygenation_axisymmetric.toml" 400 170 \
+  --set domain.spacing_um=0.4 --set domain.size_um=[12,6] --set transport.time_step_s=1e-5 \
+  --set output.fields_interval_steps=100 --set output.diagnostics_interval_steps=10 \
+  --set output.dense_diagnostics_steps=0 --set monitor.interval_steps=10
+
 # Checkpoints by wall time (one every millisecond): the restart continues from whichever
 # step the last one holds.
 SCENE="$SRC/scenes/poiseuille.toml"
