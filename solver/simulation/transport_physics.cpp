@@ -187,13 +187,14 @@ void TransportPhysics::apply_compartments() {
   }
 }
 
-// Hb–O2 release (docs/transport.md §4.2, eqs H1–H3): per cell, S over Δt_T from the mean PO2
-// over its sample weights (hemoglobin.coupling); the O2 released, C_heme (S_old − S_new) per
-// unit heme weight, is this step's source on the cell's heme nodes, on top of the base source.
 std::span<const double> TransportPhysics::row_radius() const {
   return lattices_.empty() ? std::span<const double>{} : lattices_.front().row_radius();
 }
 
+// Hb–O2 release (docs/transport.md §4.2, eqs H1–H4): per cell, S over Δt_T from the mean PO2
+// over its sample weights (hemoglobin.coupling); the O2 released, C_heme (S_old − S_new) per
+// unit heme weight, is this step's source on the cell's heme nodes, on top of the base source.
+// Local kinetics: the same per heme node, from its own PO2, onto itself.
 void TransportPhysics::release_oxygen() {
   const std::size_t o = static_cast<std::size_t>(setup_.hemoglobin_species);
   transport::TransportLattice& o2 = lattices_[o];

@@ -5,8 +5,9 @@
 // their own diffusivity and initial concentration (ray-cast nodes, or area fractions with
 // a membrane rule: series, node or face subpixel tensor, eqs T9–T11), and Hb–O2 kinetics
 // per cell (cell-averaged saturation, release spread over the cell's heme weights; coupling
-// explicit, cell-implicit or cell-implicit with the outflow predictor, eqs H1–H3) for the
-// species named by [hemoglobin]. Advanced with its own time step; the simulation decides
+// explicit, cell-implicit or cell-implicit with the outflow predictor, eqs H1–H3) or per heme
+// node (local kinetics, eq H4) for the species named by [hemoglobin]. On an axisymmetric lattice
+// the cells are bodies of revolution (docs/model.md §7b). Advanced with its own time step; the simulation decides
 // when (docs/architecture.md "Time steps and coupling").
 #include <cstdint>
 #include <memory>
