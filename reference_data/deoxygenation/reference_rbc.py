@@ -164,6 +164,7 @@ class Model:
         self.m = len(self.cell)
         self.phi_c = self.phi.ravel()[self.cell]
         self.vphi = self.vol_f[self.cell] * self.phi_c  # heme-bearing volume per CV
+        self.identity = sp.identity(n + self.m, format="csc")  # of the local model's (C, S) system
         self.Ls = None
         if d_hb > 0.0:
             self.Ls = self._hb_operator(idx, dr, dz)
@@ -228,6 +229,21 @@ class Model:
         J = sp.bmat([[Jcc, Jcs], [Jsc, Jss]], format="csc")
         return f, J
 
+    def newton(self, y, base, gdt, t):
+        """Modified Newton on y − base − γΔt f(y) = 0, in place: the exact sparse Jacobian,
+        refreshed every 4th iterate. Returns the iterations."""
+        lu = None
+        for it in range(40):
+            f, J = self.rhs_and_jac(y, want_jac=(it % 4 == 0))
+            F = y - base - gdt * f
+            if J is not None:
+                lu = spla.splu((self.identity - gdt * J).tocsc())
+            dy = lu.solve(-F)
+            y += dy
+            if newton_converged(self.n, dy):
+                return it + 1
+        raise RuntimeError(f"Newton did not converge at t = {t}")
+
     def s_mean(self, x):
         return float((self.vphi * x[self.n:]).sum() / self.vphi.sum())
 
@@ -291,6 +307,18 @@ class LumpedModel(Model):
         return sp.bmat([[Jcc, sp.csr_matrix((self.u * dRs)[:, None])],
                         [sp.csr_matrix(-v[None, :]), sp.csr_matrix([[-dRs]])]], format="csc")
 
+    def newton(self, y, base, gdt, t):
+        """Full Newton on y − base − γΔt f(y) = 0, in place (exact Jacobian every iterate, bordered
+        solve). Returns the iterations."""
+        fac = self.factor(gdt)
+        for it in range(40):
+            F = y - base - gdt * self.rhs(y)
+            dy = self.solve(fac, gdt, y, -F)
+            y += dy
+            if newton_converged(self.n, dy):
+                return it + 1
+        raise RuntimeError(f"Newton did not converge at t = {t}")
+
     def factor(self, gdt):
         """splu of B = I − γΔt V⁻¹L (state independent) and y = B⁻¹u."""
         lu = spla.splu((sp.identity(self.n, format="csc") - gdt * self.Lv).tocsc())
@@ -353,77 +381,39 @@ def run_info(mod, level, times, newton_its, t0, tot0, out_int, x, verbose):
     return info
 
 
+def newton_converged(n, dy):
+    """The stopping rule of both models: |ΔC| < 1e-9 C_b and |ΔS| < 1e-11."""
+    return np.max(np.abs(dy[:n])) < 1e-9 * C_B and np.max(np.abs(dy[n:])) < 1e-11
+
+
+def integrate(mod, level, t_end, verbose=False):
+    """The time loop of both models: BDF2 steps on the level's schedule, each solved in place by
+    mod.newton(y, base, γΔt, t) (which returns its iterations); S̄ and the O2 outflow recorded."""
+    times = schedule(level, t_end)
+    x = mod.initial()
+    x_old = None
+    S = [mod.s_mean(x)]
+    tot0 = mod.o2_total(x)
+    out_int, out_prev = 0.0, mod.outflow(x)
+    newton_its, t0 = 0, time.time()
+    for k in range(1, len(times)):
+        dt = times[k] - times[k - 1]
+        a0, a1, gam = bdf2_coefficients(times, k, x_old is None)
+        base = a0 * x - (a1 * x_old if x_old is not None else 0.0)
+        y = x.copy()
+        newton_its += mod.newton(y, base, gam * dt, times[k])
+        x_old, x = x, y
+        S.append(mod.s_mean(x))
+        o = mod.outflow(x)
+        out_int += 0.5 * (o + out_prev) * dt
+        out_prev = o
+    return times, np.array(S), run_info(mod, level, times, newton_its, t0, tot0, out_int, x, verbose)
+
+
 def run(level, t_end, d_hb=0.0, verbose=False, lumped=None):
     """lumped: None for the local model, else the rate modifier M of the lumped model."""
-    if lumped is not None:
-        return run_lumped(level, t_end, lumped, verbose)
-    mod = Model(level, d_hb)
-    times = schedule(level, t_end)
-    x = mod.initial()
-    x_old = None
-    S = [mod.s_mean(x)]
-    tot0 = mod.o2_total(x)
-    out_int, out_prev = 0.0, mod.outflow(x)
-    newton_its, t0 = 0, time.time()
-    I = sp.identity(mod.n + mod.m, format="csc")
-    for k in range(1, len(times)):
-        dt = times[k] - times[k - 1]
-        a0, a1, gam = bdf2_coefficients(times, k, x_old is None)
-        base = a0 * x - (a1 * x_old if x_old is not None else 0.0)
-        y = x.copy()
-        lu = None
-        for it in range(40):  # Newton; the Jacobian is refreshed every 4th iterate
-            f, J = mod.rhs_and_jac(y, want_jac=(it % 4 == 0))
-            F = y - base - gam * dt * f
-            if J is not None:
-                lu = spla.splu((I - gam * dt * J).tocsc())
-            dy = lu.solve(-F)
-            y += dy
-            newton_its += 1
-            if np.max(np.abs(dy[:mod.n])) < 1e-9 * C_B and np.max(np.abs(dy[mod.n:])) < 1e-11:
-                break
-        else:
-            raise RuntimeError(f"Newton did not converge at t = {times[k]}")
-        x_old, x = x, y
-        S.append(mod.s_mean(x))
-        o = mod.outflow(x)
-        out_int += 0.5 * (o + out_prev) * dt
-        out_prev = o
-    return times, np.array(S), run_info(mod, level, times, newton_its, t0, tot0, out_int, x, verbose)
-
-
-def run_lumped(level, t_end, m_rate, verbose=False):
-    """run() for the lumped model: same time points, BDF2 coefficients, stopping rule and
-    O2 balance; full Newton (exact Jacobian every iterate, bordered solve)."""
-    mod = LumpedModel(level, m_rate)
-    times = schedule(level, t_end)
-    x = mod.initial()
-    x_old = None
-    S = [mod.s_mean(x)]
-    tot0 = mod.o2_total(x)
-    out_int, out_prev = 0.0, mod.outflow(x)
-    newton_its, t0 = 0, time.time()
-    for k in range(1, len(times)):
-        dt = times[k] - times[k - 1]
-        a0, a1, gam = bdf2_coefficients(times, k, x_old is None)
-        base = a0 * x - (a1 * x_old if x_old is not None else 0.0)
-        fac = mod.factor(gam * dt)
-        y = x.copy()
-        for it in range(40):
-            F = y - base - gam * dt * mod.rhs(y)
-            dy = mod.solve(fac, gam * dt, y, -F)
-            y += dy
-            newton_its += 1
-            if np.max(np.abs(dy[:mod.n])) < 1e-9 * C_B and abs(dy[mod.n]) < 1e-11:
-                break
-        else:
-            raise RuntimeError(f"Newton did not converge at t = {times[k]}")
-        x_old, x = x, y
-        S.append(mod.s_mean(x))
-        o = mod.outflow(x)
-        out_int += 0.5 * (o + out_prev) * dt
-        out_prev = o
-    return times, np.array(S), run_info(mod, level, times, newton_its, t0, tot0, out_int, x, verbose)
+    mod = Model(level, d_hb) if lumped is None else LumpedModel(level, lumped)
+    return integrate(mod, level, t_end, verbose)
 
 
 def main():
