@@ -157,6 +157,9 @@ TEST(DeoxygenationAxisymmetric, CiSubset) {
   const deoxy::Result& C = mean.at(1.0);
   io::ResultRecord rec("validation.deoxygenation_axisymmetric_ci", "deoxygenation");
   describe(rec, cell.t.back());
+  rec.set_requirement("CI guard of validation.deoxygenation_axisymmetric at h = 0.4 um, M = 1: local kinetics within "
+                      "0.005 of the 3D cell, the lumped model within 0.002 of the reference's lumped model, the O2 "
+                      "balance to round-off.");
   rec.set_parameter("levels", "h = 0.4 um only (CI subset of validation.deoxygenation_axisymmetric), M = 1");
   rec.add_run(run_row("local", h, 1.0, L, cell), L.scene_text);
   rec.add_run(run_row("lumped", h, 1.0, C, lumped), C.scene_text);
