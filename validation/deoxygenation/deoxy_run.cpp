@@ -113,10 +113,10 @@ Result run(const Setup& s, const std::string& case_name, const std::string& labe
   // The cell's nodes as the transport sees them (a static property of the placed polygon).
   const geometry::Polygon& cell = r.setup.membrane->cells.at(0).shape;
   const auto& T = *r.setup.transport;
-  const bool axi = s.geometry == Geometry::axisymmetric;
-  std::vector<double> radius;  // r of each row, lattice units (eq 7.6: the axis at the bottom side)
+  const bool axi = T.axisymmetric_inner_radius.has_value();
+  std::vector<double> radius;  // r of each row, lattice units (model.md §7b: r_y = r_in + y + ½)
   if (axi)
-    for (int y = 0; y < r.setup.grid.ny; ++y) radius.push_back(y + 0.5);
+    for (int y = 0; y < r.setup.grid.ny; ++y) radius.push_back(*T.axisymmetric_inner_radius + y + 0.5);
   const sim::CellNodes nodes = sim::cell_nodes(cell, geometry::Domain{r.setup.grid, false, false},
                                                T.cell_representation, T.heme_weights, radius);
   res.interior_nodes = static_cast<long>(nodes.heme.size());
