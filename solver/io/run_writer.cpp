@@ -124,6 +124,12 @@ void RunWriter::on_start(const scene::Scene& scene, const scene::LatticeSetup& s
                                 {"coupling", !setup.has_fluid ? "no fluid"
                                              : setup.membrane ? "immersed boundary"
                                                               : "fluid only"}});
+    if (const auto& m = setup.time_mapping)  // docs/model.md eq 10.8: the density above is ρ_run
+      h5::write_attrs(meta.id(), {{"time_mapping_reynolds", m->reynolds},
+                                  {"time_mapping_physical_reynolds", m->physical_reynolds},
+                                  {"time_mapping_shear_rate_per_s", m->shear_rate_per_s},
+                                  {"time_mapping_radius_um", m->radius_m * 1e6},
+                                  {"physical_density_kg_m3", m->physical_density_kg_m3}});
     if (const auto& T = setup.transport) {
       std::string names;
       for (const auto& sp : T->species) names += (names.empty() ? "" : ",") + sp.name;

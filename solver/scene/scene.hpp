@@ -47,6 +47,16 @@ struct FluidSpec {
   std::vector<ViscosityLayerSpec> layers;  // [[fluid.layers]]
 };
 
+// [time_mapping]: hemodynamic time through the capillary number (docs/model.md §10, eq 10.8). The
+// run keeps every physical value (μ, γ̇, moduli, sizes, the clock) and raises only the fluid's
+// density, to ρ = Re μ/(γ̇ a²), so that the particle Reynolds number γ̇a²ρ/μ is `reynolds` (thesis
+// ch. IV: the same Ca at a larger lattice Reynolds number). Time and strain stay physical.
+struct TimeMappingSpec {
+  double reynolds = 0.0;                   // [time_mapping] reynolds (required)
+  std::optional<double> radius_um;         // a; absent: the largest cell's radius_um × scale
+  std::optional<double> shear_rate_per_s;  // γ̇; absent: the drive's (walls: ΔU/H; channel: F H/(2μ))
+};
+
 struct SideSpec {
   std::string type = "periodic";                 // "periodic" | "wall" | "moving_wall"
   std::array<double, 2> velocity_um_s{0.0, 0.0};  // moving_wall only
@@ -343,6 +353,7 @@ struct Scene {
   DomainSpec domain;
   TimeSpec time;
   FluidSpec fluid;
+  std::optional<TimeMappingSpec> time_mapping;  // [time_mapping]; absent: ρ as given
   BoundarySpec boundaries;
   std::optional<BodyForceSpec> body_force;
   InitialSpec initial;

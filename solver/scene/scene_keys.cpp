@@ -136,6 +136,26 @@ std::vector<KeySpec> make_keys() {
        .when_absent = literal("0.1875"),
        .rule = "τ− = ½ + Λ/(τ − ½) ≥ 0.5 + `limits.min_tau_margin`",
        .meaning = "TRT magic parameter Λ = (τ+ − ½)(τ− − ½), 3/16 by default; used by `trt` only"},
+      // [time_mapping]
+      {.path = "time_mapping.reynolds",
+       .bound = Bound{0.0, true, 100.0, false},
+       .when_absent = note("required"),
+       .rule = "above the physical γ̇a²ρ/μ (the mapping raises the density, never lowers it)",
+       .meaning = "The particle Reynolds number γ̇a²ρ/μ the run uses: ρ becomes Re μ/(γ̇a²) (docs/model.md eq "
+                  "10.8); Ca, the moduli, sizes, time and strain stay physical"},
+      {.path = "time_mapping.radius_um",
+       .unit = "µm",
+       .bound = positive,
+       .when_absent = note("the largest cell's `radius_um` × `scale` (ellipse: √(ab) × `scale`)"),
+       .rule = "required without cells",
+       .meaning = "The cell radius a of the Reynolds number"},
+      {.path = "time_mapping.shear_rate_per_s",
+       .unit = "1/s",
+       .bound = positive,
+       .when_absent = note("walls moving apart: |U_top − U_bottom|/H; a channel driven by `[body_force]`: the "
+                           "plasma's wall shear rate F H/(2μ)"),
+       .rule = "required where neither applies",
+       .meaning = "The shear rate γ̇ of the Reynolds number"},
       // [body_force]
       {.path = "body_force.density_N_m3",
        .kind = Kind::vec2,
@@ -792,6 +812,9 @@ const std::vector<TableSpec>& known_tables() {
       {"boundaries.right", false, "One side of the domain; every side is periodic unless its table says otherwise."},
       {"boundaries.bottom", false, "One side of the domain; every side is periodic unless its table says otherwise."},
       {"boundaries.top", false, "One side of the domain; every side is periodic unless its table says otherwise."},
+      {"time_mapping", false,
+       "Optional: hemodynamic time through the capillary number: the same Ca at a larger particle Reynolds "
+       "number, by a larger density (thesis ch. IV; docs/model.md eq 10.8)."},
       {"body_force", false, "Optional: the table's presence turns the force on (an empty table: a force of zero)."},
       {"initial", false, "The fluid's state at t = 0."},
       {"run", false, "The length of the run: exactly one of `steps` and `duration_s`."},

@@ -475,6 +475,16 @@ Scene read_scene(const Reader& r, const std::string& origin) {
   s.fluid.collision = r.text("fluid.collision");
   s.fluid.trt_magic = r.number("fluid.trt_magic");
   read_layers(r, s);
+  if (r.has("time_mapping")) {  // the optional keys first: a bad value is named before a missing key
+    TimeMappingSpec m;
+    if (r.has("time_mapping.radius_um")) m.radius_um = r.number("time_mapping.radius_um");
+    if (r.has("time_mapping.shear_rate_per_s")) m.shear_rate_per_s = r.number("time_mapping.shear_rate_per_s");
+    if (!r.has("time_mapping.reynolds"))
+      throw InputError(r.where_table("time_mapping") + ": missing key 'time_mapping.reynolds' (required; " +
+                       range_text(*find_key("time_mapping.reynolds")) + ")");
+    m.reynolds = r.number("time_mapping.reynolds");
+    s.time_mapping = m;
+  }
 
   s.boundaries.left = read_side(r, "left");
   s.boundaries.right = read_side(r, "right");

@@ -251,10 +251,14 @@ LatticeSetup derive_lattice(const Scene& s) {
 
   // --- time step and relaxation time: Δt = (τ − ½) h² / (3ν)  ⇔  τ = ½ + 3νΔt/h²
   const double h = s.domain.spacing_um * 1e-6;                       // [m]
-  const double nu = s.fluid.viscosity_cP * 1e-3 / s.fluid.density_kg_m3;  // [m²/s]
+  // The fluid's density: fluid.density_kg_m3, or raised by [time_mapping] (eq 10.8).
+  L.time_mapping = derive_time_mapping(s);
+  const double rho = run_density_kg_m3(s, L.time_mapping);
+  const std::string rho_source = L.time_mapping ? "the density of [time_mapping]" : "fluid.density_kg_m3";
+  const double nu = s.fluid.viscosity_cP * 1e-3 / rho;  // [m²/s]
   if (!(nu > 0.0) || !std::isfinite(nu))
-    reject(s, "fluid.viscosity_cP = " + num(s.fluid.viscosity_cP) + " and fluid.density_kg_m3 = " +
-                  num(s.fluid.density_kg_m3) + " must be > 0");
+    reject(s, "fluid.viscosity_cP = " + num(s.fluid.viscosity_cP) + " and " + rho_source + " = " + num(rho) +
+                  " must be > 0");
   if (s.time.tau.has_value() == s.time.step_s.has_value())
     reject(s, "give exactly one of time.step_s (s, > 0) or time.tau (> 0.5)");
   double tau = 0.0, dt = 0.0;
@@ -284,7 +288,7 @@ LatticeSetup derive_lattice(const Scene& s) {
     reject(s, "key 'time.step_s' = " + num(dt) + " s gives τ = " + num(tau) + ", above " + num(tau_max) + why +
                   ": time.step_s must be <= " + num(dt_max) + " s for this spacing and viscosity");
   }
-  L.scales = UnitScales{h, dt, s.fluid.density_kg_m3};
+  L.scales = UnitScales{h, dt, rho};
   L.viscosity = (tau - 0.5) * d2q9::cs2;
 
   // --- collision
@@ -325,7 +329,7 @@ LatticeSetup derive_lattice(const Scene& s) {
 
   // --- body force: F_lat = F Δt² / (ρ h);  f_lat = f Δt (cycles per step)
   if (s.body_force) {
-    const double f_scale = dt * dt / (s.fluid.density_kg_m3 * h);
+    const double f_scale = dt * dt / (rho * h);
     L.body_force = {s.body_force->density_N_m3[0] * f_scale, s.body_force->density_N_m3[1] * f_scale};
     L.force_frequency = s.body_force->frequency_Hz * dt;
     L.force_phase = s.body_force->phase_rad;
@@ -333,8 +337,8 @@ LatticeSetup derive_lattice(const Scene& s) {
 
   // --- run length in fluid steps
   // Where Δt comes from, for the messages about quantities it scales (steps, lattice speeds).
-  const std::string dt_source = s.time.tau ? "time.tau, domain.spacing_um, fluid.viscosity_cP and "
-                                             "fluid.density_kg_m3: Δt = (τ − ½) h²/(3ν)"
+  const std::string dt_source = s.time.tau ? "time.tau, domain.spacing_um, fluid.viscosity_cP and " + rho_source +
+                                                 ": Δt = (τ − ½) h²/(3ν)"
                                            : "time.step_s";
   L.total_steps = run_steps(s, dt, dt_source);
 
@@ -434,7 +438,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
       {"relaxation time τ (tau)", num(L.collision.tau), "limit >= " + num(0.5 + s.limits.min_tau_margin)},
       {"viscosity ν", num(L.viscosity),
        num(L.viscosity * u.kinematic_viscosity_m2_s()) + " m²/s (" + num(s.fluid.viscosity_cP) + " cP, " +
-           num(s.fluid.density_kg_m3) + " kg/m³)"},
+           num(u.density_kg_m3) + " kg/m³)"},
       {std::string("max speed") + (L.speed_is_estimate ? " (estimate)" : ""), num(L.expected_max_speed),
        num(L.expected_max_speed * u.velocity_m_s() * um) + " µm/s" +
            (L.speed_source.empty() ? "" : " (from " + L.speed_source + ")")},
@@ -444,6 +448,11 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
        num(static_cast<double>(L.total_steps) * u.time_s) + " s simulated"},
   };
   rows.insert(rows.end(), fluid_rows.begin(), fluid_rows.end());
+  if (const auto& m = L.time_mapping)  // eq 10.8
+    rows.push_back({"time mapping", "Re = γ̇a²ρ/μ = " + num(m->reynolds) + " (physical " + num(m->physical_reynolds) + ")",
+                    "ρ × " + num(m->density_factor()) + " (" + num(m->physical_density_kg_m3) + " → " +
+                        num(m->run_density_kg_m3) + " kg/m³); γ̇ = " + num(m->shear_rate_per_s) + " 1/s, a = " +
+                        num(m->radius_m * 1e6) + " µm; time and strain physical"});
   if (s.body_force)
     rows.push_back({"body force", vec(L.body_force), vec(s.body_force->density_N_m3) + " N/m³"});
   if (L.collision.model == fluid::CollisionModel::trt)

@@ -17,6 +17,7 @@
 #include "membrane/membrane_energy.hpp"
 #include "membrane/stability.hpp"
 #include "scene/scene.hpp"
+#include "scene/time_mapping.hpp"
 #include "transport/compartments.hpp"
 #include "transport/hb_kinetics.hpp"
 #include "transport/transport_lattice.hpp"
@@ -178,6 +179,8 @@ struct LatticeSetup {
   double mach = 0.0;                // expected_max_speed / c_s
   double reynolds = 0.0;            // expected_max_speed × L / ν (L: channel width or domain)
   double reynolds_length_m = 0.0;
+  // [time_mapping] (docs/model.md eq 10.8): scales.density_kg_m3 is then its run density.
+  std::optional<TimeMapping> time_mapping;
   std::optional<MembraneSetup> membrane;  // only when the scene has cells
   // false for a still-medium transport scene (transport.coupling = "none"): no fluid is
   // built, scales.time_s is the transport step and total_steps counts transport steps.
