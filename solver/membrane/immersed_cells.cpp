@@ -5,7 +5,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/polygon.hpp"
 #include "lattice/d2q9.hpp"
+#include "membrane/area_projection.hpp"
 
 namespace erythro::membrane {
 
@@ -16,7 +18,7 @@ int ImmersedCells::add_cell(const geometry::Polygon& shape, const RestShape& res
   if (shape.size() != rest.size()) {
     throw std::invalid_argument("ImmersedCells::add_cell: the shape and the rest shape differ in marker count");
   }
-  cells_.push_back({x_.size(), rest, model});
+  cells_.push_back({x_.size(), rest, model, geometry::signed_area(shape), 0.0});
   x_.insert(x_.end(), shape.x.begin(), shape.x.end());
   y_.insert(y_.end(), shape.y.begin(), shape.y.end());
   fx_.resize(x_.size(), 0.0);
@@ -75,7 +77,15 @@ void ImmersedCells::advance_after_forces(fluid::FluidLattice& lattice) {
 
 void ImmersedCells::advect_markers() {
   move_markers(grid_ux_, grid_uy_);
+  if (area_projection_) project_areas();
   wrap_periodic();
+}
+
+void ImmersedCells::project_areas() {  // eq 3.14; each cell its own markers: any thread count, the same bits
+  const int n = cell_count();
+#pragma omp parallel for schedule(static) if (threads_forces())
+  for (int c = 0; c < n; ++c)
+    cells_[c].restored_area += project_area(range(x_, c), range(y_, c), cells_[c].target_area);
 }
 
 void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
@@ -151,6 +161,7 @@ void ImmersedCells::save_state(StateRecord& r, const std::string& prefix) const 
     r.put(rest + "dual", cells_[c].rest.dual);
     r.put(rest + "turning", cells_[c].rest.turning);
     r.put_scalar(rest + "area", cells_[c].rest.area);
+    if (area_projection_) r.put_scalar(prefix + std::to_string(c) + ".restored_area", cells_[c].restored_area);
   }
 }
 
@@ -167,6 +178,7 @@ void ImmersedCells::restore_state(const StateRecord& r, const std::string& prefi
     r.copy_to(rest + "dual", cells_[c].rest.dual);
     r.copy_to(rest + "turning", cells_[c].rest.turning);
     cells_[c].rest.area = r.scalar(rest + "area");
+    if (area_projection_) cells_[c].restored_area = r.scalar(prefix + std::to_string(c) + ".restored_area");
   }
 }
 

@@ -75,7 +75,7 @@ class ImmersedCells {
   std::span<const double> support_ux() const { return grid_ux_; }
   std::span<const double> support_uy() const { return grid_uy_; }
   // Step 5 from the support velocity of the last fluid step: move_markers(support_ux/uy),
-  // then wrap_periodic.
+  // the area projection if it is on, then wrap_periodic.
   void advect_markers();
   // Steps 1–5 for one fluid step: compute_forces(), then advance_after_forces().
   void advance(fluid::FluidLattice& lattice);
@@ -87,6 +87,15 @@ class ImmersedCells {
   // (a rigid shift of the whole cell: its shape and forces are unchanged), so
   // unwrapped coordinates stay small over long runs. Called by advance().
   void wrap_periodic();
+
+  // Area projection (docs/model.md eq 3.14): after every marker move each cell's polygon gets
+  // its enclosed area at creation back (the immersed boundary's leakage no longer accumulates).
+  // Off by default (membrane.area_correction).
+  void set_area_projection(bool on) { area_projection_ = on; }
+  bool area_projection() const { return area_projection_; }
+  // The area the projection has given cell c back so far, summed over steps, over its target
+  // (> 0: the membrane leaked fluid out); 0 without the projection.
+  double restored_area_fraction(int c) const { return cells_[c].restored_area / cells_[c].target_area; }
 
   Energy energy(int c) const;
   double max_marker_speed() const;
@@ -103,7 +112,10 @@ class ImmersedCells {
     std::size_t offset;
     RestShape rest;
     MembraneModel model;
+    double target_area = 0.0;    // signed area of the shape at creation (the projection's target)
+    double restored_area = 0.0;  // Σ over steps of the area the projection added
   };
+  void project_areas();
   std::span<const double> range(const std::vector<double>& v, int c) const {
     return {v.data() + cells_[c].offset, cells_[c].rest.size()};
   }
@@ -119,6 +131,7 @@ class ImmersedCells {
   // between calls, and the list of those set.
   std::vector<unsigned char> support_seen_;
   std::vector<std::size_t> support_nodes_;
+  bool area_projection_ = false;
 };
 
 }  // namespace erythro::membrane

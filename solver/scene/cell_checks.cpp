@@ -93,6 +93,9 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
   MembraneSetup M;
   if (!ib::parse_kernel(spec.kernel, M.kernel))
     reject(s, "membrane.kernel = \"" + spec.kernel + "\" is not one of \"cosine4\", \"peskin4\", \"roma3\", \"linear2\"");
+  if (spec.area_correction != "none" && spec.area_correction != "projection")
+    reject(s, "membrane.area_correction = \"" + spec.area_correction + "\" is not one of \"none\", \"projection\"");
+  M.area_projection = spec.area_correction == "projection";
   membrane::TensionLawType law{};
   if (!membrane::parse_tension_law(spec.law, law))
     reject(s, "membrane.law = \"" + spec.law + "\" is not one of \"neo_hookean\", \"skalak\", \"hookean\"");

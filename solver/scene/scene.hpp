@@ -146,6 +146,9 @@ struct MembraneSpec {
   double area_modulus_Pa = 0.0;        // k_A [Pa] (area penalty ½k_A(A−A0)²/A0, per depth)
   double skalak_c = 1.0;               // Skalak's C (law = "skalak" only)
   std::string kernel = "cosine4";      // "cosine4" | "peskin4" | "roma3" | "linear2"
+  // "none", or "projection": each cell's enclosed area restored after every marker move
+  // (docs/model.md eq 3.14).
+  std::string area_correction = "none";
   // Interior (cytoplasm) viscosity by the index field (thesis §II.4, eqs 26–27). Absent:
   // the interior has the fluid's viscosity and no index field is built.
   std::optional<double> interior_viscosity_cP;  // RBC cytoplasm ≈ 6.0 cP (docs/parameters.md)

@@ -407,6 +407,13 @@ std::vector<KeySpec> make_keys() {
        .choices = {"cosine4", "peskin4", "roma3", "linear2"},
        .when_absent = quoted("cosine4"),
        .meaning = "Immersed-boundary kernel (`solver/ib/kernel.hpp`)"},
+      {.path = "membrane.area_correction",
+       .kind = Kind::string,
+       .choices = {"none", "projection"},
+       .when_absent = quoted("none"),
+       .meaning = "`projection`: after every marker move each cell gets its enclosed area at creation back along the "
+                  "area gradient (docs/model.md eq 3.14; the immersed boundary's leakage no longer accumulates; the "
+                  "area given back is written as `cell_<c>_area_restored`)"},
       {.path = "membrane.interior_viscosity_cP",
        .unit = "cP",
        .bound = positive,

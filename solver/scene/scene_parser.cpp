@@ -567,6 +567,7 @@ Scene read_scene(const Reader& r, const std::string& origin) {
     m.area_modulus_Pa = r.number("membrane.area_modulus_Pa");
     m.skalak_c = r.number("membrane.skalak_c");
     m.kernel = r.text("membrane.kernel");
+    m.area_correction = r.text("membrane.area_correction");
     if (r.has("membrane.interior_viscosity_cP"))
       m.interior_viscosity_cP = r.number("membrane.interior_viscosity_cP");
     m.interior_method = r.text("membrane.interior_method");

@@ -71,6 +71,7 @@ struct MembraneSetup {
   double interior_viscosity = 0.0;  // lattice ν_in (= exterior ν when no interior viscosity is set)
   double interior_tau = 0.0;        // ½ + 3ν_in
   long index_update_interval = 1;
+  bool area_projection = false;  // membrane.area_correction = "projection" (docs/model.md eq 3.14)
   // Morse aggregation between cells (lattice units), only with [aggregation].
   std::optional<aggregation::MorseParameters> aggregation;
   double aggregation_flat_gap = 0.0;  // flat-contact equilibrium gap d* (h), shown by `check`

@@ -17,6 +17,7 @@ CellPhysics::CellPhysics(const scene::MembraneSetup& setup, double exterior_visc
       index_interval_(std::max(1L, setup.index_update_interval)) {
   for (const scene::CellSetup& c : setup.cells)
     cells_.add_cell(c.shape, membrane::RestShape::from_polygon(c.rest.size() != 0 ? c.rest : c.shape), c.model);
+  cells_.set_area_projection(setup.area_projection);
   if (setup.aggregation || setup.repulsion)
     contacts_.emplace(fluid::domain_of(lattice.grid(), lattice.boundaries()),
                       aggregation::ContactLaw{setup.aggregation, setup.repulsion});

@@ -46,6 +46,8 @@ void CellShapeProbe::declare(std::vector<SeriesInfo>& series) const {
     series.push_back({p + "max_edge_strain", "", "max over edges of |l/l0 - 1|"});
     series.push_back({p + "marker_phase_deg", "deg", "mean angle the markers turned about the centroid since the start"});
     series.push_back({p + "marker0_angle_deg", "deg", "angle of marker 0 about the centroid, continued"});
+    if (cells_.cells().area_projection())  // docs/model.md eq 3.14
+      series.push_back({p + "area_restored", "", "area the projection gave back so far, over the cell's area"});
   }
   series.push_back({"cells_max_area_change", "", "max over cells and tracked steps of |A/A0 - 1|"});
   series.push_back({"cells_max_edge_strain", "", "max over cells, edges and tracked steps of |l/l0 - 1|"});
@@ -131,6 +133,7 @@ void CellShapeProbe::sample(const ProbeContext& context, std::span<double> value
     values[k++] = max_edge_strain(cells, c);
     values[k++] = mean_phase;
     values[k++] = s.marker0_start + s.phase[0];
+    if (cells.area_projection()) values[k++] = cells.restored_area_fraction(c);
   }
   first_ = false;
   track_extremes();  // the samples count too

@@ -42,7 +42,7 @@ restart() {
 restart fluid "$SRC/scenes/poiseuille.toml" 400 150 --set output.fields_interval_steps=100
 restart cells "$SRC/scenes/capsule_shear.toml" 400 171 --set output.fields_interval_steps=100 \
   --set output.diagnostics_interval_steps=10 --set membrane.interior_viscosity_cP=6.0 \
-  --set membrane.index_update_interval=3
+  --set membrane.index_update_interval=3 --set membrane.area_correction=\"projection\"
 restart cells_aggregation "$SRC/verification/aggregation/doublet.toml" 300 131 \
   --set output.fields_interval_steps=100 --set output.diagnostics_interval_steps=10
 RESTART_THREADS=1 restart transport_cells "$SRC/solver/tests/cli/checkpoint/transport_cells.toml" 600 320

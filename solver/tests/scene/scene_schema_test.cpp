@@ -78,6 +78,7 @@ const std::map<std::string, Accessor>& accessors() {
   static const std::map<std::string, Accessor> a = [] {
     std::map<std::string, Accessor> m = {
         {"scene.description", [](const Scene& s) -> Value { return s.description; }},
+        {"membrane.area_correction", [](const Scene& s) -> Value { return s.membrane->area_correction; }},
         {"fluid.density_kg_m3", [](const Scene& s) -> Value { return s.fluid.density_kg_m3; }},
         {"fluid.viscosity_cP", [](const Scene& s) -> Value { return s.fluid.viscosity_cP; }},
         {"domain.geometry", [](const Scene& s) -> Value { return s.domain.geometry; }},
