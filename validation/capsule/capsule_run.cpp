@@ -32,6 +32,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, 
       // Centre mid-channel, 0.123 h off the lattice symmetry in x.
       set("cells[0].center_um", (0.5 * nx + 0.123) * h_um, 0.5 * ny * h_um),
       set("cells[0].markers", markers)};
+  if (c.area_projection) set_up.push_back(set("membrane.area_correction", "\"projection\""));
   // Lattice shear rate, then the run length, sampling (0.1 strain units) and the stop rule
   // (|ΔD| over one strain unit, once the strain is min_strain) in steps.
   const double gamma = scene::derive_lattice(case_scene("validation/capsule/capsule.toml", set_up)).scales.time_s *
@@ -65,10 +66,12 @@ CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, 
   const auto& D = run.file.series("cell_0_taylor_deformation");
   const auto& theta = run.file.series("cell_0_orientation_deg");
   const auto& phase = run.file.series("cell_0_marker_phase_deg");
+  const auto& area = run.file.series("cell_0_area_change");
   for (std::size_t k = 1; k < step.size(); ++k) {  // every sample after the start
     r.strain_history.push_back(step[k] * gamma);
     r.D_history.push_back(D[k]);
     r.theta_history.push_back(theta[k]);
+    r.area_history.push_back(area[k]);
   }
   const std::size_t k = r.D_history.size();
   if (!run.ok() || k < 12) {
@@ -91,6 +94,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, 
   const double rate = (phase[last] - phase[first]) / ((step[last] - step[first]) * gamma);
   r.tt_period = 360.0 / std::abs(rate);  // in units of 1/γ̇
   r.area_change = run.file.series("cell_0_area_change").back();
+  if (run.file.has("cell_0_area_restored")) r.area_restored = run.file.series("cell_0_area_restored").back();
   const double cy_um = run.file.series("cell_0_centroid_y_um").back();
   r.centre_drift = std::abs(cy_um - 0.5 * ny * h_um) / a_um;
   return r;

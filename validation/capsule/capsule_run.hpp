@@ -25,6 +25,7 @@ struct CapsuleConfig {
   double min_strain = 4.0;     // never stop before this strain
   double steady_drift = 1e-4;  // stop when |ΔD| over the last strain unit is below this
   bool pictures = false;       // keep pictures of the last field output (speed, membrane) for the report
+  bool area_projection = false;  // membrane.area_correction = "projection" (docs/model.md eq 3.14)
 };
 
 struct CapsuleResult {
@@ -41,10 +42,11 @@ struct CapsuleResult {
   double tt_period = 0;    // tank-treading period × γ̇ (time for a marker to go once round)
   double area_change = 0;  // A_end/A_0 − 1
   double centre_drift = 0; // |y_c − H/2| / a at the end
+  double area_restored = 0;  // with the projection: the area it gave back over the run, over A0
   // Wall time of the stages of the time loop (s): membrane forces, zeroing the force
   // field, spreading, fluid step, support-node velocity, interpolation and marker update.
   double t_forces = 0, t_zero = 0, t_spread = 0, t_fluid = 0, t_moments = 0, t_move = 0, wall_time_s = 0;
-  std::vector<double> strain_history, D_history, theta_history;  // every 0.1 strain unit
+  std::vector<double> strain_history, D_history, theta_history, area_history;  // every 0.1 strain unit
   std::vector<io::FieldPicture> pictures;  // CapsuleConfig::pictures: the last field output
 };
 
