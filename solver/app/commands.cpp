@@ -202,14 +202,15 @@ int profiles_command(const std::string& run_h5, double after_s) {
     const std::vector<double> phi = analysis::time_average(time, file.profile("haematocrit"), after_s);
     const std::vector<double> q = analysis::time_average(time, file.profile("cell_flux_um_s"), after_s);
     const std::vector<double>& y = file.profile_y_um();
-    std::printf("profiles across the channel, time-averaged over %zu samples from t = %.6g s to %.6g s "
+    // Every line but the table's starts with '#': numpy.loadtxt or gnuplot read the output as is.
+    std::printf("# profiles across the channel, time-averaged over %zu samples from t = %.6g s to %.6g s "
                 "(docs/model.md eqs 12.6, 12.7)\n",
                 time.size() - first, time[first], time.back());
-    std::printf("%12s %18s %12s %16s\n", "y_um", "velocity_x_um_s", "haematocrit", "cell_flux_um_s");
+    std::printf("# %10s %18s %12s %16s\n", "y_um", "velocity_x_um_s", "haematocrit", "cell_flux_um_s");
     for (std::size_t j = 0; j < y.size(); ++j) std::printf("%12.6g %18.8g %12.6g %16.8g\n", y[j], u[j], phi[j], q[j]);
     const analysis::ChannelHaematocrits h = analysis::channel_haematocrits(phi, q, u);
-    std::printf("tube haematocrit H_t = %.6g (row mean of the haematocrit)\n", h.tube);
-    std::printf("discharge haematocrit H_d = %.6g (the cells' flux over the flow)\n", h.discharge);
+    std::printf("# tube haematocrit H_t = %.6g (row mean of the haematocrit)\n", h.tube);
+    std::printf("# discharge haematocrit H_d = %.6g (the cells' flux over the flow)\n", h.discharge);
     return exit_code::ok;
   });
 }
