@@ -9,11 +9,13 @@
 #include <iostream>
 #include <new>
 #include <optional>
+#include <sstream>
 
 #include "app/progress.hpp"
 #include "app/resources.hpp"
 #include "app/restart.hpp"
 #include "analysis/dispersion.hpp"
+#include "analysis/profiles.hpp"
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/baseline_compare.hpp"
@@ -175,6 +177,40 @@ int dispersion_command(const std::string& run_h5, double after_s) {
       std::printf("D_yy = %.6g um^2/s (diffusive window %.6g-%.6g s, slope within 1 +- 0.2)\n", d.D, d.lag_from, d.lag_to);
     else
       std::printf("D_yy: no diffusive window (no 4 consecutive lags with slope within 1 +- 0.2): run longer\n");
+    return exit_code::ok;
+  });
+}
+
+int profiles_command(const std::string& run_h5, double after_s) {
+  return guarded([&] {
+    const io::RunFile file(run_h5);
+    for (const char* name : {"velocity_x_um_s", "haematocrit", "cell_flux_um_s"})
+      if (!file.has_profile(name))
+        throw InputError(run_h5 + ": no profile /profiles/" + name + ": profiles are written for channel scenes "
+                         "(walls at the bottom and top, periodic in x, a steady body force along x)");
+    const std::vector<double>& time = file.series("time_s");
+    const std::size_t first = analysis::first_sample_after(time, after_s);
+    if (first == time.size())
+    {
+      std::ostringstream why;
+      why << run_h5 << ": no sample at or after " << after_s << " s (the run's last is at "
+          << (time.empty() ? 0.0 : time.back()) << " s)";
+      throw InputError(why.str());
+    }
+    // eq 12.7: the trapezoidal time mean over the window
+    const std::vector<double> u = analysis::time_average(time, file.profile("velocity_x_um_s"), after_s);
+    const std::vector<double> phi = analysis::time_average(time, file.profile("haematocrit"), after_s);
+    const std::vector<double> q = analysis::time_average(time, file.profile("cell_flux_um_s"), after_s);
+    const std::vector<double>& y = file.profile_y_um();
+    // Every line but the table's starts with '#': numpy.loadtxt or gnuplot read the output as is.
+    std::printf("# profiles across the channel, time-averaged over %zu samples from t = %.6g s to %.6g s "
+                "(docs/model.md eqs 12.6, 12.7)\n",
+                time.size() - first, time[first], time.back());
+    std::printf("# %10s %18s %12s %16s\n", "y_um", "velocity_x_um_s", "haematocrit", "cell_flux_um_s");
+    for (std::size_t j = 0; j < y.size(); ++j) std::printf("%12.6g %18.8g %12.6g %16.8g\n", y[j], u[j], phi[j], q[j]);
+    const analysis::ChannelHaematocrits h = analysis::channel_haematocrits(phi, q, u);
+    std::printf("# tube haematocrit H_t = %.6g (row mean of the haematocrit)\n", h.tube);
+    std::printf("# discharge haematocrit H_d = %.6g (the cells' flux over the flow)\n", h.discharge);
     return exit_code::ok;
   });
 }

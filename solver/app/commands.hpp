@@ -22,5 +22,8 @@ int compare_command(const std::string& current, const std::string& baseline, con
 // `erythro dispersion RUN.h5`: the transverse dispersion of the cells from their centroid
 // heights (analysis/dispersion.hpp), samples from `after_s` on; prints the MSD table and D_yy.
 int dispersion_command(const std::string& run_h5, double after_s);
+// `erythro profiles RUN.h5`: the profiles across a channel (/profiles) averaged over the
+// samples from `after_s` on (analysis/profiles.hpp, eq 12.7); prints the table and H_t, H_d.
+int profiles_command(const std::string& run_h5, double after_s);
 
 }  // namespace erythro::app

@@ -1,4 +1,4 @@
-// The `erythro` command: run, check, compare, dispersion, bench, schema. Exit codes: docs/cli.md.
+// The `erythro` command: run, check, compare, dispersion, profiles, bench, schema. Exit codes: docs/cli.md.
 #include <CLI/CLI.hpp>
 #include <iostream>
 
@@ -49,6 +49,14 @@ int main(int argc, char** argv) {
   dispersion_cmd->add_option("--after-s", dispersion_after_s, "Leave out the samples before this time (s)")
       ->check(CLI::Range(0.0, 1e30));
 
+  std::string profiles_run;
+  double profiles_after_s = 0.0;
+  auto* profiles_cmd = cli.add_subcommand(
+      "profiles", "Time-averaged velocity and haematocrit profiles across a channel of a run (docs/model.md §12)");
+  profiles_cmd->add_option("run", profiles_run, "run.h5 of a channel run")->required()->check(CLI::ExistingFile);
+  profiles_cmd->add_option("--after-s", profiles_after_s, "Average from this time on (s): leave out the start-up")
+      ->check(CLI::Range(0.0, 1e30));
+
   app::BenchOptions bench;
   auto* bench_cmd = app::add_bench_subcommand(cli, bench);
 
@@ -70,6 +78,7 @@ int main(int argc, char** argv) {
   if (*check_cmd) return app::check_command(check_scene, check_overrides);
   if (*compare_cmd) return app::compare_command(current, baseline, tolerances);
   if (*dispersion_cmd) return app::dispersion_command(dispersion_run, dispersion_after_s);
+  if (*profiles_cmd) return app::profiles_command(profiles_run, profiles_after_s);
   if (*bench_cmd) return app::bench_command(bench);
   if (*schema_cmd) return app::schema_command(schema);
   std::cout << cli.help();

@@ -297,11 +297,15 @@ std::vector<double> read_dataset(hid_t parent, const std::string& name, std::vec
   return data;
 }
 
-AppendableSeries::AppendableSeries(hid_t parent, const std::string& name) {
-  const hsize_t zero = 0, unlimited = H5S_UNLIMITED, chunk = 256;
-  Handle space(check(H5Screate_simple(1, &zero, &unlimited), "dataspace"), H5Sclose);
+AppendableSeries::AppendableSeries(hid_t parent, const std::string& name, std::size_t row_width)
+    : row_width_(row_width) {
+  const int rank = row_width > 0 ? 2 : 1;
+  const hsize_t zero[2] = {0, row_width}, unlimited[2] = {H5S_UNLIMITED, row_width};
+  // 256 samples of a series; about 2048 values of a profile (at least one row)
+  const hsize_t chunk[2] = {row_width > 0 ? std::max<hsize_t>(1, 2048 / row_width) : 256, row_width};
+  Handle space(check(H5Screate_simple(rank, zero, unlimited), "dataspace"), H5Sclose);
   Handle props(check(H5Pcreate(H5P_DATASET_CREATE), "property list"), H5Pclose);
-  check_status(H5Pset_chunk(props.id(), 1, &chunk), "chunking");
+  check_status(H5Pset_chunk(props.id(), rank, chunk), "chunking");
   dataset_ = Handle(check(H5Dcreate2(parent, name.c_str(), H5T_IEEE_F64LE, space.id(), H5P_DEFAULT, props.id(), H5P_DEFAULT),
                           "cannot create series '" + name + "'"),
                     H5Dclose);
@@ -311,16 +315,21 @@ void AppendableSeries::append(double value) { append(std::span<const double>(&va
 
 void AppendableSeries::append(std::span<const double> values) {
   if (values.empty()) return;
-  const hsize_t count = values.size(), new_size = size_ + count, offset = size_;
-  check_status(H5Dset_extent(dataset_.id(), &new_size), "cannot extend series");
+  const int rank = row_width_ > 0 ? 2 : 1;
+  const hsize_t rows = row_width_ > 0 ? values.size() / row_width_ : values.size();
+  if (row_width_ > 0 && rows * row_width_ != values.size())
+    throw OutputError("HDF5: " + std::to_string(values.size()) + " values are not whole rows of " +
+                      std::to_string(row_width_) + " for " + object_name(dataset_.id()));
+  const hsize_t count[2] = {rows, row_width_}, new_size[2] = {size_ + rows, row_width_}, offset[2] = {size_, 0};
+  check_status(H5Dset_extent(dataset_.id(), new_size), "cannot extend series");
   Handle file_space(check(H5Dget_space(dataset_.id()), "dataspace"), H5Sclose);
-  check_status(H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, &offset, nullptr, &count, nullptr), "hyperslab");
-  Handle mem_space(check(H5Screate_simple(1, &count, nullptr), "dataspace"), H5Sclose);
+  check_status(H5Sselect_hyperslab(file_space.id(), H5S_SELECT_SET, offset, nullptr, count, nullptr), "hyperslab");
+  Handle mem_space(check(H5Screate_simple(rank, count, nullptr), "dataspace"), H5Sclose);
   const auto write = [&] {
     return H5Dwrite(dataset_.id(), H5T_NATIVE_DOUBLE, mem_space.id(), file_space.id(), H5P_DEFAULT, values.data());
   };
   checked_write(write, "cannot append to series " + object_name(dataset_.id()));
-  size_ += values.size();
+  size_ += rows;
 }
 
 std::vector<std::string> list(hid_t group) {

@@ -76,19 +76,22 @@ void write_dataset(hid_t parent, const std::string& name, const std::vector<long
 Handle open_dataset(hid_t parent, const std::string& name);
 std::vector<double> read_dataset(hid_t parent, const std::string& name, std::vector<hsize_t>* dims = nullptr);
 
-// A growable 1-D float64 dataset (chunked), for time series written as a run goes.
+// A growable float64 dataset (chunked), for time series written as a run goes: 1-D, or
+// with `row_width` > 0 2-D (samples, row_width), one row per sample (a profile).
 class AppendableSeries {
  public:
-  AppendableSeries(hid_t parent, const std::string& name);
+  AppendableSeries(hid_t parent, const std::string& name, std::size_t row_width = 0);
   void append(double value);
-  void append(std::span<const double> values);  // one extension and one write for a block
-  std::size_t size() const { return size_; }
+  // One extension and one write for a block (2-D: whole rows, values.size() a multiple of row_width).
+  void append(std::span<const double> values);
+  std::size_t size() const { return size_; }  // samples (rows)
   hid_t id() const { return dataset_.id(); }  // the dataset (for its attributes)
   void close() { dataset_.close(); }          // writes its last chunks; throws OutputError
 
  private:
   Handle dataset_;
   std::size_t size_ = 0;
+  std::size_t row_width_ = 0;
 };
 
 // Names of the objects directly inside a group, sorted.

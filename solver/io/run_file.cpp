@@ -18,6 +18,19 @@ RunFile::RunFile(const std::string& h5_path) : path_(h5_path) {
     h5::Handle diag = h5::open_group(file.id(), "diagnostics");
     for (const std::string& name : h5::list(diag.id())) series_[name] = h5::read_dataset(diag.id(), name);
   }
+  if (h5::exists(file.id(), "profiles")) {
+    h5::Handle group = h5::open_group(file.id(), "profiles");
+    profile_y_um_ = h5::read_dataset(group.id(), "y_um");
+    const std::size_t rows = profile_y_um_.size();
+    for (const std::string& name : h5::list(group.id())) {
+      if (name == "y_um" || rows == 0) continue;
+      const std::vector<double> values = h5::read_dataset(group.id(), name);
+      std::vector<std::vector<double>>& samples = profiles_[name];
+      for (std::size_t k = 0; (k + 1) * rows <= values.size(); ++k)
+        samples.emplace_back(values.begin() + static_cast<std::ptrdiff_t>(k * rows),
+                             values.begin() + static_cast<std::ptrdiff_t>((k + 1) * rows));
+    }
+  }
   if (h5::exists(file.id(), "timing")) {
     h5::Handle timing = h5::open_group(file.id(), "timing");
     for (const std::string& name : h5::attribute_names(timing.id()))
@@ -45,6 +58,18 @@ const std::vector<double>& RunFile::series(const std::string& name) const {
   const auto it = series_.find(name);
   if (it == series_.end()) throw std::out_of_range("run file " + path_ + ": no diagnostics series '" + name + "'");
   return it->second;
+}
+
+const std::vector<std::vector<double>>& RunFile::profile(const std::string& name) const {
+  const auto it = profiles_.find(name);
+  if (it == profiles_.end()) throw std::out_of_range("run file " + path_ + ": no profile '" + name + "'");
+  return it->second;
+}
+
+std::vector<std::string> RunFile::profile_names() const {
+  std::vector<std::string> names;
+  for (const auto& [name, samples] : profiles_) names.push_back(name);
+  return names;
 }
 
 std::size_t RunFile::samples() const { return series_.empty() ? 0 : series_.begin()->second.size(); }

@@ -1,6 +1,7 @@
 #pragma once
 // Reads a run.h5 written by io::RunWriter back (layout: run_writer.hpp): the diagnostics
-// series by name, metadata and per-stage timing, the cells' markers per field output.
+// series by name, the profiles across the channel, metadata and per-stage timing, the
+// cells' markers per field output.
 // The V&V cases judge what this reads, so they judge what the writer wrote.
 #include <map>
 #include <string>
@@ -26,6 +27,14 @@ class RunFile {
   // The series /diagnostics/<name>; throws std::out_of_range naming it if absent.
   const std::vector<double>& series(const std::string& name) const;
   std::size_t samples() const;
+  bool has_profile(const std::string& name) const { return profiles_.count(name) > 0; }
+  // The profile /profiles/<name>: one row per sample (that of /diagnostics/step[k]), one
+  // value per lattice row; throws std::out_of_range naming it if absent.
+  const std::vector<std::vector<double>>& profile(const std::string& name) const;
+  // /profiles/y_um, the rows' centres (empty without profiles).
+  const std::vector<double>& profile_y_um() const { return profile_y_um_; }
+  // The profiles' names in the file (y_um left out), sorted.
+  std::vector<std::string> profile_names() const;
   const std::string& status() const { return status_; }
   const std::string& diagnosis() const { return diagnosis_; }
   const std::string& scene_text() const { return scene_text_; }
@@ -38,6 +47,8 @@ class RunFile {
  private:
   std::string path_, status_, diagnosis_, scene_text_;
   std::map<std::string, std::vector<double>> series_;
+  std::map<std::string, std::vector<std::vector<double>>> profiles_;
+  std::vector<double> profile_y_um_;
   std::map<std::string, double> timing_;
   std::vector<CellsFrame> cells_;
 };

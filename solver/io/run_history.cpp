@@ -13,18 +13,67 @@
 namespace erythro::io {
 namespace {
 
-// Replaces the 1-D chunked series `name` of `group` by `values` (its attributes stay).
-void rewrite_series(hid_t group, const std::string& name, const std::vector<double>& values) {
+// Replaces the chunked series `name` of `group` by `values` (its attributes stay): 1-D, or
+// with `row_width` > 0 a profile of shape (samples, row_width).
+void rewrite_series(hid_t group, const std::string& name, const std::vector<double>& values,
+                    std::size_t row_width = 0) {
   h5::Handle dataset = h5::open_dataset(group, name);
-  const hsize_t n = values.size();
-  if (H5Dset_extent(dataset.id(), &n) < 0 ||
-      (n > 0 && H5Dwrite(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0))
-    throw OutputError("HDF5: cannot rewrite /diagnostics/" + name);
+  const hsize_t n[2] = {row_width > 0 ? values.size() / row_width : values.size(), row_width};
+  if (H5Dset_extent(dataset.id(), n) < 0 ||
+      (!values.empty() && H5Dwrite(dataset.id(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()) < 0))
+    throw OutputError("HDF5: cannot rewrite the series " + name + " of the restarted run");
+}
+
+// The rows of the profiles (/profiles, one row per diagnostics sample) of `previous` before
+// its first `keep` samples, by name (flattened, `row_width` values a row); empty with `why`
+// set when they cannot be carried over.
+std::map<std::string, std::vector<double>> profile_rows_before(hid_t previous, hid_t file, std::size_t keep,
+                                                               std::size_t& row_width, std::string& why) {
+  const bool old_has = h5::exists(previous, "profiles"), new_has = h5::exists(file, "profiles");
+  if (old_has != new_has) {
+    why = "its profiles differ from this run's";
+    return {};
+  }
+  if (!new_has) return {};
+  h5::Handle old_group = h5::open_group(previous, "profiles");
+  h5::Handle new_group = h5::open_group(file, "profiles");
+  const std::vector<std::string> names = h5::list(new_group.id());
+  if (h5::list(old_group.id()) != names ||
+      h5::read_dataset(old_group.id(), "y_um") != h5::read_dataset(new_group.id(), "y_um")) {
+    why = "its profiles differ from this run's";
+    return {};
+  }
+  row_width = h5::read_dataset(new_group.id(), "y_um").size();
+  std::map<std::string, std::vector<double>> rows;
+  for (const std::string& name : names) {
+    if (name == "y_um") continue;
+    std::vector<double> values = h5::read_dataset(old_group.id(), name);
+    if (values.size() < keep * row_width) {  // cut short by a kill between two appends
+      why = "its profile " + name + " is shorter than its step series";
+      return {};
+    }
+    values.resize(keep * row_width);
+    rows[name] = std::move(values);
+  }
+  return rows;
+}
+
+// Puts `rows` in front of each profile of `file`.
+void prepend_profile_rows(hid_t file, const std::map<std::string, std::vector<double>>& rows, std::size_t row_width) {
+  if (rows.empty()) return;
+  h5::Handle group = h5::open_group(file, "profiles");
+  for (const auto& [name, before] : rows) {
+    std::vector<double> values = before;
+    const std::vector<double> own = h5::read_dataset(group.id(), name);
+    values.insert(values.end(), own.begin(), own.end());
+    rewrite_series(group.id(), name, values, row_width);
+  }
 }
 
 // The diagnostics samples of `previous` before `step`, by series name; empty with `why`
 // set when they cannot be carried over.
-std::map<std::string, std::vector<double>> samples_before(hid_t previous, hid_t file, long step, std::string& why) {
+std::map<std::string, std::vector<double>> samples_before(hid_t previous, hid_t file, long step, std::size_t& keep,
+                                                          std::string& why) {
   h5::Handle old_group = h5::open_group(previous, "diagnostics");
   h5::Handle new_group = h5::open_group(file, "diagnostics");
   const std::vector<std::string> names = h5::list(new_group.id());
@@ -33,8 +82,8 @@ std::map<std::string, std::vector<double>> samples_before(hid_t previous, hid_t 
     return {};
   }
   const std::vector<double> steps = h5::read_dataset(old_group.id(), "step");
-  const std::size_t keep =
-      static_cast<std::size_t>(std::lower_bound(steps.begin(), steps.end(), static_cast<double>(step)) - steps.begin());
+  keep = static_cast<std::size_t>(std::lower_bound(steps.begin(), steps.end(), static_cast<double>(step)) -
+                                  steps.begin());
   std::map<std::string, std::vector<double>> samples;
   for (const std::string& name : names) {
     std::vector<double> values = h5::read_dataset(old_group.id(), name);
@@ -134,9 +183,13 @@ std::string carry_over_history(const std::string& previous_h5, const std::string
     std::string why;
     try {
       h5::Handle previous = h5::open_file_read(previous_h5);
-      const auto samples = samples_before(previous.id(), file.id(), checkpoint_step, why);
+      std::size_t keep = 0, row_width = 0;
+      const auto samples = samples_before(previous.id(), file.id(), checkpoint_step, keep, why);
+      const auto profile_rows =
+          why.empty() ? profile_rows_before(previous.id(), file.id(), keep, row_width, why) : decltype(samples){};
       if (why.empty()) {
         prepend_samples(file.id(), samples);
+        prepend_profile_rows(file.id(), profile_rows, row_width);
         copy_frames(previous.id(), file.id(), "fields", checkpoint_step);
         copy_frames(previous.id(), file.id(), "cells", checkpoint_step);
       }

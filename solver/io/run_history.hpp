@@ -2,7 +2,8 @@
 // The run.h5 of a restarted run (docs/cli.md "Checkpoints and restart"). The restarted run
 // writes its own run.h5 from the checkpoint's step on; afterwards the interrupted run's
 // history is carried over into it: the diagnostics samples before the checkpoint's step go
-// in front of the restarted run's own (series by name), and its field and cell frames
+// in front of the restarted run's own (series by name; the rows of /profiles of the same
+// samples likewise), and its field and cell frames
 // before that step are copied into /fields and /cells; run.xdmf is then rewritten to index
 // every frame. /metadata records restarted_from_step and history (where the samples before
 // it came from, or that the file starts at the checkpoint).

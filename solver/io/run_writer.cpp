@@ -208,6 +208,37 @@ void RunWriter::on_sample(long /*step*/, std::span<const double> values) {
   if (pending_.size() < series_.size()) pending_.resize(series_.size());
   for (std::size_t k = 0; k < values.size() && k < series_.size(); ++k) pending_[k].push_back(values[k]);
   ++pending_samples_;
+  if (profiles_.empty()) flush_if_due();  // otherwise after the sample's profiles (on_profiles)
+}
+
+void RunWriter::on_profiles_declared(std::span<const sim::ProfileInfo> profiles) {
+  guarded([&] {
+    profiles_group_ = h5::create_group(file_.id(), "profiles");
+    const auto ny = static_cast<std::size_t>(setup_.grid.ny);
+    const double h_um = setup_.scales.length_m * 1e6;
+    std::vector<double> y(ny);
+    for (std::size_t j = 0; j < ny; ++j) y[j] = (static_cast<double>(j) + 0.5) * h_um;
+    h5::write_dataset(profiles_group_.id(), "y_um", y);
+    write_units(profiles_group_.id(), "y_um", "um");
+    for (const sim::ProfileInfo& info : profiles) {
+      profiles_.push_back(std::make_unique<h5::AppendableSeries>(profiles_group_.id(), info.name, ny));
+      h5::write_attrs(profiles_.back()->id(), {{"units", info.unit}, {"description", info.description}});
+    }
+    pending_profiles_.assign(profiles_.size(), {});
+  });
+}
+
+void RunWriter::on_profiles(long /*step*/, std::span<const double> values) {
+  // Buffered with the diagnostics samples, and written with them: row k of a profile is
+  // always the sample of /diagnostics/step[k], also in a file cut short by a kill.
+  const std::size_t rows = static_cast<std::size_t>(setup_.grid.ny);
+  for (std::size_t k = 0; k < pending_profiles_.size() && (k + 1) * rows <= values.size(); ++k)
+    pending_profiles_[k].insert(pending_profiles_[k].end(), values.begin() + static_cast<std::ptrdiff_t>(k * rows),
+                                values.begin() + static_cast<std::ptrdiff_t>((k + 1) * rows));
+  flush_if_due();
+}
+
+void RunWriter::flush_if_due() {
   const double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - last_flush_).count();
   if (pending_samples_ >= kFlushSamples || since >= kFlushSeconds) guarded([&] { flush_samples(); });
 }
@@ -218,6 +249,10 @@ void RunWriter::flush_samples() {
   for (std::size_t k = 0; k < pending_.size(); ++k) {
     series_[k]->append(pending_[k]);
     pending_[k].clear();
+  }
+  for (std::size_t k = 0; k < pending_profiles_.size(); ++k) {
+    profiles_[k]->append(pending_profiles_[k]);
+    pending_profiles_[k].clear();
   }
   pending_samples_ = 0;
   h5::flush(file_.id());
@@ -384,6 +419,9 @@ void RunWriter::close_and_commit() {
 void RunWriter::close_file() {
   for (auto& series : series_) series->close();
   series_.clear();
+  for (auto& profile : profiles_) profile->close();
+  profiles_.clear();
+  profiles_group_.close();
   diagnostics_group_.close();
   fields_group_.close();
   cells_group_.close();
@@ -392,6 +430,8 @@ void RunWriter::close_file() {
 
 void RunWriter::discard() noexcept {
   series_.clear();
+  profiles_.clear();
+  profiles_group_.reset();
   diagnostics_group_.reset();
   fields_group_.reset();
   cells_group_.reset();

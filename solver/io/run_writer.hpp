@@ -29,6 +29,12 @@
 //                     with [transport]: <species>_mean_uM, <species>_mass_balance_residual,
 //                     <species>_max_mass_balance_residual, and with [hemoglobin]
 //                     cell_<c>_saturation (simulation/probes/transport_probe.hpp)
+//   /profiles/*       only for a channel (simulation/probes/channel_profile_probe.hpp):
+//                     y_um (ny) the row centres (j + ½) h; per profile a 2-D dataset
+//                     (samples, ny) (attrs units, description), row k the sample of
+//                     /diagnostics/step[k]: velocity_x_um_s, the row's mean u_x, and
+//                     haematocrit, the share of the row's nodes inside a cell (docs/model.md
+//                     eq 12.6); time averages: `erythro profiles` (eq 12.7)
 //   /timing           attrs <stage>_s, <stage>_calls: wall time of each time-loop stage
 //   /fields/<step>/   density [kg/m³] (ny, nx), velocity [µm/s] (ny, nx, 3; z = 0), and one
 //                     concentration [µM] (ny, nx) per species, named as the species; attrs
@@ -63,6 +69,8 @@ class RunWriter : public sim::RunObserver {
   void on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) override;
   void on_series_declared(std::span<const sim::SeriesInfo> series) override;
   void on_sample(long step, std::span<const double> values) override;
+  void on_profiles_declared(std::span<const sim::ProfileInfo> profiles) override;
+  void on_profiles(long step, std::span<const double> values) override;
   void on_fields(long step, const fluid::Moments& moments) override;
   void on_cells(long step, const membrane::ImmersedCells& cells) override;
   void on_transport_fields(long step, const sim::TransportFields& fields) override;
@@ -86,7 +94,8 @@ class RunWriter : public sim::RunObserver {
   void close_file();        // every handle, each close checked
   void discard() noexcept;  // closes what it can and removes the temporary file
   void write_xdmf();        // beside the committed run.h5
-  void flush_samples();     // writes the buffered samples and flushes the file
+  void flush_samples();     // writes the buffered samples (and profiles) and flushes the file
+  void flush_if_due();      // flush_samples when a block is full or kFlushSeconds have passed
   h5::Handle frame_group(long step);  // /fields/<step>, created (and listed for XDMF) once
   // The XDMF frame of `step` being assembled (fields, cells); a new step commits the last.
   XdmfFrame& xdmf_frame(long step);
@@ -95,11 +104,13 @@ class RunWriter : public sim::RunObserver {
   std::string out_dir_;
   scene::LatticeSetup setup_;
   h5::Handle file_;
-  h5::Handle diagnostics_group_, fields_group_, cells_group_;
+  h5::Handle diagnostics_group_, fields_group_, cells_group_, profiles_group_;
   std::vector<std::unique_ptr<h5::AppendableSeries>> series_;  // one per declared series, in order
+  std::vector<std::unique_ptr<h5::AppendableSeries>> profiles_;  // one per declared profile, in order
   static constexpr std::size_t kFlushSamples = 256;
   static constexpr double kFlushSeconds = 2.0;
   std::vector<std::vector<double>> pending_;  // per series, samples not yet written
+  std::vector<std::vector<double>> pending_profiles_;  // per profile, rows not yet written
   std::size_t pending_samples_ = 0;
   std::chrono::steady_clock::time_point last_flush_ = std::chrono::steady_clock::now();
   std::optional<XdmfGrid> xdmf_grid_;  // known from on_start

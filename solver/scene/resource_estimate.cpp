@@ -76,7 +76,8 @@ ResourceEstimate estimate_resources(const Scene& s, const LatticeSetup& L) {
 
   // run.h5 (docs/cli.md): per field snapshot, density (1 per node), velocity (3: x, y and a
   // zero z) and one value per node per species; cells: positions (2), edges (2) and cell (1)
-  // per marker; diagnostics: one value per series per sample.
+  // per marker; diagnostics: one value per series per sample; a channel's profiles: ny values
+  // per profile per sample.
   const long steps = L.total_steps;
   e.field_snapshots = writes(steps, s.output.fields_interval_steps);
   double per_snapshot = 0.0;
@@ -97,6 +98,13 @@ ResourceEstimate estimate_resources(const Scene& s, const LatticeSetup& L) {
   e.diagnostics_samples = writes(steps, s.output.diagnostics_interval_steps) +
                           static_cast<double>(std::min(s.output.dense_diagnostics_steps, steps));
   e.output.push_back({"diagnostics", e.diagnostics_samples * series * kDouble});
+  // A channel (the condition of sim::ChannelProbe::applies) writes 3 profiles of ny values
+  // per sample (/profiles, simulation/probes/channel_profile_probe.hpp).
+  const fluid::BoundaryConfig& b = L.boundaries;
+  if (L.has_fluid && b.left.type == fluid::SideType::periodic && b.bottom.type == fluid::SideType::wall &&
+      b.top.type == fluid::SideType::wall && L.body_force[0] != 0.0 && L.body_force[1] == 0.0 &&
+      L.force_frequency == 0.0)
+    e.output.push_back({"profiles", e.diagnostics_samples * 3.0 * L.grid.ny * kDouble});
   return e;
 }
 

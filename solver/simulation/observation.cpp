@@ -89,6 +89,13 @@ void Observation::declare() {
   const std::string origin = scene_.source_path.empty() ? "scene" : scene_.source_path;
   for (std::size_t i = 0; i < scene_.stop_when.size(); ++i) stop_rules_.emplace_back(scene_.stop_when[i], i, series_, origin);
   observer_.on_series_declared(series_);
+  const std::size_t rows = static_cast<std::size_t>(setup_.grid.ny);
+  for (const auto& p : probes_) {
+    profile_offset_.push_back(profiles_.size() * rows);
+    p->declare_profiles(profiles_);
+  }
+  profile_row_.assign(profiles_.size() * rows, 0.0);
+  if (!profiles_.empty()) observer_.on_profiles_declared(profiles_);
 }
 
 bool Observation::healthy(long step) {
@@ -119,6 +126,15 @@ void Observation::sample(long step, const fluid::Moments* moments) {
     probes_[i]->sample(context, std::span<double>(row_).subspan(probe_offset_[i], end - probe_offset_[i]));
   }
   observer_.on_sample(step, row_);
+  if (!profiles_.empty()) {
+    for (std::size_t i = 0; i < probes_.size(); ++i) {
+      const std::size_t end = i + 1 < probes_.size() ? profile_offset_[i + 1] : profile_row_.size();
+      if (end == profile_offset_[i]) continue;
+      const std::span<double> values(profile_row_.data() + profile_offset_[i], end - profile_offset_[i]);
+      probes_[i]->sample_profiles(context, values);
+    }
+    observer_.on_profiles(step, profile_row_);
+  }
   for (StopRule& rule : stop_rules_)
     if (!control_.stop && rule.check(step, row_)) control_.end(RunStatus::stopped, rule.diagnosis());
 }

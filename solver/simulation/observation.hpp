@@ -37,7 +37,8 @@ class Observation {
               const CellPhysics* cells, const TransportPhysics* transport, std::vector<std::unique_ptr<Probe>>& probes,
               RunObserver& observer, RunControl& control);
 
-  // Sends the series names to the observer and binds the stop rules to them.
+  // Sends the series names (and the profiles', if any) to the observer and binds the stop
+  // rules to the series.
   void declare();
   // Observes the state after `step` steps (`final_state`: the run's last step).
   void observe(long step, bool final_state);
@@ -64,6 +65,9 @@ class Observation {
   std::vector<SeriesInfo> series_;
   std::vector<std::size_t> probe_offset_;  // first column of each probe in row_
   std::vector<double> row_;
+  std::vector<ProfileInfo> profiles_;
+  std::vector<std::size_t> profile_offset_;  // first value of each probe's profiles in profile_row_
+  std::vector<double> profile_row_;
   std::vector<StopRule> stop_rules_;
   std::vector<double> previous_ux_, previous_uy_;  // steady-state check
 };

@@ -5,6 +5,8 @@
 // (RunObserver::on_series_declared) and one row of values per sample (on_sample): the
 // run writer stores them as /diagnostics/<name> in run.h5, the V&V cases read them
 // from a SeriesRecorder. One function computes each diagnostic, for both.
+// A probe may also sample profiles: one value per lattice row j (y = (j + ½) h), at the
+// same samples (on_profiles; run.h5 /profiles/<name>, one row per diagnostics sample).
 #include <span>
 #include <string>
 #include <vector>
@@ -25,6 +27,13 @@ struct SeriesInfo {
   std::string description;  // one line
 };
 
+// A profile across the lattice rows: grid.ny values per sample, row j at y = (j + ½) h.
+struct ProfileInfo {
+  std::string name;         // e.g. "velocity_x_um_s"
+  std::string unit;         // e.g. "um/s", "" (dimensionless)
+  std::string description;  // one line
+};
+
 // What a probe may read at a sample: the state after `step` steps.
 struct ProbeContext {
   long step = 0;
@@ -41,6 +50,10 @@ class Probe {
   virtual void declare(std::vector<SeriesInfo>& series) const = 0;
   // Writes one value per declared series into `values`.
   virtual void sample(const ProbeContext& context, std::span<double> values) = 0;
+  // Profiles (optional): appends the probe's profiles, and writes them at a sample, one
+  // after the other (grid.ny values each, in declared order), into `values`.
+  virtual void declare_profiles(std::vector<ProfileInfo>& /*profiles*/) const {}
+  virtual void sample_profiles(const ProbeContext& /*context*/, std::span<double> /*values*/) {}
   // Optional per-step work (e.g. an extreme over every step, not only the samples).
   virtual void register_stages(TimeLoop& /*loop*/) {}
   // Checkpoint (common/state_record.hpp): what the probe carries from sample to sample

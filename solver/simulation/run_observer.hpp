@@ -52,6 +52,11 @@ class RunObserver {
   virtual void on_series_declared(std::span<const SeriesInfo>) {}
   // One value per declared series, at every diagnostics sample of a healthy state.
   virtual void on_sample(long /*step*/, std::span<const double> /*values*/) {}
+  // The probes' profiles (probe.hpp), once after on_series_declared; not called when no
+  // probe has one. Then, right after each on_sample, their values at that sample: the
+  // profiles one after the other, grid.ny values each, in declared order.
+  virtual void on_profiles_declared(std::span<const ProfileInfo>) {}
+  virtual void on_profiles(long /*step*/, std::span<const double> /*values*/) {}
   // Fields of a healthy state (lattice units).
   virtual void on_fields(long /*step*/, const fluid::Moments&) {}
   // The cells' markers, right after on_fields (only for scenes with [[cells]] and a fluid).
@@ -74,6 +79,12 @@ class ObserverList : public RunObserver {
   }
   void on_sample(long step, std::span<const double> values) override {
     for (auto* o : observers_) o->on_sample(step, values);
+  }
+  void on_profiles_declared(std::span<const ProfileInfo> profiles) override {
+    for (auto* o : observers_) o->on_profiles_declared(profiles);
+  }
+  void on_profiles(long step, std::span<const double> values) override {
+    for (auto* o : observers_) o->on_profiles(step, values);
   }
   void on_fields(long step, const fluid::Moments& m) override {
     for (auto* o : observers_) o->on_fields(step, m);

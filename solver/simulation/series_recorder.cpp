@@ -19,6 +19,25 @@ void SeriesRecorder::on_sample(long /*step*/, std::span<const double> values) {
   for (std::size_t k = 0; k < values.size() && k < values_.size(); ++k) values_[k].push_back(values[k]);
 }
 
+void SeriesRecorder::on_profiles_declared(std::span<const ProfileInfo> profiles) {
+  profiles_.assign(profiles.size(), {});
+  for (std::size_t k = 0; k < profiles.size(); ++k) profile_column_[profiles[k].name] = k;
+}
+
+void SeriesRecorder::on_profiles(long /*step*/, std::span<const double> values) {
+  if (profiles_.empty()) return;
+  const std::size_t rows = values.size() / profiles_.size();
+  for (std::size_t k = 0; k < profiles_.size(); ++k)
+    profiles_[k].emplace_back(values.begin() + static_cast<std::ptrdiff_t>(k * rows),
+                              values.begin() + static_cast<std::ptrdiff_t>((k + 1) * rows));
+}
+
+const std::vector<std::vector<double>>& SeriesRecorder::profile(const std::string& name) const {
+  const auto it = profile_column_.find(name);
+  if (it == profile_column_.end()) throw std::out_of_range("SeriesRecorder: no profile '" + name + "'");
+  return profiles_[it->second];
+}
+
 void SeriesRecorder::on_cells(long step, const membrane::ImmersedCells& cells) {
   if (!keep_cells_) return;
   CellsSnapshot s;

@@ -1,8 +1,8 @@
 #pragma once
 // An observer that keeps a run in memory: every diagnostics series by name (the same
-// values the run writer stores in /diagnostics), optionally the cells' markers at every
-// field output, the scene text and the summary. The V&V cases read their runs through
-// it; a library user can too.
+// values the run writer stores in /diagnostics), every profile by name (/profiles),
+// optionally the cells' markers at every field output, the scene text and the summary.
+// The V&V cases read their runs through it; a library user can too.
 #include <map>
 #include <string>
 #include <vector>
@@ -27,6 +27,8 @@ class SeriesRecorder : public RunObserver {
   void on_start(const scene::Scene& scene, const scene::LatticeSetup& setup) override;
   void on_series_declared(std::span<const SeriesInfo> series) override;
   void on_sample(long step, std::span<const double> values) override;
+  void on_profiles_declared(std::span<const ProfileInfo> profiles) override;
+  void on_profiles(long step, std::span<const double> values) override;
   void on_cells(long step, const membrane::ImmersedCells& cells) override;
   void on_transport_fields(long step, const TransportFields& fields) override;
   void on_finish(const RunSummary& summary) override { summary_ = summary; }
@@ -36,6 +38,10 @@ class SeriesRecorder : public RunObserver {
   const std::vector<double>& series(const std::string& name) const;
   std::size_t samples() const { return values_.empty() ? 0 : values_[0].size(); }
   const std::vector<SeriesInfo>& declared() const { return declared_; }
+  bool has_profile(const std::string& name) const { return profile_column_.count(name) > 0; }
+  // The profile `name` at every sample (one row of grid.ny values per sample, row j at
+  // y = (j + ½) h); throws std::out_of_range naming it if unknown.
+  const std::vector<std::vector<double>>& profile(const std::string& name) const;
   const std::vector<CellsSnapshot>& cell_snapshots() const { return snapshots_; }
   // The species field `name` at the latest field output (keep_transport); throws std::out_of_range.
   const std::vector<double>& transport_field(const std::string& name) const;
@@ -51,6 +57,8 @@ class SeriesRecorder : public RunObserver {
   std::vector<SeriesInfo> declared_;
   std::map<std::string, std::size_t> column_;
   std::vector<std::vector<double>> values_;  // per series
+  std::map<std::string, std::size_t> profile_column_;
+  std::vector<std::vector<std::vector<double>>> profiles_;  // per profile, per sample
   std::vector<CellsSnapshot> snapshots_;
   RunSummary summary_;
   std::string scene_text_;

@@ -14,6 +14,7 @@
 #include "simulation/observation.hpp"
 #include "simulation/probes/cell_shape_probe.hpp"
 #include "simulation/probes/channel_probe.hpp"
+#include "simulation/probes/channel_profile_probe.hpp"
 #include "simulation/probes/shear_probe.hpp"
 #include "simulation/probes/contact_probe.hpp"
 #include "simulation/probes/fluid_probe.hpp"
@@ -71,6 +72,8 @@ Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
     register_transport_stages();
     probes_.push_back(std::make_unique<TransportProbe>(*transport_));
   }
+  // Last, so that the other probes keep their checkpoint prefixes (probe_<i>); profiles only.
+  if (ChannelProbe::applies(setup_)) probes_.push_back(std::make_unique<ChannelProfileProbe>(cells_.get()));
   for (const auto& p : probes_) p->register_stages(loop_);
 }
 

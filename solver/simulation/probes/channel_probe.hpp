@@ -14,7 +14,7 @@
 //   discharge_haematocrit        Σ A_c U_c / (L H Ū): their share of the flow (U_c: cell c's
 //                                mean marker velocity along x; NaN while Ū = 0)
 // Only the current state is read; time averages are the user's (the series are written
-// at every diagnostics sample).
+// at every diagnostics sample). Profiles across the same channel: channel_profile_probe.hpp.
 #include "simulation/probe.hpp"
 
 namespace erythro::sim {

@@ -2,7 +2,7 @@
 # Checkpoint and restart (docs/cli.md "Checkpoints and restart"): for every coupling a run
 # interrupted after its checkpoint at step K and continued with `erythro run --restart`
 # ends bit for bit where the uninterrupted run of N steps ends: the fields, the cells'
-# markers and every diagnostics series of run.h5 (those before K carried over from the
+# markers, every diagnostics series and profile of run.h5 (those before K carried over from the
 # interrupted run's file) are identical, bit for bit. One run is killed with SIGKILL
 # right after its first checkpoint appears. A restart with a changed scene is refused.
 set -u

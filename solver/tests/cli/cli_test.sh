@@ -169,6 +169,16 @@ expect one_cell_run 0 'results: ' -- "$ERYTHRO" run "$ONE" --out one_cell --quie
 expect dispersion_table 0 'transverse dispersion of 1 cells, 11 samples' -- "$ERYTHRO" dispersion one_cell/run.h5
 expect dispersion_no_cells 2 'no cell centroid series' -- "$ERYTHRO" dispersion tg_same/run.h5
 
+# `erythro profiles`: a channel run gives its time-averaged profiles (80 rows) and haematocrits
+# (the circle's 448 nodes of 6400: H_t = 0.07); a window past the last sample, or a run that is
+# no channel, is an input error (exit 2).
+expect profiles_table 0 'time-averaged over 11 samples.*' -- "$ERYTHRO" profiles one_cell/run.h5
+expect profiles_rows 0 '^ +19\.875 .*tube haematocrit H_t = 0\.07 ' -- \
+  bash -c "\"$ERYTHRO\" profiles one_cell/run.h5 | tail -n 3 | tr '\n' ' '"
+expect profiles_window 0 'time-averaged over 6 samples from t = 1\.7' -- "$ERYTHRO" profiles one_cell/run.h5 --after-s 1.7e-7
+expect profiles_past_the_end 2 'no sample at or after 1 s' -- "$ERYTHRO" profiles one_cell/run.h5 --after-s 1
+expect profiles_no_channel 2 'no profile /profiles/velocity_x_um_s' -- "$ERYTHRO" profiles tg_same/run.h5
+
 no_partials no_partial_files
 
 echo "$((checks - failures)) passed, $failures failed"

@@ -130,7 +130,7 @@ def file_size_limit():
     out = os.path.join(WORK, "limit")
     settings = ("run.steps=4000", "output.fields_interval_steps=1000", "output.diagnostics_interval_steps=10")
     outcomes = []
-    for kib in range(0, 156, 12):  # the complete run.h5 has about 125 KiB
+    for kib in range(0, 520, 40):  # the complete run.h5 has about 480 KiB (300 of them /profiles)
         def limit(kib=kib):
             signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a failed write, not a killed process
             resource.setrlimit(resource.RLIMIT_FSIZE, (kib * 1024, resource.RLIM_INFINITY))

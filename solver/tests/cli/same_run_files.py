@@ -1,5 +1,5 @@
-"""Whether two run.h5 files hold bitwise the same run: under /fields, /cells and
-/diagnostics the same objects, attributes, shapes, types and bytes (checkpoint_test.sh).
+"""Whether two run.h5 files hold bitwise the same run: under /fields, /cells,
+/diagnostics and /profiles the same objects, attributes, shapes, types and bytes (checkpoint_test.sh).
 h5diff is not enough: it reports datasets of different lengths as "not comparable" and
 still exits 0. Prints each difference; exits 1 if there is any."""
 import sys
@@ -20,7 +20,7 @@ def contents(path):
                 out[name] = ("dataset", data.dtype.str, data.shape, data.tobytes())
             else:
                 out[name] = ("group",)
-        for group in ("fields", "cells", "diagnostics"):
+        for group in ("fields", "cells", "diagnostics", "profiles"):
             if group in f:
                 add(group, f[group])
                 f[group].visititems(lambda name, obj, g=group: add(f"{g}/{name}", obj))

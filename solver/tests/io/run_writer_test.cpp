@@ -1,11 +1,14 @@
 // The run writer: a finished run and an aborted run both leave a valid file in
-// place with their status; nothing is left under a temporary name.
+// place with their status; nothing is left under a temporary name; profiles are one row
+// per sample.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "io/h5.hpp"
+#include "io/run_file.hpp"
 #include "io/run_writer.hpp"
+#include "simulation/series_recorder.hpp"
 
 using namespace erythro;
 
@@ -146,4 +149,54 @@ TEST(RunWriter, RecordsTheAggregationStrength) {
       EXPECT_EQ(io::h5::read_attr_double(meta.id(), "aggregation_shear_rate_1_s"), 100.0);
     }
   }
+}
+
+TEST(RunWriter, ProfilesAreOneRowPerSample) {
+  // 300 samples (more than one buffered block of 256) of two profiles over the 3 rows:
+  // /profiles/<name> is (300, 3), row k the sample of /diagnostics/step[k], read back by
+  // io::RunFile and kept alike by sim::SeriesRecorder.
+  const auto dir = fresh_dir("erythro_writer_profiles");
+  const scene::LatticeSetup setup = small_setup();
+  sim::SeriesRecorder recorder;
+  {
+    io::RunWriter w(dir.string());
+    sim::ObserverList observers;
+    observers.add(w);
+    observers.add(recorder);
+    scene::Scene scene;
+    observers.on_start(scene, setup);
+    const std::vector<sim::SeriesInfo> series = {{"step", "", ""}, {"time_s", "s", ""}};
+    const std::vector<sim::ProfileInfo> profiles = {{"velocity_x_um_s", "um/s", "a"}, {"haematocrit", "", "b"}};
+    observers.on_series_declared(series);
+    observers.on_profiles_declared(profiles);
+    for (long k = 0; k < 300; ++k) {
+      const double s = static_cast<double>(k);
+      observers.on_sample(k, std::vector<double>{s, s * 1e-7});
+      observers.on_profiles(k, std::vector<double>{s, s + 0.25, s + 0.5, -s, -s - 0.25, -s - 0.5});
+    }
+    observers.on_finish(sim::RunSummary{});
+  }
+  const io::RunFile file((dir / "run.h5").string());
+  EXPECT_EQ(file.profile_y_um(), (std::vector<double>{0.5, 1.5, 2.5}));  // (j + ½) h, h = 1 µm
+  EXPECT_EQ(file.profile_names(), (std::vector<std::string>{"haematocrit", "velocity_x_um_s"}));
+  const auto& u = file.profile("velocity_x_um_s");
+  const auto& phi = file.profile("haematocrit");
+  ASSERT_EQ(u.size(), 300u);
+  ASSERT_EQ(phi.size(), 300u);
+  for (std::size_t k = 0; k < 300; ++k) {
+    const double s = file.series("step")[k];
+    EXPECT_EQ(u[k], (std::vector<double>{s, s + 0.25, s + 0.5})) << k;
+    EXPECT_EQ(phi[k], (std::vector<double>{-s, -s - 0.25, -s - 0.5})) << k;
+  }
+  EXPECT_EQ(recorder.profile("velocity_x_um_s"), u);
+  EXPECT_EQ(recorder.profile("haematocrit"), phi);
+  EXPECT_THROW(recorder.profile("nothing"), std::out_of_range);
+  EXPECT_THROW(file.profile("nothing"), std::out_of_range);
+  auto h5file = io::h5::open_file_read((dir / "run.h5").string());
+  auto group = io::h5::open_group(h5file.id(), "profiles");
+  std::vector<hsize_t> dims;
+  io::h5::read_dataset(group.id(), "velocity_x_um_s", &dims);
+  EXPECT_EQ(dims, (std::vector<hsize_t>{300, 3}));
+  auto dataset = io::h5::open_dataset(group.id(), "velocity_x_um_s");
+  EXPECT_EQ(io::h5::read_attr_string(dataset.id(), "units"), "um/s");
 }
