@@ -72,7 +72,9 @@ void CellPhysics::compute_marker_forces() {
 bool CellPhysics::index_beside_forces() const {
 #if defined(_OPENMP)
   // Only when the force stage would run on one thread anyway: inside the two-section
-  // region a nested parallel loop gets one thread, which would slow a threaded stage.
+  // region a nested parallel loop gets one thread, which would slow a threaded stage —
+  // the force stage's, and the index field's own, which spreads over the threads across
+  // cells when it runs alone (IndexField::update).
   const bool forces_threaded = cells_.threads_forces() ||
                                (contacts_ && aggregation::CellContacts::threads_forces(cells_.marker_count()));
   return omp_get_max_threads() > 1 && !forces_threaded;

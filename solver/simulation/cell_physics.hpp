@@ -38,8 +38,10 @@ class CellPhysics {
   // On two or more OpenMP threads, when the force stage runs on one thread anyway (fewer
   // than ImmersedCells::kParallelCells cells and CellContacts::kParallelMarkers
   // markers), the index field is rebuilt on a second thread beside the forces, in one
-  // stage "forces_and_index_field" (independent: the same bits). docs/performance.md,
-  // "Index field". Stages throw std::domain_error (non-finite marker) or
+  // stage "forces_and_index_field" (independent: the same bits). Otherwise (a threaded
+  // force stage: many cells) the stage "index_field" runs alone and spreads its own work
+  // over the threads across cells (IndexField::update). docs/performance.md, "The index
+  // field beside the force stage" and "The index field in parallel". Stages throw std::domain_error (non-finite marker) or
   // interior::FillLeakError (a membrane tangled).
   void register_stages(TimeLoop& loop, fluid::FluidLattice& lattice);
 
