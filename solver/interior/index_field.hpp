@@ -23,6 +23,7 @@
 //    and where the fill was.
 #include <array>
 #include <cstdint>
+#include <exception>
 #include <span>
 #include <string>
 #include <string_view>
@@ -32,11 +33,9 @@
 #include "common/state_record.hpp"
 #include "geometry/domain.hpp"
 #include "geometry/polygon.hpp"
-#include "interior/edge_table.hpp"
+#include "interior/band_pass.hpp"
 
 namespace erythro::interior {
-
-struct BoxAxis;  // geometry.hpp
 
 enum class Method { indexless, band_only, flood_fill, ray_casting };
 
@@ -78,12 +77,18 @@ double smoothed_heaviside(double d, double half_width = 2.0);
 
 class IndexField {
  public:
+  // From this many cells on, the cells' band passes run in parallel (OpenMP threads).
+  static constexpr int kParallelCells = 2;
+
   IndexField(const geometry::Domain& domain, IndexFieldOptions options);
 
   // Rebuilds I from the cells' polygons in lattice units (counter-clockwise; coordinates
   // may be unwrapped past a periodic side). Throws FillLeakError naming the cell and
   // where when a fill leaks (never silently accepted), std::domain_error for a non-finite
   // marker (a diverged membrane) and InputError for a polygon of fewer than 3 markers.
+  // From kParallelCells cells on, and when not called inside an OpenMP parallel region, the
+  // band passes, their merge, the reset and the τ rewrite use the OpenMP threads (the fills
+  // stay serial): the same bits, report and checkpoint record for any number of threads.
   const FillReport& update(std::span<const geometry::Polygon> cells);
   std::span<const double> values() const { return index_; }  // I per node, index y*nx + x
   const FillReport& report() const { return report_; }
@@ -106,15 +111,31 @@ class IndexField {
 
  private:
   struct CellStats {
-    double band_area = 0.0;    // Σ(1 − H(d)) over the cell's own band nodes
-    double perimeter = 0.0;    // of the polygon (band pass), for the leak bound
-    double signed_area = 0.0;  // of the polygon (band pass: its orientation; the leak check)
-    bool within_walls = true;  // no wall clips the polygon (then its area is signed_area)
-    long filled = 0;           // nodes set to 0 for this cell
+    detail::BandStats band;  // band pass: Σ(1 − H), perimeter, signed area, walls (band_pass.hpp)
+    long filled = 0;         // nodes set to 0 for this cell
   };
+  // Per cell, kept between updates (no allocation once grown).
+  struct CellWork {
+    detail::CellBand band;               // band nodes and start candidates, when found in parallel
+    std::vector<std::uint8_t> accepted;  // … per entry: a candidate no earlier cell had
+    std::vector<std::size_t> starts;     // the cell's start candidates, in band order
+    std::exception_ptr error;            // what its band pass threw
+  };
+  // Nodes one update changed, one list per block of rows (block_begin; `used` blocks).
+  struct ChangedNodes {
+    std::vector<std::vector<std::size_t>> lists;
+    int used = 0;
+  };
+
   void check_polygon(const geometry::Polygon& p, int cell) const;
-  void band_pass(const geometry::Polygon& p, int cell, CellStats& stats);
-  void classify_box(const BoxAxis& bx, const BoxAxis& by, int cell, CellStats& stats);
+  void set_blocks(int blocks);  // the blocks of rows of this update
+  std::size_t block_begin(int block, int blocks) const;  // first node of a block of rows
+  template <class F> void for_each_changed(const ChangedNodes& changed, int block, int blocks, F&& f) const;
+  void reset_changed(int threads);
+  detail::FieldWriter writer(int cell, int block);
+  void bands_one_after_another(std::span<const geometry::Polygon> cells);
+  void find_bands(std::span<const geometry::Polygon> cells, int threads);
+  void merge_bands(int threads);
   void flood_fill_cell(const geometry::Polygon& p, int cell, CellStats& stats);
   void ray_cast_cell(const geometry::Polygon& p, int cell, CellStats& stats);
   void window_starts(const geometry::Polygon& p, int cell, CellStats& stats, long limit);
@@ -127,23 +148,14 @@ class IndexField {
   std::vector<std::uint8_t> mark_;      // 0 free, 1 band (any cell), 2 filled
   std::vector<int> owner_;              // cell whose band last touched a node (−1: none)
   std::vector<int> candidate_;          // cell + 1 for which the node is a start candidate (0: none)
-  std::vector<std::size_t> starts_;     // start candidates of every cell, cell c in [starts_begin_[c], [c+1])
-  std::vector<std::size_t> starts_begin_;
-  std::vector<double> box_;             // per-cell scratch: best signed squared distance per node of
-                                        // the cell's box (BoxAxis), +inf where no edge reached
-  std::vector<std::array<int, 2>> span_;  // … per box row, the first and last column an edge visited
-  struct EdgeRow {
-    int row, first, last;  // box row and columns of one edge's row
-    double qy;             // node-row height above the edge's first marker
-  };
-  std::vector<EdgeRow> rows_;           // … the rows of the current edge
-  std::vector<double> box_d_, box_h_;   // … one box row's signed distances and eq-26 values
-  std::vector<int> col_node_, col_left_, col_right_;  // … per box column: grid column, box neighbours
-  std::vector<std::size_t> dirty_;      // nodes changed by the last update (reset by the next)
-  std::vector<std::size_t> previous_dirty_;  // those of the update before
+  std::vector<CellWork> work_;          // per cell
+  std::vector<detail::BandScratch> band_scratch_;  // per thread
+  int blocks_ = 0;                      // blocks of rows of this update (one per thread)
+  std::vector<int> block_of_row_;       // … the block of each row
+  ChangedNodes changed_;                // nodes changed by the last update (reset by the next)
+  ChangedNodes previous_changed_;       // those of the update before
   std::vector<std::size_t> stack_;      // scan-line seeds
   std::vector<double> crossings_;       // ray-casting scratch
-  EdgeTable edges_;                     // band-pass scratch: the current cell's edges and wedges
   std::vector<CellStats> stats_;
   FillReport report_;
 };

@@ -72,11 +72,16 @@ void CellPhysics::compute_marker_forces() {
 
 bool CellPhysics::index_beside_forces() const {
 #if defined(_OPENMP)
-  // Only when the force stage would run on one thread anyway: inside the two-section
-  // region a nested parallel loop gets one thread, which would slow a threaded stage.
+  // Inside the two-section region a nested parallel loop gets one thread: the force stage
+  // and the index field (which spreads over the threads across cells when it runs alone,
+  // IndexField::update) each run on one. On two threads that is measured as fast or faster
+  // than the two stages one after the other, each on both threads, from 2 to 128 cells
+  // (docs/performance.md, "The index field in parallel across cells"); on more threads it
+  // is kept only where the force stage runs on one thread anyway.
   const bool forces_threaded = cells_.threads_forces() ||
                                (contacts_ && aggregation::CellContacts::threads_forces(cells_.marker_count()));
-  return omp_get_max_threads() > 1 && !forces_threaded;
+  const int threads = omp_get_max_threads();
+  return threads == 2 || (threads > 2 && !forces_threaded);
 #else
   return false;
 #endif

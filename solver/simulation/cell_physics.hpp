@@ -35,11 +35,13 @@ class CellPhysics {
   //                spreading          f += Σ_m F_m δ_h(x − X_m)
   //   interpolate  interpolation      u of the fluid step at the markers' support nodes
   //   advect       marker_advection   X_m += U_m, periodic wrap
-  // On two or more OpenMP threads, when the force stage runs on one thread anyway (fewer
-  // than ImmersedCells::kParallelCells cells and CellContacts::kParallelMarkers
+  // On two OpenMP threads, and on more when the force stage runs on one thread anyway
+  // (fewer than ImmersedCells::kParallelCells cells and CellContacts::kParallelMarkers
   // markers), the index field is rebuilt on a second thread beside the forces, in one
-  // stage "forces_and_index_field" (independent: the same bits). docs/performance.md,
-  // "Index field". Stages throw std::domain_error (non-finite marker) or
+  // stage "forces_and_index_field" (independent: the same bits). Otherwise (three or more
+  // threads and a threaded force stage) the stage "index_field" runs alone and spreads its
+  // own work over the threads across cells (IndexField::update). docs/performance.md, "The index
+  // field beside the force stage" and "The index field in parallel". Stages throw std::domain_error (non-finite marker) or
   // interior::FillLeakError (a membrane tangled).
   void register_stages(TimeLoop& loop, fluid::FluidLattice& lattice);
 
@@ -57,8 +59,8 @@ class CellPhysics {
   // the time by which that two-thread region outlasted the force stage.
   double index_field_seconds() const { return index_seconds_; }
   double index_field_exposed_seconds() const { return index_exposed_seconds_; }
-  // Whether the index field is rebuilt beside the force stage (two or more OpenMP
-  // threads and a force stage that runs on one).
+  // Whether the index field is rebuilt beside the force stage (two OpenMP threads, or
+  // more and a force stage that runs on one).
   bool index_beside_forces() const;
   // What the index field's rebuilds so far reported (the first, at construction, included).
   struct FillHistory {
