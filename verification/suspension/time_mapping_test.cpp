@@ -156,8 +156,7 @@ void add_run(io::ResultRecord& record, const MappedRun& r, double d_theta, doubl
 
 io::Series curve_series(const std::string& name, const std::string& ylabel, const vv::Curve MappedRun::*which,
                         const MappedRun& r, const vv::Curve& limit) {
-  io::Series s{name + ", Re = " + number(r.Re), name + " against strain at Re = " +
-               number(r.Re) + " (reference: the Re -> 0 limit of the runs)", "strain gamma-dot t", ylabel,
+  io::Series s{name + ", Re = " + number(r.Re), name + " at Re = " + number(r.Re) + " (dashed: Re -> 0)", "strain gamma-dot t", ylabel,
                {}, {}, {}};
   for (std::size_t k = 0; k < limit.t.size(); ++k) {
     s.x.push_back(limit.t[k]);
