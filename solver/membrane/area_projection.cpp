@@ -16,12 +16,15 @@ double project_area(std::span<double> x, std::span<double> y, double target_area
   double area = 0.0, linear = 0.0, quadratic = 0.0;
   const auto gx = [&](std::size_t i) { return 0.5 * (y[next(i)] - y[prev(i)]); };
   const auto gy = [&](std::size_t i) { return 0.5 * (x[prev(i)] - x[next(i)]); };
+  double gxi = gx(0), gyi = gy(0);  // g_i, carried over from the previous vertex's g_{i+1}
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t j = next(i);
-    const double gxi = gx(i), gyi = gy(i), gxj = gx(j), gyj = gy(j);
+    const double gxj = gx(j), gyj = gy(j);
     area += x[i] * y[j] - x[j] * y[i];
     linear += x[i] * gyj - gxj * y[i] + gxi * y[j] - x[j] * gyi;
     quadratic += gxi * gyj - gxj * gyi;
+    gxi = gxj;
+    gyi = gyj;
   }
   area *= 0.5;
   linear *= 0.5;
@@ -38,11 +41,11 @@ double project_area(std::span<double> x, std::span<double> y, double target_area
   double xp = x[n - 1], yp = y[n - 1];
   for (std::size_t i = 0; i < n; ++i) {
     const double xn = i + 1 == n ? x0 : x[i + 1], yn = i + 1 == n ? y0 : y[i + 1];
-    const double gxi = 0.5 * (yn - yp), gyi = 0.5 * (xp - xn);
+    const double move_x = lambda * (0.5 * (yn - yp)), move_y = lambda * (0.5 * (xp - xn));
     xp = x[i];
     yp = y[i];
-    x[i] += lambda * gxi;
-    y[i] += lambda * gyi;
+    x[i] += move_x;
+    y[i] += move_y;
   }
   return target_area - area;
 }

@@ -57,19 +57,6 @@ double late_slope(const vv::CapsuleResult& r, const std::vector<double>& y) {
   return vv::least_squares_slope(s, v);
 }
 
-// Mean of D over the last strain unit (10 samples) minus its mean over the unit before: the change
-// per strain unit without the samples' jitter (the markers passing the lattice nodes move D by
-// about 1e-4 from sample to sample at these G).
-double unit_mean_change(const vv::CapsuleResult& r) {
-  const std::size_t k = r.D_history.size();
-  double last = 0.0, before = 0.0;
-  for (std::size_t i = 0; i < 10; ++i) {
-    last += r.D_history[k - 1 - i] / 10.0;
-    before += r.D_history[k - 11 - i] / 10.0;
-  }
-  return last - before;
-}
-
 }  // namespace
 
 TEST(CapsuleAreaConservation, SmallestCapillaryNumbers) {
@@ -121,7 +108,7 @@ TEST(CapsuleAreaConservation, SmallestCapillaryNumbers) {
     std::snprintf(g, sizeof g, "G%g", G);
     const std::string t = g;
     record.add_metric({"steady_" + t + "_projection", "|mean D over the last strain unit - over the unit before| with "
-                       "the projection", "", std::abs(unit_mean_change(p)), kSteady, 0.0, io::Comparison::at_most,
+                       "the projection", "", std::abs(p.D_unit_change), kSteady, 0.0, io::Comparison::at_most,
                        "the capsule case's steadiness criterion, 1e-4 per strain unit (issue 22 item 3: every G reaches "
                        "it), on unit means"});
     record.add_metric({"sample_jitter_" + t + "_projection", "|D(end) - D(end - 1 strain unit)| of single samples, with "

@@ -86,6 +86,11 @@ CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, 
     r.D += r.D_history[i] / 10.0;
     r.theta_deg += r.theta_history[i] / 10.0;
   }
+  if (k >= 20) {
+    double before = 0.0;
+    for (std::size_t i = k - 20; i < k - 10; ++i) before += r.D_history[i] / 10.0;
+    r.D_unit_change = r.D - before;
+  }
   // Tank-treading period T: in steady tank-treading a marker at angle φ moves at ω(φ) and
   // the markers (equally spaced in the Lagrangian label) have density ∝ 1/ω(φ), so the
   // mean of ω over all markers is 2π / ∮dφ/ω = 2π/T exactly. The mean marker phase over

@@ -38,7 +38,9 @@ struct CapsuleResult {
   int markers = 0;
   double D = 0;            // Taylor deformation, mean over the last strain unit
   double theta_deg = 0;    // inclination of the long axis to the flow, mean over the last strain unit
-  double drift = 0;        // |D(end) − D(end − 1 strain unit)|
+  double drift = 0;        // |D(end) − D(end − 1 strain unit)| (single samples)
+  double D_unit_change = 0;  // D's mean over the last strain unit minus its mean over the unit before
+                             // (no samples' jitter; 0 when the run has fewer than two units of samples)
   double tt_period = 0;    // tank-treading period × γ̇ (time for a marker to go once round)
   double area_change = 0;  // A_end/A_0 − 1
   double centre_drift = 0; // |y_c − H/2| / a at the end

@@ -16,6 +16,7 @@
 // docs/verification-suspension.md §8.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -40,9 +41,11 @@ constexpr double kWallShearRate = 400.0;  // 1/s: F = 2μγ̇_w/H
 // window is strain 20–40.
 constexpr double kStrain = 40.0, kSettled = 20.0;
 constexpr int kBlocks = 5;  // block means of four strain units over the settled window
-const std::vector<long> kSeeds{1, 2, 3, 4};
+constexpr std::array<long, 4> kSeeds{1, 2, 3, 4};
 // Quantiles for 3 degrees of freedom (four seeds): χ²_0.99 and Student's t_0.975.
 constexpr double kChi2_99_3 = 11.345, kT975_3 = 3.182;
+static_assert(kSeeds.size() == 4, "the quantiles above are those of three degrees of freedom");
+constexpr double kSampleStrain = 0.05;
 
 struct SeedRun {
   long seed = 0;
@@ -53,17 +56,19 @@ struct SeedRun {
 };
 
 SeedRun run_seed(const std::string& case_name, long seed) {
-  const double mu = 1.2e-3;
+  const double mu = vv::case_scene(kScene).fluid.viscosity_cP * 1e-3;
   const double force = 2.0 * mu * kWallShearRate / (kHeightUm * 1e-6);  // N/m³
-  const std::vector<std::string> o = {vv::set("domain.size_um", kLengthUm, kHeightUm),
-                                      vv::set("domain.spacing_um", kSpacingUm),
-                                      vv::set("cell_populations[0].markers", 69L),
-                                      vv::set("cell_populations[0].min_gap_um", kSpacingUm),
-                                      vv::set("cell_populations[0].seed", seed),
-                                      vv::set("body_force.density_N_m3", force, 0.0),
-                                      vv::set("run.duration_s", kStrain / kWallShearRate),
-                                      vv::set("output.fields_interval_steps", 0L),
-                                      vv::set("output.diagnostics_interval_steps", 287L)};  // 0.05 strain units
+  std::vector<std::string> o = {vv::set("domain.size_um", kLengthUm, kHeightUm),
+                                vv::set("domain.spacing_um", kSpacingUm),
+                                vv::set("cell_populations[0].markers", 69L),
+                                vv::set("cell_populations[0].min_gap_um", kSpacingUm),
+                                vv::set("cell_populations[0].seed", seed),
+                                vv::set("body_force.density_N_m3", force, 0.0),
+                                vv::set("run.duration_s", kStrain / kWallShearRate),
+                                vv::set("output.fields_interval_steps", 0L)};
+  // Every 0.05 strain units: Δt from the unit conversion of the scene's [time_mapping] (eq 10.8).
+  const double dt = scene::derive_lattice(vv::case_scene(kScene, o)).scales.time_s;
+  o.push_back(vv::set("output.diagnostics_interval_steps", std::lround(kSampleStrain / (kWallShearRate * dt))));
   char label[16];
   std::snprintf(label, sizeof label, "seed%ld", seed);
   const vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, o), case_name, label);

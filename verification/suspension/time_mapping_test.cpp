@@ -37,7 +37,6 @@ namespace {
 
 constexpr const char* kScene = "verification/suspension/time_mapping_shear.toml";
 constexpr double kShearRate = 100.0;  // 1/s, the scene's walls
-constexpr double kRadiusUm = 3.91, kSpacingUm = 0.4;
 // τ = 0.75: the explicit membrane update's stability numbers grow as (τ − ½)² Re (model.md §10);
 // at τ = 1 the area term passes its limit above Re ≈ 0.11, at 0.75 above Re ≈ 0.49.
 constexpr double kTau = 0.75;
@@ -51,24 +50,20 @@ std::string number(double v) {
   return b;
 }
 
-// Steps per strain unit at Re: 1/(γ̇Δt), Δt = (τ − ½)h²ρ_run/(3μ), ρ_run = Re μ/(γ̇a²) (10.1, 10.8).
-double steps_per_strain(double Re) {
-  return 3.0 * kRadiusUm * kRadiusUm / ((kTau - 0.5) * kSpacingUm * kSpacingUm * Re);
-}
-
 struct MappedRun {
   double Re = 0.0, strain = 0.0;
   vv::Curve theta, D;  // inclination (deg, continued) and Taylor deformation against strain γ̇t
-  double max_area_change = 0.0, wall_s = 0.0;
+  double max_area_change = 0.0, wall_s = 0.0, steps_per_strain = 0.0;
   long steps = 0;
   std::string scene_text;
 };
 
 MappedRun run_at(const std::string& case_name, double Re, double strain) {
-  const long interval = std::max(1L, std::lround(kSampleStrain * steps_per_strain(Re)));
-  const std::vector<std::string> o = {vv::set("time.tau", kTau), vv::set("time_mapping.reynolds", Re),
-                                      vv::set("run.duration_s", strain / kShearRate),
-                                      vv::set("output.diagnostics_interval_steps", interval)};
+  std::vector<std::string> o = {vv::set("time.tau", kTau), vv::set("time_mapping.reynolds", Re),
+                                vv::set("run.duration_s", strain / kShearRate)};
+  // Steps per strain unit 1/(γ̇Δt), Δt from the unit conversion (eqs 10.1, 10.8) of this Re.
+  const double per_strain = 1.0 / (kShearRate * scene::derive_lattice(vv::case_scene(kScene, o)).scales.time_s);
+  o.push_back(vv::set("output.diagnostics_interval_steps", std::max(1L, std::lround(kSampleStrain * per_strain))));
   char label[32];
   std::snprintf(label, sizeof label, "Re%g", Re);
   const vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, o), case_name, label);
@@ -76,6 +71,7 @@ MappedRun run_at(const std::string& case_name, double Re, double strain) {
   MappedRun out;
   out.Re = Re;
   out.strain = strain;
+  out.steps_per_strain = per_strain;
   const std::vector<double>& t = r.file.series("time_s");
   const std::vector<double>& theta = r.file.series("cell_0_inclination_deg");
   const std::vector<double>& D = r.file.series("cell_0_taylor_deformation");
@@ -145,7 +141,7 @@ void add_run(io::ResultRecord& record, const MappedRun& r, double d_theta, doubl
   record.add_run({{"reynolds", r.Re},
                   {"strain", r.strain},
                   {"steps", static_cast<double>(r.steps)},
-                  {"steps_per_strain", steps_per_strain(r.Re)},
+                  {"steps_per_strain", r.steps_per_strain},
                   {"max_inclination_deviation_deg", d_theta},
                   {"max_deformation_deviation", d_D},
                   {"final_inclination_deg", r.theta.y.back()},
