@@ -178,17 +178,21 @@ def overview_page_figure(records, path):
 # -- plain series --------------------------------------------------------------------
 
 def series_figure(series, path):
-    """y against x, with y_reference dashed when recorded."""
+    """y against x, with y_reference dashed when recorded; a short series (a study's
+    points rather than a history) is drawn with markers, x on a log axis when asked."""
     n = min(len(series.x), len(series.y))
     if n == 0:
         return False
     fig = _new_figure(6.0, 4.0)
     ax = fig.add_subplot()
-    ax.plot(series.x[:n], series.y[:n], "-", color="C0", lw=2, label=series.ylabel or "y")
+    ax.plot(series.x[:n], series.y[:n], "o-" if n <= 20 else "-", color="C0", lw=2,
+            label=series.ylabel or "y")
     ref = series.y_reference
     if ref is not None:
         m = min(len(series.x), len(ref))
         ax.plot(series.x[:m], ref[:m], "--", color="black", lw=1, label="reference")
+    if series.x_scale == "log" and np.all(series.x[:n] > 0):
+        ax.set_xscale("log")
     ax.set_xlabel(series.xlabel or "x")
     ax.set_ylabel(series.ylabel or "y")
     ax.set_title(series.title or series.name)

@@ -72,6 +72,7 @@ class Series:
     x: np.ndarray
     y: np.ndarray
     y_reference: Optional[np.ndarray]
+    x_scale: str = "linear"                        # "log" draws x on a logarithmic axis
 
 
 @dataclass
@@ -248,4 +249,4 @@ def _read_series(name, g):
     if y_reference is not None and y_reference.size == 0:
         y_reference = None
     return Series(name=name, x=read_floats(g, "x"), y=read_floats(g, "y"), y_reference=y_reference,
-                  **_attrs(g, texts=("title", "xlabel", "ylabel")))
+                  **_attrs(g, texts=("title", "xlabel", "ylabel")), x_scale=attr_text(g, "x_scale", "linear"))

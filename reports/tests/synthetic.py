@@ -75,6 +75,8 @@ def write_record(path, case, family="verification.fluid", verdict="pass", metric
                     g[key] = np.asarray(s[key], dtype=float)
             for key in ("title", "xlabel", "ylabel"):
                 _set_attr(g, key, s.get(key, ""), fixed)
+            if "x_scale" in s:
+                _set_attr(g, "x_scale", s["x_scale"], fixed)
         for fld in fields:
             _write_field(f, fld, fixed)
 

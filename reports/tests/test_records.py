@@ -52,6 +52,14 @@ class ReadRecord(TempDir):
         self.assertEqual([m.tolerance_reason for m in fixed.metrics],
                          [m.tolerance_reason for m in vlen.metrics])
 
+    def test_series_x_scale_is_read_and_defaults_to_linear(self):
+        path = self.path("scales.h5")
+        synthetic.write_record(path, "scales", series=[
+            dict(name="D_vs_G", x=[0.0025, 0.01, 0.2], y=[0.1, 0.16, 0.42], x_scale="log"),
+            dict(name="history", x=[0.1, 0.2], y=[0.3, 0.31])])
+        r = read_record(path)
+        self.assertEqual([s.x_scale for s in r.series], ["log", "linear"])
+
     def test_file_without_case_attribute_is_not_a_record(self):
         with h5py.File(self.path("other.h5"), "w") as f:
             f.attrs["kind"] = "mesh"

@@ -225,7 +225,10 @@ void ResultRecord::write(const std::string& path) const {
         h5::write_dataset(g.id(), "x", s.x);
         h5::write_dataset(g.id(), "y", s.y);
         if (!s.y_reference.empty()) h5::write_dataset(g.id(), "y_reference", s.y_reference);
-        h5::write_attrs(g.id(), {{"title", s.title}, {"xlabel", s.xlabel}, {"ylabel", s.ylabel}});
+        h5::write_attrs(g.id(), {{"title", s.title},
+                                 {"xlabel", s.xlabel},
+                                 {"ylabel", s.ylabel},
+                                 {"x_scale", std::string(s.log_x ? "log" : "linear")}});
       }
     }
     file.close();  // checked: the last metadata reaches the disk here

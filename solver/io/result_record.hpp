@@ -70,6 +70,7 @@ struct SpeedErrorSeries {
 struct Series {
   std::string name, title, xlabel, ylabel;
   std::vector<double> x, y, y_reference;  // y_reference may be empty
+  bool log_x = false;                      // the report draws x on a logarithmic axis
 };
 
 // A picture of a field for the report (docs/reports.md "Field pictures"): data[y][x]

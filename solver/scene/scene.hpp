@@ -134,6 +134,8 @@ struct StopWhenSpec {
   std::optional<double> above;         // value > above
   std::optional<double> change_below;  // |value − value window_steps earlier| < change_below
   long window_steps = 0;               // change_below only (>= 1)
+  bool compare_window_means = false;   // change_below only: compare the means of the samples in the
+                                       // last two windows instead of two single samples
   long min_steps = 0;                  // not checked before this many steps
   long after_steps = 0;                // run on this many steps after the condition first holds
 };

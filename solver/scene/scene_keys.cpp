@@ -325,6 +325,14 @@ std::vector<KeySpec> make_keys() {
        .when_absent = note("required with `change_below`"),
        .rule = "only with `change_below`",
        .meaning = "Steps between the two values `change_below` compares"},
+      {.path = "stop_when.compare",
+       .kind = Kind::string,
+       .choices = {"samples", "window_means"},
+       .when_absent = quoted("samples"),
+       .rule = "only with `change_below`",
+       .meaning = "What `change_below` compares: two single samples `window_steps` apart, or the means of the "
+                  "samples in the last two windows of `window_steps` (steadiness of a quantity that jitters from "
+                  "sample to sample)"},
       {.path = "stop_when.min_steps",
        .kind = Kind::integer,
        .unit = "steps",

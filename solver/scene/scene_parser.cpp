@@ -747,6 +747,9 @@ void read_stop_when(const Reader& r, Scene& s) {
     if (r.has(p + "above")) w.above = r.number(p + "above");
     if (r.has(p + "change_below")) w.change_below = r.number(p + "change_below");
     w.window_steps = r.integer(p + "window_steps", 0);
+    if (!w.change_below && r.has(p + "compare"))
+      r.fail(*r.find(p + "compare"), p + "compare", "is only allowed with change_below");
+    w.compare_window_means = r.text(p + "compare") == "window_means";
     if (w.change_below && w.window_steps < 1)
       throw InputError(r.where(entry) + ": missing key '" + p +
                        "window_steps' (required with change_below: the steps between the two values compared)");

@@ -25,7 +25,20 @@ bool StopRule::check(long step, std::span<const double> row) {
   const double v = row[column_];
   std::ostringstream why;
   bool holds = false;
-  if (spec_.change_below) {
+  if (spec_.change_below && spec_.compare_window_means) {
+    steps_.push_back(step);
+    values_.push_back(v);
+    // The samples in (step − W, step] against those in (step − 2W, step − W], once the history
+    // reaches back to step − 2W.
+    const long W = spec_.window_steps;
+    if (steps_.front() <= step - 2 * W) {
+      const double last = window_mean(step - W, step), before = window_mean(step - 2 * W, step - W);
+      const double change = std::abs(last - before);
+      holds = change < *spec_.change_below;
+      why << "the mean of " << spec_.series << " over " << W << " steps changed by " << change << " < "
+          << *spec_.change_below;
+    }
+  } else if (spec_.change_below) {
     // The latest earlier sample at least window_steps before this one.
     const auto at = std::upper_bound(steps_.begin(), steps_.end(), step - spec_.window_steps);
     if (at != steps_.begin()) {
@@ -53,6 +66,14 @@ bool StopRule::check(long step, std::span<const double> row) {
     diagnosis_ = d.str();
   }
   return triggered_at_ >= 0 && step >= triggered_at_ + spec_.after_steps;
+}
+
+double StopRule::window_mean(long after, long up_to) const {
+  const auto first = std::upper_bound(steps_.begin(), steps_.end(), after);
+  const auto end = std::upper_bound(first, steps_.end(), up_to);
+  double sum = 0.0;
+  for (auto it = first; it != end; ++it) sum += values_[static_cast<std::size_t>(it - steps_.begin())];
+  return end > first ? sum / static_cast<double>(end - first) : 0.0;
 }
 
 void StopRule::save_state(StateRecord& r, const std::string& prefix) const {

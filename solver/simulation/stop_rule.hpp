@@ -34,6 +34,9 @@ class StopRule {
   std::vector<double> values_;
   long triggered_at_ = -1;
   std::string diagnosis_;
+
+  // Mean of the earlier samples with after < step ≤ up_to (compare = "window_means").
+  double window_mean(long after, long up_to) const;
 };
 
 }  // namespace erythro::sim

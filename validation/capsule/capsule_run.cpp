@@ -8,35 +8,63 @@
 
 namespace erythro::vv {
 
-CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, const std::string& label) {
+namespace {
+
+constexpr double kRadiusUm = 4.0;  // the capsule's radius a (capsule.toml)
+
+// The overrides of capsule.toml for one level, and the lattice shear rate they give.
+struct CapsuleSetUp {
+  std::vector<std::string> overrides;
+  double gamma = 0;  // γ̇ in lattice units
+  long markers = 0;
+  int ny = 0;
+};
+
+CapsuleSetUp capsule_set_up(const CapsuleConfig& c) {
   // The physical set-up of one level: a = 4 µm in plasma (capsule.toml), h = a/(a/h),
   // γ̇ from the particle Reynolds number γ̇a²/ν, E_s from G = μγ̇a/E_s.
-  constexpr double a_um = 4.0;
   const scene::Scene base = case_scene("validation/capsule/capsule.toml");
   const double mu = base.fluid.viscosity_cP * 1e-3, nu = mu / base.fluid.density_kg_m3;
-  const double h_um = a_um / c.radius;
+  const double h_um = kRadiusUm / c.radius;
   const int nx = static_cast<int>(std::lround(c.length * c.radius));
   const int ny = static_cast<int>(std::lround(c.height * c.radius));
-  const double shear_rate = c.reynolds * nu / (a_um * a_um * 1e-12);  // 1/s
-  const double U = 0.5 * shear_rate * ny * h_um;                       // µm/s
-  const double Es_dyn_cm = mu * shear_rate * a_um * 1e-6 / c.capillary * 1e3;
-  const long markers = std::lround(c.markers_per_radius * c.radius);
-  std::vector<std::string> set_up = {
-      set("domain.spacing_um", h_um),
-      set("domain.size_um", nx * h_um, ny * h_um),
-      set("boundaries.bottom.velocity_um_s", -U, 0.0),
-      set("boundaries.top.velocity_um_s", U, 0.0),
-      set("membrane.shear_modulus_dyn_cm", Es_dyn_cm),
-      set("membrane.kernel", "\"" + std::string(ib::to_string(c.kernel)) + "\""),
-      set("cells[0].radius_um", a_um),
-      // Centre mid-channel, 0.123 h off the lattice symmetry in x.
-      set("cells[0].center_um", (0.5 * nx + 0.123) * h_um, 0.5 * ny * h_um),
-      set("cells[0].markers", markers)};
-  if (c.area_projection) set_up.push_back(set("membrane.area_correction", "\"projection\""));
-  // Lattice shear rate, then the run length, sampling (0.1 strain units) and the stop rule
-  // (|ΔD| over one strain unit, once the strain is min_strain) in steps.
-  const double gamma = scene::derive_lattice(case_scene("validation/capsule/capsule.toml", set_up)).scales.time_s *
-                       shear_rate;
+  const double shear_rate = c.reynolds * nu / (kRadiusUm * kRadiusUm * 1e-12);  // 1/s
+  const double U = 0.5 * shear_rate * ny * h_um;                                 // µm/s
+  const double Es_dyn_cm = mu * shear_rate * kRadiusUm * 1e-6 / c.capillary * 1e3;
+  CapsuleSetUp s;
+  s.ny = ny;
+  s.markers = std::lround(c.markers_per_radius * c.radius);
+  s.overrides = {set("domain.spacing_um", h_um),
+                 set("domain.size_um", nx * h_um, ny * h_um),
+                 set("boundaries.bottom.velocity_um_s", -U, 0.0),
+                 set("boundaries.top.velocity_um_s", U, 0.0),
+                 set("membrane.shear_modulus_dyn_cm", Es_dyn_cm),
+                 set("membrane.kernel", "\"" + std::string(ib::to_string(c.kernel)) + "\""),
+                 set("membrane.law", "\"" + c.law + "\""),
+                 set("cells[0].radius_um", kRadiusUm),
+                 // Centre mid-channel, 0.123 h off the lattice symmetry in x.
+                 set("cells[0].center_um", (0.5 * nx + 0.123) * h_um, 0.5 * ny * h_um),
+                 set("cells[0].markers", s.markers)};
+  if (c.area_projection) s.overrides.push_back(set("membrane.area_correction", "\"projection\""));
+  // The lattice shear rate through the unit conversion, which also checks the set-up (the
+  // membrane's stability limit among others) and throws InputError when `erythro run` would.
+  s.gamma = scene::derive_lattice(case_scene("validation/capsule/capsule.toml", s.overrides)).scales.time_s *
+            shear_rate;
+  return s;
+}
+
+}  // namespace
+
+void check_capsule(const CapsuleConfig& c) { capsule_set_up(c); }
+
+CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, const std::string& label) {
+  const CapsuleSetUp s = capsule_set_up(c);
+  const double gamma = s.gamma, h_um = kRadiusUm / c.radius;
+  const long markers = s.markers;
+  const int ny = s.ny;
+  std::vector<std::string> set_up = s.overrides;
+  // The run length, sampling (0.1 strain units) and the stop rule (unit means of D, once the
+  // strain is min_strain) in steps.
   const long sample_every = std::max(1L, std::lround(0.1 / gamma));
   set_up.push_back(set("run.steps", std::lround(c.max_strain / gamma)));
   set_up.push_back(set("output.diagnostics_interval_steps", sample_every));
@@ -101,7 +129,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, 
   r.area_change = run.file.series("cell_0_area_change").back();
   if (run.file.has("cell_0_area_restored")) r.area_restored = run.file.series("cell_0_area_restored").back();
   const double cy_um = run.file.series("cell_0_centroid_y_um").back();
-  r.centre_drift = std::abs(cy_um - 0.5 * ny * h_um) / a_um;
+  r.centre_drift = std::abs(cy_um - 0.5 * ny * h_um) / kRadiusUm;
   return r;
 }
 

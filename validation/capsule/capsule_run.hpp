@@ -15,6 +15,7 @@ namespace erythro::vv {
 
 struct CapsuleConfig {
   ib::KernelType kernel = ib::KernelType::cosine4;
+  std::string law = "neo_hookean";  // membrane.law: neo_hookean or hookean (same E_s, docs/model.md)
   double radius = 6.0;         // a/h
   double capillary = 0.05;     // G = μγ̇a/E_s
   double reynolds = 0.1;       // particle Reynolds number γ̇a²/ν
@@ -53,5 +54,9 @@ struct CapsuleResult {
 };
 
 CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, const std::string& label);
+
+// Builds the level's scene and converts it to lattice units without running it: throws
+// InputError where run_capsule would (an impossible or unstable set-up), in milliseconds.
+void check_capsule(const CapsuleConfig& c);
 
 }  // namespace erythro::vv

@@ -110,6 +110,10 @@ const std::map<std::string, Accessor>& accessors() {
         {"output.dense_diagnostics_steps", [](const Scene& s) -> Value { return s.output.dense_diagnostics_steps; }},
         {"output.checkpoint_interval_steps", [](const Scene& s) -> Value { return s.output.checkpoint_interval_steps; }},
         {"output.checkpoint_interval_s", [](const Scene& s) -> Value { return s.output.checkpoint_interval_s; }},
+        {"stop_when.compare",
+         [](const Scene& s) -> Value {
+           return std::string(s.stop_when.at(0).compare_window_means ? "window_means" : "samples");
+         }},
         {"stop_when.min_steps", [](const Scene& s) -> Value { return s.stop_when.at(0).min_steps; }},
         {"stop_when.after_steps", [](const Scene& s) -> Value { return s.stop_when.at(0).after_steps; }},
         {"limits.min_tau_margin", [](const Scene& s) -> Value { return s.limits.min_tau_margin; }},
