@@ -46,7 +46,7 @@ using namespace erythro;
 namespace {
 
 const std::vector<double> kLevels = {6, 8, 12, 16};  // cosine4's levels a/h
-const std::vector<double> kOtherKernelLevels = {8, 12, 16};  // cosine4's three finest below a/h = 24
+const std::vector<double> kOtherKernelLevels = {8, 12, 16};  // cosine4's three finest
 // The other kernels (neo-Hookean) at G = 0.1 and at the smallest G of the reference their explicit
 // update is stable at from a/h = 8 on (membrane/stability.hpp: Π_T ∝ 1/(G a/h) against limits
 // 17× (roma3) and 81× (linear2) below cosine4's; at a/h = 8 the scene check gives Π_T = 0.104 >
