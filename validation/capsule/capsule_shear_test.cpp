@@ -37,9 +37,9 @@
 #include "bim_reference.hpp"
 #include "capsule_bookkeeping.hpp"
 #include "capsule_run.hpp"
+#include "capsule_study.hpp"
 #include "common/case_support.hpp"
 #include "common/convergence.hpp"
-#include "capsule_study.hpp"
 #include "richardson.hpp"
 
 using namespace erythro;
