@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "common/error.hpp"
@@ -32,6 +33,8 @@ bool StopRule::check(long step, std::span<const double> row) {
     // reaches back to step − 2W.
     const long W = spec_.window_steps;
     if (steps_.front() <= step - 2 * W) {
+      // A window without a sample (window_steps below the sampling interval) has no mean (NaN):
+      // the condition does not hold.
       const double last = window_mean(step - W, step), before = window_mean(step - 2 * W, step - W);
       const double change = std::abs(last - before);
       holds = change < *spec_.change_below;
@@ -73,7 +76,7 @@ double StopRule::window_mean(long after, long up_to) const {
   const auto end = std::upper_bound(first, steps_.end(), up_to);
   double sum = 0.0;
   for (auto it = first; it != end; ++it) sum += values_[static_cast<std::size_t>(it - steps_.begin())];
-  return end > first ? sum / static_cast<double>(end - first) : 0.0;
+  return end > first ? sum / static_cast<double>(end - first) : std::numeric_limits<double>::quiet_NaN();
 }
 
 void StopRule::save_state(StateRecord& r, const std::string& prefix) const {

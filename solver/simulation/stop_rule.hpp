@@ -35,7 +35,8 @@ class StopRule {
   long triggered_at_ = -1;
   std::string diagnosis_;
 
-  // Mean of the earlier samples with after < step ≤ up_to (compare = "window_means").
+  // Mean of the earlier samples with after < step ≤ up_to (compare = "window_means"); NaN when
+  // there is none.
   double window_mean(long after, long up_to) const;
 };
 

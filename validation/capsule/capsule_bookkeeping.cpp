@@ -7,20 +7,13 @@
 #include <cstdio>
 #include <functional>
 
+#include "capsule_study.hpp"
 #include "common/concurrent_runs.hpp"
 #include "common/convergence.hpp"
 
 namespace erythro::vv {
 
-namespace {
-
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
-}  // namespace
+using capsule::fmt;
 
 std::string CapsuleBookkeeping::label_of(const CapsuleConfig& c, const std::string& role) {
   return role + "_" + c.law + "_" + std::string(ib::to_string(c.kernel)) + fmt("_G%g", c.capillary) +

@@ -10,29 +10,30 @@ namespace erythro::vv {
 
 namespace {
 
-constexpr double kRadiusUm = 4.0;  // the capsule's radius a (capsule.toml)
-
 // The overrides of capsule.toml for one level, and the lattice shear rate they give.
 struct CapsuleSetUp {
   std::vector<std::string> overrides;
   double gamma = 0;  // γ̇ in lattice units
   long markers = 0;
-  int ny = 0;
+  double a_um = 0, h_um = 0;  // the capsule's radius (capsule.toml) and the spacing a/(a/h)
+  double centre_y_um = 0;     // mid-channel
 };
 
 CapsuleSetUp capsule_set_up(const CapsuleConfig& c) {
-  // The physical set-up of one level: a = 4 µm in plasma (capsule.toml), h = a/(a/h),
-  // γ̇ from the particle Reynolds number γ̇a²/ν, E_s from G = μγ̇a/E_s.
+  // The physical set-up of one level: the capsule of capsule.toml (a = 4 µm) in plasma,
+  // h = a/(a/h), γ̇ from the particle Reynolds number γ̇a²/ν, E_s from G = μγ̇a/E_s.
   const scene::Scene base = case_scene("validation/capsule/capsule.toml");
   const double mu = base.fluid.viscosity_cP * 1e-3, nu = mu / base.fluid.density_kg_m3;
-  const double h_um = kRadiusUm / c.radius;
+  const double a_um = base.cells.at(0).radius_um, h_um = a_um / c.radius;
   const int nx = static_cast<int>(std::lround(c.length * c.radius));
   const int ny = static_cast<int>(std::lround(c.height * c.radius));
-  const double shear_rate = c.reynolds * nu / (kRadiusUm * kRadiusUm * 1e-12);  // 1/s
-  const double U = 0.5 * shear_rate * ny * h_um;                                 // µm/s
-  const double Es_dyn_cm = mu * shear_rate * kRadiusUm * 1e-6 / c.capillary * 1e3;
+  const double shear_rate = c.reynolds * nu / (a_um * a_um * 1e-12);  // 1/s
+  const double U = 0.5 * shear_rate * ny * h_um;                       // µm/s
+  const double Es_dyn_cm = mu * shear_rate * a_um * 1e-6 / c.capillary * 1e3;
   CapsuleSetUp s;
-  s.ny = ny;
+  s.a_um = a_um;
+  s.h_um = h_um;
+  s.centre_y_um = 0.5 * ny * h_um;
   s.markers = std::lround(c.markers_per_radius * c.radius);
   s.overrides = {set("domain.spacing_um", h_um),
                  set("domain.size_um", nx * h_um, ny * h_um),
@@ -41,9 +42,8 @@ CapsuleSetUp capsule_set_up(const CapsuleConfig& c) {
                  set("membrane.shear_modulus_dyn_cm", Es_dyn_cm),
                  set("membrane.kernel", "\"" + std::string(ib::to_string(c.kernel)) + "\""),
                  set("membrane.law", "\"" + c.law + "\""),
-                 set("cells[0].radius_um", kRadiusUm),
                  // Centre mid-channel, 0.123 h off the lattice symmetry in x.
-                 set("cells[0].center_um", (0.5 * nx + 0.123) * h_um, 0.5 * ny * h_um),
+                 set("cells[0].center_um", (0.5 * nx + 0.123) * h_um, s.centre_y_um),
                  set("cells[0].markers", s.markers)};
   if (c.area_projection) s.overrides.push_back(set("membrane.area_correction", "\"projection\""));
   // The lattice shear rate through the unit conversion, which also checks the set-up (the
@@ -59,9 +59,7 @@ void check_capsule(const CapsuleConfig& c) { capsule_set_up(c); }
 
 CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, const std::string& label) {
   const CapsuleSetUp s = capsule_set_up(c);
-  const double gamma = s.gamma, h_um = kRadiusUm / c.radius;
-  const long markers = s.markers;
-  const int ny = s.ny;
+  const double gamma = s.gamma;
   std::vector<std::string> set_up = s.overrides;
   // The run length, sampling (0.1 strain units) and the stop rule (unit means of D, once the
   // strain is min_strain) in steps.
@@ -81,7 +79,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, 
   r.scene_text = run.file.scene_text();
   r.pictures = run.pictures;
   r.shear_rate = gamma;
-  r.markers = static_cast<int>(markers);
+  r.markers = static_cast<int>(s.markers);
   r.steps = run.summary.steps;
   r.wall_time_s = run.wall_time_s;
   r.t_forces = run.file.stage_seconds("membrane_forces");
@@ -129,7 +127,7 @@ CapsuleResult run_capsule(const CapsuleConfig& c, const std::string& case_name, 
   r.area_change = run.file.series("cell_0_area_change").back();
   if (run.file.has("cell_0_area_restored")) r.area_restored = run.file.series("cell_0_area_restored").back();
   const double cy_um = run.file.series("cell_0_centroid_y_um").back();
-  r.centre_drift = std::abs(cy_um - 0.5 * ny * h_um) / kRadiusUm;
+  r.centre_drift = std::abs(cy_um - s.centre_y_um) / s.a_um;
   return r;
 }
 

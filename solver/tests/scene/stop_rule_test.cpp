@@ -57,6 +57,14 @@ TEST(StopRule, WindowMeansSeeADrift) {
     EXPECT_FALSE(rule.check(step, std::vector<double>{1e-4 * static_cast<double>(step)})) << step;
 }
 
+TEST(StopRule, WindowMeansNeedASampleInEachWindow) {
+  // Windows of 5 steps between samples 10 steps apart: every other window is empty, so the rule
+  // never holds (an empty window's mean is not 0).
+  const scene::StopWhenSpec spec = parse_rule("change_below = 1e-3\nwindow_steps = 5\ncompare = \"window_means\"\n");
+  sim::StopRule rule(spec, 0, kSeries, "rule.toml");
+  for (long step = 0; step <= 400; step += 10) EXPECT_FALSE(rule.check(step, std::vector<double>{0.0})) << step;
+}
+
 TEST(StopRule, CompareIsOnlyForChangeBelow) {
   try {
     parse_rule("below = 0.5\ncompare = \"window_means\"\n");
