@@ -64,7 +64,10 @@ struct Engine {
     cell_of.resize(N);
     edge.resize(N);
     ell.resize(N);
-    for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
+    const long n_cells = static_cast<long>(v.offsets.size()) - 1;  // each cell its own markers: the same bits
+#pragma omp parallel for schedule(static) if (N >= kParallelMarkers)
+    for (long q = 0; q < n_cells; ++q) {
+      const std::size_t c = static_cast<std::size_t>(q);
       const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
       for (std::size_t k = o; k < e; ++k) {
         const std::size_t next = k + 1 < e ? k + 1 : o;
@@ -125,7 +128,8 @@ struct Engine {
   // half-width per axis for every marker n of the cell. Skipped pairs are ones the test
   // r² < r_c² would drop anyway (margin 1e-9 against round-off), so the sums and their
   // order are unchanged: still bitwise the brute-force result.
-  void accumulate(std::size_t m, std::span<const std::size_t> cand, Sums& acc) {
+  void accumulate(std::size_t m, std::span<const std::size_t> cand, Sums& sums) {
+    Sums acc = sums;  // in registers: the loop's stores would otherwise go through memory
     const double Lx = domain.grid.nx, Ly = domain.grid.ny, ix = 1.0 / Lx, iy = 1.0 / Ly;
     const bool perx = domain.periodic_x, pery = domain.periodic_y;
     const double rc = potential.cutoff(), rc2 = rc * rc, skip2 = rc2 * (1.0 + 1e-9);
@@ -162,6 +166,7 @@ struct Engine {
         ++acc.k;
       }
     }
+    sums = acc;
   }
 
   // The walls' part (eq 4.13): W_m = Σ_walls W(s) and the normal force −W'(s) ℓ_m ∂s/∂X_m,
@@ -262,8 +267,10 @@ struct Engine {
 
 // Cell list over the domain: nb bins per axis of side n/nb ≥ r_c (at least 1 bin).
 struct CellList {
+  static constexpr std::size_t kMixed = SIZE_MAX;
   int nbx = 1, nby = 1;
   std::vector<std::size_t> start, items;  // markers of bin b: items[start[b] … start[b+1]), ascending
+  std::vector<std::size_t> owner;         // per bin: the one cell of its markers, kMixed, or none (empty)
 
   static int bins(int n, double rc) {
     // floor(n / r_c), with a 1e-9 margin so round-off in the bin index can never put two
@@ -293,9 +300,39 @@ struct CellList {
     for (std::size_t m = 0; m < N; ++m) items[fill[static_cast<std::size_t>(bin[m])]++] = m;  // ascending per bin
   }
 
-  // The distinct bins within ±1 of (bx, by), wrapped on periodic axes.
+  // owner[b] for every bin: markers are ascending per bin and a cell's markers are one
+  // index range, so the bin holds one cell iff its first and last marker share it.
+  void find_owners(const std::vector<std::size_t>& cell_of) {
+    const std::size_t bins = start.size() - 1;
+    owner.assign(bins, 0);
+    for (std::size_t b = 0; b < bins; ++b) {
+      if (start[b] == start[b + 1]) continue;
+      const std::size_t first = cell_of[items[start[b]]], last = cell_of[items[start[b + 1] - 1]];
+      owner[b] = first == last ? first : kMixed;
+    }
+  }
+
+  // Whether every marker of the (non-empty) bins `nb` belongs to one cell: then no marker
+  // of them has a partner of another cell, and their pair sums stay zero.
+  bool one_cell(const std::vector<int>& nb) const {
+    std::size_t cell = kMixed;
+    for (const int q : nb) {
+      const std::size_t b = static_cast<std::size_t>(q);
+      if (start[b] == start[b + 1]) continue;
+      if (owner[b] == kMixed || (cell != kMixed && owner[b] != cell)) return false;
+      cell = owner[b];
+    }
+    return true;
+  }
+
+  // The distinct bins within ±1 of (bx, by), wrapped on periodic axes, ascending.
   void neighbours(const geometry::Domain& d, int bx, int by, std::vector<int>& out) const {
     out.clear();
+    if (bx >= 1 && bx + 1 < nbx && by >= 1 && by + 1 < nby) {  // inside: nine distinct bins, row by row
+      for (int j = by - 1; j <= by + 1; ++j)
+        for (int i = bx - 1; i <= bx + 1; ++i) out.push_back(j * nbx + i);
+      return;
+    }
     for (int oy = -1; oy <= 1; ++oy) {
       int j = by + oy;
       if (d.periodic_y) j = (j + nby) % nby;
@@ -318,26 +355,33 @@ void run_cell_list(Engine& eng, const geometry::Domain& d, int nbx, int nby) {
   cl.nby = nby;
   std::vector<int> bin;
   cl.build(d, eng.v, bin);
+  cl.find_owners(eng.cell_of);
   const int nbins = nbx * nby;
 #pragma omp parallel if (eng.v.x.size() >= kParallelMarkers)
   {
     std::vector<int> nb;
-    std::vector<std::size_t> cand;
+    std::vector<std::size_t> cand, merged;
 #pragma omp for schedule(dynamic, 4)
     for (int b = 0; b < nbins; ++b) {
       const std::size_t b0 = cl.start[static_cast<std::size_t>(b)], b1 = cl.start[static_cast<std::size_t>(b) + 1];
       if (b0 == b1) continue;
-      // One sorted candidate list serves every marker of bin b (ascending = brute-force order).
       cl.neighbours(d, b % nbx, b / nbx, nb);
-      // Concatenate the bins' items and sort them (a few tens of candidates: std::sort in
-      // place is faster than merging the ascending runs with std::inplace_merge, which
-      // allocates a buffer per call; the same order, so the same bits).
+      // A neighbourhood of one cell's markers only (most of them at a short range): nothing
+      // to add, the sums keep their initial zeros (the same bits as visiting them).
+      if (cl.one_cell(nb)) continue;
+      // One ascending candidate list serves every marker of bin b (ascending = brute-force
+      // order): the bins' ascending runs merged one after the other into reused buffers
+      // (linear per run, no allocation once the buffers have grown; the same order as
+      // sorting them, so the same bits).
       cand.clear();
       for (const int q : nb) {
-        cand.insert(cand.end(), cl.items.begin() + static_cast<std::ptrdiff_t>(cl.start[static_cast<std::size_t>(q)]),
-                    cl.items.begin() + static_cast<std::ptrdiff_t>(cl.start[static_cast<std::size_t>(q) + 1]));
+        const auto first = cl.items.begin() + static_cast<std::ptrdiff_t>(cl.start[static_cast<std::size_t>(q)]);
+        const auto last = cl.items.begin() + static_cast<std::ptrdiff_t>(cl.start[static_cast<std::size_t>(q) + 1]);
+        if (first == last) continue;
+        merged.resize(cand.size() + static_cast<std::size_t>(last - first));
+        std::merge(cand.begin(), cand.end(), first, last, merged.begin());
+        cand.swap(merged);
       }
-      std::sort(cand.begin(), cand.end());
       for (std::size_t k = b0; k < b1; ++k) eng.pair_sums(cl.items[k], cand);
     }
   }

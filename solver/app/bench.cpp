@@ -558,6 +558,11 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
       ->check(CLI::Range(10, 1000000));
   cmd->add_option("--coupled-pairs", options.coupled.pairs, "Fluid-only and coupled runs per configuration")
       ->check(CLI::Range(1, 100));
+  cmd->add_flag("--aggregation", options.coupled.aggregation,
+                "Coupled step with Morse aggregation between the cells (De* = 5, thesis ch. IV)");
+  cmd->add_option("--index-interval", options.coupled.index_interval,
+                  "Index-field rebuild interval k of the coupled step (0: per box, the largest k with k U <= 0.1 h)")
+      ->check(CLI::Range(0L, 1000000L));
   return cmd;
 }
 

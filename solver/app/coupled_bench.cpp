@@ -54,8 +54,8 @@ int box_nodes(int cells) {
 }
 
 // The scene of an n × n box with `cells` cells (0: the fluid alone, without [membrane]);
-// health checked and diagnostics sampled once, at the last step.
-std::string scene_text(int n, int cells, long steps) {
+// health checked and diagnostics sampled once, at the last step. The wall speed is γ̇ n h / 2.
+std::string scene_text(int n, int cells, long steps, const CoupledBenchOptions& o, long index_interval) {
   const double side = n * kSpacingUm, wall_speed = 0.5 * kShearRatePerS * side;
   std::ostringstream s;
   s.precision(17);
@@ -70,9 +70,11 @@ std::string scene_text(int n, int cells, long steps) {
     s << "[membrane]\nlaw = \"neo_hookean\"\nshear_modulus_dyn_cm = 0.22973391866557774\n"
       << "bending_modulus_dyn_cm = 1.3784035119934664e-10\narea_modulus_Pa = 5875.547791958511\n"
       << "kernel = \"cosine4\"\ninterior_viscosity_cP = 6.0\ninterior_method = \"flood_fill\"\n"
+      << "index_update_interval = " << index_interval << "\n"
       << "[[cell_populations]]\nshape = \"biconcave\"\nradius_um = " << kRadiusUm << "\nmarkers = " << kMarkers
       << "\ncount = " << cells << "\nseed = 1\n"
       << "[repulsion]\npressure_Pa = 1.0\n";
+  if (cells > 0 && o.aggregation) s << "[aggregation]\nde_star = 5.0\n";  // thesis ch. IV
   return s.str();
 }
 
@@ -83,8 +85,9 @@ struct Prepared {
   scene::LatticeSetup setup;
 };
 
-Prepared prepare(int n, int cells, long steps) {
-  scene::Scene s = scene::parse_scene(scene_text(n, cells, steps), "bench_coupled_" + std::to_string(cells) + ".toml");
+Prepared prepare(int n, int cells, long steps, const CoupledBenchOptions& o, long index_interval) {
+  scene::Scene s = scene::parse_scene(scene_text(n, cells, steps, o, index_interval),
+                                      "bench_coupled_" + std::to_string(cells) + ".toml");
   scene::LatticeSetup setup = scene::derive_lattice(s);
   return {std::move(s), std::move(setup)};
 }
@@ -152,39 +155,63 @@ Measurement measure(const Prepared& coupled, const Prepared& fluid_only, int cel
 
 }  // namespace
 
+long supported_index_interval(double wall_speed_lattice) {
+  if (!(wall_speed_lattice > 0.0)) return 1;
+  return std::max(1L, static_cast<long>(std::floor(0.1 / wall_speed_lattice)));
+}
+
 void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
   record.set_parameter("coupled_scene", std::string("scenes/rbc_suspension_shear.toml, box sized per cell count"));
   record.set_parameter("coupled_area_fraction", kAreaFraction);
   record.set_parameter("coupled_markers_per_cell", static_cast<double>(kMarkers));
   record.set_parameter("coupled_steps_per_run", static_cast<double>(o.steps));
   record.set_parameter("coupled_pairs", static_cast<double>(o.pairs));
-  std::printf("\ncoupled step: biconcave cells (%d markers, flood-fill interior 6 cP) at area fraction %.2f in a shear "
-              "box, h = %.2f um; %ld steps per run, %d pair(s) (fluid only, then coupled), medians\n",
-              kMarkers, kAreaFraction, kSpacingUm, o.steps, o.pairs);
-  std::printf("%5s %9s %3s %6s %12s %12s %14s %14s %9s\n", "cells", "grid", "thr", "phi", "fluid-only", "coupled",
-              "fluid w/ cells", "extra/cell", "grid ovh");
-  std::printf("%5s %9s %3s %6s %12s %12s %14s %14s %9s\n", "", "", "", "", "us/step", "us/step", "us/step",
+  record.set_parameter("coupled_aggregation", std::string(o.aggregation ? "Morse, De* = 5" : "off"));
+  record.set_parameter("coupled_index_interval",
+                       o.index_interval > 0 ? std::to_string(o.index_interval)
+                                            : std::string("per box: the largest k with k U <= 0.1 h"));
+  std::printf("\ncoupled step: biconcave cells (%d markers, flood-fill interior 6 cP, index field every k steps) at "
+              "area fraction %.2f in a shear box, h = %.2f um, repulsion%s; at least %ld steps per run (a multiple of "
+              "k, plus one), %d pair(s) (fluid only, then coupled), medians\n",
+              kMarkers, kAreaFraction, kSpacingUm, o.aggregation ? " and Morse aggregation (De* = 5)" : "", o.steps,
+              o.pairs);
+  std::printf("%5s %9s %3s %6s %4s %12s %12s %14s %14s %9s\n", "cells", "grid", "thr", "phi", "k", "fluid-only",
+              "coupled", "fluid w/ cells", "extra/cell", "grid ovh");
+  std::printf("%5s %9s %3s %6s %4s %12s %12s %14s %14s %9s\n", "", "", "", "", "", "us/step", "us/step", "us/step",
               "us/(cell step)", "");
   std::vector<std::string> stage_lines;
   for (int cells : o.cells) {
     const int n = box_nodes(cells);
-    const Prepared coupled = prepare(n, cells, o.steps);
-    const Prepared fluid_only = prepare(n, 0, o.steps);
+    // The interval from the wall speed of this box (the fluid-only scene has no cells: k = 1).
+    const long k = o.index_interval > 0
+                       ? o.index_interval
+                       : supported_index_interval(prepare(n, 0, 10, o, 1).setup.boundaries.top.ux);
+    // A whole number m of rebuild intervals per run, at least four, and one step: steps n =
+    // 0 … mk run, and the index field is rebuilt before steps k, 2k, … mk (m rebuilds; the
+    // one at set-up is not timed), one per k steps.
+    const long steps = std::max(4 * k, (o.steps + k - 1) / k * k) + 1;
+    CoupledBenchOptions run = o;
+    run.steps = steps;
+    const Prepared coupled = prepare(n, cells, steps, o, k);
+    const Prepared fluid_only = prepare(n, 0, steps, o, 1);
     const double phi = cells * cell_area_um2() / (n * kSpacingUm * n * kSpacingUm);
     for (int threads : o.threads) {
       omp_set_num_threads(threads);
-      const Measurement m = measure(coupled, fluid_only, cells, o);
-      std::printf("%5d %4dx%-4d %3d %6.3f %12.1f %12.1f %14.1f %14.2f %9.3f\n", cells, n, n, threads, phi,
+      const Measurement m = measure(coupled, fluid_only, cells, run);
+      std::printf("%5d %4dx%-4d %3d %6.3f %4ld %12.1f %12.1f %14.1f %14.2f %9.3f\n", cells, n, n, threads, phi, k,
                   m.fluid_only_us, m.coupled_us, m.fluid_with_cells_us, m.extra_per_cell_us, m.grid_overhead);
       std::fflush(stdout);
       std::ostringstream line;
       line.precision(3);
-      line << std::fixed << "  " << cells << " cells, " << threads << " thr:";
+      line << std::fixed << "  " << cells << " cells, " << threads << " thr, k = " << k << ":";
       std::map<std::string, io::Value> row{{"kind", std::string("coupled step")},
                                                            {"cells", static_cast<double>(cells)},
                                                            {"grid_n", static_cast<double>(n)},
                                                            {"threads", static_cast<double>(threads)},
                                                            {"area_fraction", phi},
+                                                           {"index_update_interval", static_cast<double>(k)},
+                                                           {"steps", static_cast<double>(steps)},
+                                                           {"aggregation", o.aggregation ? 1.0 : 0.0},
                                                            {"fluid_only_us_per_step", m.fluid_only_us},
                                                            {"coupled_us_per_step", m.coupled_us},
                                                            {"fluid_step_with_cells_us_per_step", m.fluid_with_cells_us},

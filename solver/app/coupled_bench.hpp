@@ -15,7 +15,18 @@ struct CoupledBenchOptions {
   std::vector<int> threads{1, 2};
   long steps = 150;  // time steps of each timed run (≈ 3 s for 128 cells on one thread)
   int pairs = 3;     // fluid-only and coupled runs, one after the other; medians reported
+  // Morse aggregation between the cells at the thesis's ch. IV level (De* = 5), on top of the
+  // repulsion, sharing its neighbour search.
+  bool aggregation = false;
+  // Index-field rebuild interval k; 0: the largest k the validation supports in each box,
+  // k U ≤ 0.1 h with U the wall speed (docs/performance.md "The coupled step benchmark").
+  long index_interval = 0;
 };
+
+// The largest index-field interval k with k·U ≤ 0.1 h for wall speed U (lattice units),
+// at least 1: the lag δ = kU/2 ≤ 0.05 h that verification.suspension_index_interval and
+// validation.rbc_index_update_interval cover (docs/validation-interior-viscosity.md).
+long supported_index_interval(double wall_speed_lattice);
 
 // Runs the section, prints its table and adds its runs and metrics to `record`.
 void run_coupled_bench(const CoupledBenchOptions& options, io::ResultRecord& record);

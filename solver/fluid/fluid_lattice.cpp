@@ -1,9 +1,11 @@
 #include "fluid/fluid_lattice.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <utility>
 
 #include "fluid/stream_collide.hpp"
 #include "lattice/d2q9.hpp"
@@ -229,21 +231,43 @@ std::span<const double> FluidLattice::populations() const {
 }
 
 namespace {
-// ρ and u of one node from its nine post-collision populations f (ρ0 = 1 deviations) and
-// the force F of the collision: ρ = 1 + Σ f̃, ρu = Σ c f* − F/2 (Guo forcing: Σ c f* = ρu + F/2).
-// The one place this is computed, so every caller gets the same bits.
-[[gnu::always_inline]] inline void moments_from(const double* f, double Fx, double Fy, double& rho, double& ux,
-                                                double& uy) {
+// ρ and u of one node from its nine post-collision populations pop(i) (ρ0 = 1 deviations)
+// and the force F of the collision: ρ = 1 + Σ f̃, ρu = Σ c f* − F/2 (Guo forcing: Σ c f* =
+// ρu + F/2). The one place this is computed, so every caller gets the same bits: the sums
+// run over i = 0 … 8 in order, unrolled at compile time (no loop over an array, so that
+// row_moments vectorises across nodes).
+template <class Population>
+[[gnu::always_inline]] inline void moments_of(const Population& pop, double Fx, double Fy, double& rho, double& ux,
+                                              double& uy) {
   double dr = 0.0, jx = 0.0, jy = 0.0;
-  for (int i = 0; i < d2q9::Q; ++i) {
-    dr += f[i];
-    jx += d2q9::cx[i] * f[i];
-    jy += d2q9::cy[i] * f[i];
-  }
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((dr += pop(I), jx += d2q9::cx[I] * pop(I), jy += d2q9::cy[I] * pop(I)), ...);
+  }(std::make_index_sequence<d2q9::Q>{});
   const double r = 1.0 + dr;
   rho = r;
   ux = (jx - 0.5 * Fx) / r;
   uy = (jy - 0.5 * Fy) / r;
+}
+
+// moments_of for the nodes [x0, x1) of one row, from its population rows p[i], with F = A +
+// field(x) when the row has a force field (kField): node by node the same operations, the
+// divisions vectorised across nodes (restrict outputs, the row pointers copied to a local
+// array so the loads are not gathers, the field's presence decided once per row).
+template <bool kField>
+void row_moments(const double* const* p, int x0, int x1, double Ax, double Ay, const double* __restrict fx,
+                 const double* __restrict fy, double* __restrict rho, double* __restrict ux,
+                 double* __restrict uy) {
+  std::array<const double*, d2q9::Q> rows;  // a local copy: no store in the loop can change it
+  for (int i = 0; i < d2q9::Q; ++i) rows[static_cast<std::size_t>(i)] = p[i];
+#pragma omp simd
+  for (int x = x0; x < x1; ++x) {
+    double Fx = Ax, Fy = Ay;
+    if constexpr (kField) {
+      Fx += fx[x];
+      Fy += fy[x];
+    }
+    moments_of([&](std::size_t i) { return rows[i][x]; }, Fx, Fy, rho[x], ux[x], uy[x]);
+  }
 }
 }  // namespace
 
@@ -260,7 +284,7 @@ void FluidLattice::node_moments(int x, int y, double& rho, double& ux, double& u
   double f[d2q9::Q];
   for (int i = 0; i < d2q9::Q; ++i) f[i] = f_[slot_of(x, y, i)];
   const auto F = collision_force(grid_.index(x, y));
-  moments_from(f, F[0], F[1], rho, ux, uy);
+  moments_of([&](std::size_t i) { return f[i]; }, F[0], F[1], rho, ux, uy);
 }
 
 void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const {
@@ -270,12 +294,13 @@ void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, 
     const std::size_t row = grid_.index(0, y);
     auto edge = [&](int x) { node_moments(x, y, rho[row + x], ux[row + x], uy[row + x]); };
     for (int x = 0; x < v.first; ++x) edge(x);
-    for (int x = v.first; x < v.last; ++x) {
-      double f[d2q9::Q];
-      for (int i = 0; i < d2q9::Q; ++i) f[i] = v.p[i][x];
-      const auto F = collision_force(row + x);
-      moments_from(f, F[0], F[1], rho[row + x], ux[row + x], uy[row + x]);
-    }
+    const double Ax = applied_force_[0], Ay = applied_force_[1];
+    if (has_force_field())
+      row_moments<true>(v.p, v.first, v.last, Ax, Ay, force_x_.data() + row, force_y_.data() + row, rho.data() + row,
+                        ux.data() + row, uy.data() + row);
+    else
+      row_moments<false>(v.p, v.first, v.last, Ax, Ay, nullptr, nullptr, rho.data() + row, ux.data() + row,
+                         uy.data() + row);
     for (int x = std::max(v.first, v.last); x < grid_.nx; ++x) edge(x);
   }
 }

@@ -14,14 +14,20 @@
 
 namespace erythro::geometry {
 
+// i mod n in [0, n) on a periodic axis of n nodes. Nearly every node a kernel support or
+// a band visits lies inside the axis or one period off: those skip the integer division.
+inline int wrap_periodic(int i, int n) {
+  if (i >= 0 && i < n) return i;
+  if (i < 0 && i >= -n) return i + n;
+  if (i >= n && i < 2 * n) return i - n;
+  return ((i % n) + n) % n;
+}
+
 // Index of unwrapped node coordinate i on an axis of n nodes: i mod n when periodic,
 // −1 when the node lies beyond a wall (non-periodic axis, i ∉ [0, n)).
 inline int wrap_node(int i, int n, bool periodic) {
   if (i >= 0 && i < n) return i;
-  if (!periodic) return -1;
-  if (i < 0 && i >= -n) return i + n;  // one period off: no integer division
-  if (i >= n && i < 2 * n) return i - n;
-  return ((i % n) + n) % n;
+  return periodic ? wrap_periodic(i, n) : -1;
 }
 
 // Node index range [first, last] of unwrapped node coordinates whose centres k + ½ lie

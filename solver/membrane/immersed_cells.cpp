@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "geometry/grid_polygon.hpp"
 #include "geometry/polygon.hpp"
 #include "lattice/d2q9.hpp"
 #include "membrane/area_projection.hpp"
@@ -42,7 +43,7 @@ void ImmersedCells::compute_forces() {
   // Cells own disjoint marker ranges: parallel over cells is race-free and deterministic.
 #pragma omp parallel for schedule(dynamic) if (threads_forces())
   for (int c = 0; c < n; ++c) {
-    add_membrane_forces(cells_[c].model, cells_[c].rest, x(c), y(c), range(fx_, c), range(fy_, c));
+    add_membrane_forces_only(cells_[c].model, cells_[c].rest, x(c), y(c), range(fx_, c), range(fy_, c));
   }
 }
 
@@ -110,7 +111,7 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
     support_nodes_.push_back(n);
     lattice.node_moments(i, j, rho_n, grid_ux_[n], grid_uy_[n]);
   };
-  auto wrap = [](int i, int n) { const int r = i % n; return r < 0 ? r + n : r; };
+  const auto wrap = geometry::wrap_periodic;
   // Only the nodes Transfer::interpolate reads (ib/transfer.cpp): the W×W support of each
   // marker, wrapped across periodic sides, clipped at walls. A non-finite marker is left
   // to interpolate(), which reports it.

@@ -14,8 +14,8 @@ void check_sizes(const RestShape& rest, std::size_t a, std::size_t b) {
   }
 }
 
-// One pass computing the energy and, if forces is set, adding −∂E/∂X.
-template <bool kForces>
+// One pass computing the energy (kEnergy) and/or adding −∂E/∂X (kForces).
+template <bool kForces, bool kEnergy = true>
 Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<const double> x,
                 std::span<const double> y, double* fx, double* fy) {
   const std::size_t n = rest.size();
@@ -26,7 +26,7 @@ Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<con
     const double dx = x[f] - x[e], dy = y[f] - y[e];
     const double l = std::hypot(dx, dy);
     const double lambda = l / rest.length[e];
-    E.tension += rest.length[e] * model.tension.energy(lambda);
+    if constexpr (kEnergy) E.tension += rest.length[e] * model.tension.energy(lambda);
     if constexpr (kForces) {
       const double T = model.tension.tension(lambda) / l;  // T · t_e = (T/ℓ)(dx, dy)
       fx[e] += T * dx;
@@ -45,7 +45,7 @@ Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<con
       // Keep the difference in (−π, π] (a rest angle near ±π must not jump by 2π).
       if (dtheta > std::numbers::pi) dtheta -= 2.0 * std::numbers::pi;
       if (dtheta <= -std::numbers::pi) dtheta += 2.0 * std::numbers::pi;
-      E.bending += 0.5 * model.bending * dtheta * dtheta / rest.dual[i];
+      if constexpr (kEnergy) E.bending += 0.5 * model.bending * dtheta * dtheta / rest.dual[i];
       if constexpr (kForces) {
         const double g = model.bending * dtheta / rest.dual[i];  // ∂E/∂θ_i
         const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
@@ -70,7 +70,7 @@ Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<con
       A2 += (x[i] - ox) * (y[j] - oy) - (x[j] - ox) * (y[i] - oy);
     }
     const double dA = 0.5 * A2 - rest.area;
-    E.area = 0.5 * model.area_modulus * dA * dA / rest.area;
+    if constexpr (kEnergy) E.area = 0.5 * model.area_modulus * dA * dA / rest.area;
     if constexpr (kForces) {
       const double p = model.area_modulus * dA / rest.area;  // pressure-like −∂E/∂A
       for (std::size_t i = 0; i < n; ++i) {
@@ -96,6 +96,13 @@ Energy add_membrane_forces(const MembraneModel& model, const RestShape& rest, st
   check_sizes(rest, x.size(), y.size());
   check_sizes(rest, fx.size(), fy.size());
   return evaluate<true>(model, rest, x, y, fx.data(), fy.data());
+}
+
+void add_membrane_forces_only(const MembraneModel& model, const RestShape& rest, std::span<const double> x,
+                              std::span<const double> y, std::span<double> fx, std::span<double> fy) {
+  check_sizes(rest, x.size(), y.size());
+  check_sizes(rest, fx.size(), fy.size());
+  evaluate<true, false>(model, rest, x, y, fx.data(), fy.data());
 }
 
 }  // namespace erythro::membrane

@@ -41,4 +41,9 @@ Energy membrane_energy(const MembraneModel& model, const RestShape& rest, std::s
 Energy add_membrane_forces(const MembraneModel& model, const RestShape& rest, std::span<const double> x,
                            std::span<const double> y, std::span<double> fx, std::span<double> fy);
 
+// The same forces, bit for bit, without the energy (the time step's path: it skips the
+// tension law's energy per edge).
+void add_membrane_forces_only(const MembraneModel& model, const RestShape& rest, std::span<const double> x,
+                              std::span<const double> y, std::span<double> fx, std::span<double> fy);
+
 }  // namespace erythro::membrane

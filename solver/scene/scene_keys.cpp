@@ -441,8 +441,9 @@ std::vector<KeySpec> make_keys() {
        .bound = Bound{1.0, false, 1e9, false},
        .when_absent = literal("1"),
        .rule = "only with `interior_viscosity_cP`",
-       .meaning = "Rebuild the index field every k steps (cost and error of skipping: "
-                  "docs/validation-interior-viscosity.md)"},
+       .meaning = "Rebuild the index field every k steps; validated for k U <= 0.1 h, U the fastest marker speed in "
+                  "lattice units per step (cost and error of skipping: docs/validation-interior-viscosity.md, "
+                  "docs/verification-suspension.md section 2b)"},
       // [[cells]] entries: the schema path drops the index (cells[2].radius_um → cells.radius_um).
       {.path = "cells.shape",
        .kind = Kind::string,

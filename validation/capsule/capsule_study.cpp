@@ -5,12 +5,6 @@
 
 namespace erythro::vv::capsule {
 
-std::string fmt(const char* f, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
 bool same(double a, double b) { return std::abs(a - b) <= 1e-12 * std::abs(b); }
 
 const std::vector<BimReference>& reference() {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bim_reference.hpp"
+#include "common/case_support.hpp"
 #include "capsule_run.hpp"
 #include "io/result_record.hpp"
 #include "richardson.hpp"
@@ -15,7 +16,7 @@ namespace erythro::vv::capsule {
 constexpr double kTolD = 0.005, kTolTheta = 0.5, kTolT = 0.01;  // issue 22 item 2
 constexpr double kMaxStrain = 16.0;  // cap on γ̇t; the largest G relax slowest (a few strain units)
 
-std::string fmt(const char* f, double v);
+using vv::fmt;  // common/case_support.hpp
 bool same(double a, double b);  // equal to 1e-12 relative (G read from the reference file)
 
 // The rows of reference_data/capsule_bim/reference_capsule.csv, read once.

@@ -300,12 +300,6 @@ std::vector<StageOneLevel> read_stage1(double* wall_s) {
 
 // ------------------------------------------------------------------ records
 
-std::string fmt(const char* format, double value) {
-  char b[96];
-  std::snprintf(b, sizeof b, format, value);
-  return b;
-}
-
 io::Series curve_series(const std::string& name, const std::string& title, const vv::Curve& reference,
                         const vv::Curve& simulated) {
   io::Series s;

@@ -20,6 +20,7 @@
 #include "io/result_record.hpp"
 
 #include "common/calibration.hpp"
+#include "common/case_support.hpp"
 #include "deoxy_run.hpp"
 
 namespace erythro::deoxy {
@@ -191,7 +192,7 @@ void write_stage1(const std::vector<StageOneLevel>& levels, double wall_s);
 std::vector<StageOneLevel> read_stage1(double* wall_s = nullptr);
 
 // printf-style formatting of one number (labels and metric names).
-std::string fmt(const char* format, double value);
+using vv::fmt;  // common/case_support.hpp
 
 // The simulated S̄(t) at the reference's times, with the reference as the plot's reference line.
 io::Series curve_series(const std::string& name, const std::string& title, const vv::Curve& reference,

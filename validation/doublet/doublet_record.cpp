@@ -15,12 +15,6 @@
 
 namespace erythro::vv {
 
-std::string fmt(const char* f, double v) {
-  char b[128];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
-
 void add_mapping(io::ResultRecord& rec, const DoubletShearConfig& c, const DoubletShearResult& r) {
   rec.set_parameter("h_um", c.h_m * 1e6);
   rec.set_parameter("a_over_h", r.a_lat);

@@ -4,12 +4,12 @@
 // run-health metrics.
 #include <string>
 
+#include "common/case_support.hpp"
 #include "doublet_shear_run.hpp"
 #include "io/result_record.hpp"
 
 namespace erythro::vv {
 
-std::string fmt(const char* f, double v);
 
 // Case-wide parameters: lattice, mapping and model (from the first run of the case).
 void add_mapping(io::ResultRecord& rec, const DoubletShearConfig& c, const DoubletShearResult& r);

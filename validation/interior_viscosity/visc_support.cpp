@@ -4,12 +4,6 @@
 
 namespace erythro::vv {
 
-std::string fmt(const char* format, double value) {
-  char b[96];
-  std::snprintf(b, sizeof b, format, value);
-  return b;
-}
-
 RbcConfig thesis_config(double h_um, interior::Method method, double ratio, double strain) {
   RbcConfig c;  // a = 3.91 µm, 1.2 cP, 100 1/s, E_S = 6e-3 dyn/cm, E_B = 3.6e-12 dyn cm (rbc_run.hpp)
   c.h_m = h_um * 1e-6;

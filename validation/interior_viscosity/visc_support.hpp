@@ -6,6 +6,7 @@
 #include <map>
 #include <string>
 
+#include "common/case_support.hpp"
 #include "interior/index_field.hpp"
 #include "io/result_record.hpp"
 #include "rbc_run.hpp"
@@ -13,7 +14,6 @@
 namespace erythro::vv {
 
 // printf-style formatting of one number.
-std::string fmt(const char* format, double value);
 
 // Thesis Fig. II-3 set-up (thesis §II.4; docs/parameters.md): Evans–Fung RBC, a = 3.91 µm,
 // plasma 1.2 cP, γ̇ = 100 1/s, thesis moduli, at lattice spacing h_um; cytoplasm

@@ -15,11 +15,7 @@ using namespace erythro;
 
 namespace {
 
-std::string fmt(const char* f, double v) {
-  char b[96];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+using vv::fmt;
 
 // Bound on max |ℓ/ℓ0 − 1| (docs/validation-rbc.md): the viscous tension scale μγ̇a
 // against the small-strain stiffness 3E_S gives ε ~ Ca/3 ≈ 0.026; a factor 4 allows

@@ -2,8 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace erythro::vv {
+
+std::string fmt(const char* format, double value) {
+  char b[128];
+  std::snprintf(b, sizeof b, format, value);
+  return b;
+}
 
 double relative_l2(const std::vector<double>& a, const std::vector<double>& b) {
   double num = 0, den = 0;

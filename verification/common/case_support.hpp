@@ -8,6 +8,9 @@
 
 namespace erythro::vv {
 
+// printf-style formatting of one number: fmt("%.3g um", x).
+std::string fmt(const char* format, double value);
+
 class Stopwatch {
  public:
   Stopwatch() : start_(std::chrono::steady_clock::now()) {}

@@ -7,6 +7,7 @@
 // F = −∂E/∂X checked by central differences; translation and rotation invariance of E.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -69,7 +70,7 @@ TEST(MembraneForces, GradientRestAndInvariance) {
 
   std::mt19937_64 rng(42);
   const double eps = 1e-5;
-  double worst_fd = 0.0, worst_rest = 0.0, worst_net = 0.0, worst_torque = 0.0;
+  double worst_fd = 0.0, worst_rest = 0.0, worst_net = 0.0, worst_torque = 0.0, worst_forces_only = 0.0;
   for (TensionLawType law : {TensionLawType::neo_hookean, TensionLawType::skalak, TensionLawType::hookean}) {
     const MembraneModel model = model_for(law);
     for (const ShapeCase& sc : shapes()) {
@@ -87,6 +88,11 @@ TEST(MembraneForces, GradientRestAndInvariance) {
       const Polygon p = deformed(sc.rest, 1.1, 0.2, rng);
       std::vector<double> fx(n, 0.0), fy(n, 0.0);
       add_membrane_forces(model, rest, p.x, p.y, fx, fy);
+      // The time step's path (no energy) must give the same forces, bit for bit.
+      std::vector<double> gx(n, 0.0), gy(n, 0.0);
+      add_membrane_forces_only(model, rest, p.x, p.y, gx, gy);
+      for (std::size_t i = 0; i < n; ++i)
+        worst_forces_only = std::max({worst_forces_only, std::abs(gx[i] - fx[i]), std::abs(gy[i] - fy[i])});
       const double fscale = max_abs(fx, fy);
       // Net force and torque (about the origin, far from the cell: the harder case).
       double Fx = 0, Fy = 0, M = 0, sum_abs = 0, torque_scale = 0;
@@ -130,6 +136,12 @@ TEST(MembraneForces, GradientRestAndInvariance) {
                                  "O(eps^2 E'''/E') ~ 1e-10 plus round-off O(u E/(eps |F|)) ~ 1e-10; a wrong "
                                  "derivative term gives O(1) errors, so 1e-7 separates the two by 6 decades"}))
       << worst_fd;
+  EXPECT_TRUE(record.add_metric({"forces_only_difference",
+                                 "max |F(add_membrane_forces_only) - F(add_membrane_forces)|, the time step's path "
+                                 "against the one that also returns the energy",
+                                 "lattice force", worst_forces_only, 0.0, 0.0, io::Comparison::at_most,
+                                 "the same operations for the forces, only the energy skipped: equal bit for bit"}))
+      << worst_forces_only;
   EXPECT_TRUE(record.add_metric({"rest_force", "max |F| at the rest shape (placed at (103, 48), rotated)",
                                  "lattice force", worst_rest, 1e-12, 0.0, io::Comparison::at_most,
                                  "only the round-off of recomputing lengths, angles and area after a rigid "
