@@ -361,7 +361,7 @@ void run_cell_list(Engine& eng, const geometry::Domain& d, int nbx, int nby) {
   {
     std::vector<int> nb;
     std::vector<std::size_t> cand, merged;
-#pragma omp for schedule(dynamic, 4)
+#pragma omp for schedule(dynamic, 64)
     for (int b = 0; b < nbins; ++b) {
       const std::size_t b0 = cl.start[static_cast<std::size_t>(b)], b1 = cl.start[static_cast<std::size_t>(b) + 1];
       if (b0 == b1) continue;
