@@ -13,10 +13,6 @@ namespace erythro::ib {
 
 namespace {
 
-// i mod n without the integer division for nodes inside the axis or one period off
-// (tens of cycles, 32 times per marker and step).
-inline int wrap(int i, int n) { return geometry::wrap_periodic(i, n); }
-
 void check_finite(std::span<const double> X, std::span<const double> Y) {
   for (std::size_t m = 0; m < X.size(); ++m) {
     if (!std::isfinite(X[m]) || !std::isfinite(Y[m])) {
@@ -60,12 +56,12 @@ void interpolate_impl(const geometry::Domain& d, long M, const Weights& weights,
     double sx = 0.0, sy = 0.0;
     for (int a = 0; a < W; ++a) {
       int j = j0 + a;
-      if (d.periodic_y) j = wrap(j, ny);
+      if (d.periodic_y) j = geometry::wrap_periodic(j, ny);
       else if (j < 0 || j >= ny) continue;  // beyond a wall: no node (geometry/domain.hpp)
       double rx = 0.0, ry = 0.0;
       for (int b = 0; b < W; ++b) {
         int i = i0 + b;
-        if (d.periodic_x) i = wrap(i, nx);
+        if (d.periodic_x) i = geometry::wrap_periodic(i, nx);
         else if (i < 0 || i >= nx) continue;
         const std::size_t n = d.grid.index(i, j);
         rx += ux[n] * wx[b];
@@ -118,7 +114,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     //    Periodic y: bucket = j0 mod ny. Walls: bucket = j0 + W − 1 ∈ [0, ny + W − 1);
     //    a marker whose whole support lies beyond a wall gets no bucket.
     const int nb = d.periodic_y ? ny : ny + W - 1;
-    auto bucket_of = [&](int j0) { return d.periodic_y ? wrap(j0, ny) : j0 + W - 1; };
+    auto bucket_of = [&](int j0) { return d.periodic_y ? geometry::wrap_periodic(j0, ny) : j0 + W - 1; };
     bucket_start_.assign(static_cast<std::size_t>(nb) + 1, 0);
     for (std::size_t m = 0; m < M; ++m) {
       const int b = bucket_of(j0_[m]);
@@ -147,7 +143,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
           const double* w = &wx_[m * W];
           for (int c = 0; c < W; ++c) {
             int i = i0_[m] + c;
-            if (d.periodic_x) i = wrap(i, nx);
+            if (d.periodic_x) i = geometry::wrap_periodic(i, nx);
             else if (i < 0 || i >= nx) continue;  // beyond a wall: dropped (geometry/domain.hpp)
             rowx[i] += gx * w[c];
             rowy[i] += gy * w[c];
