@@ -14,12 +14,12 @@
 #include "app/progress.hpp"
 #include "app/resources.hpp"
 #include "app/restart.hpp"
-#include "analysis/dispersion.hpp"
 #include "analysis/profiles.hpp"
 #include "common/error.hpp"
 #include "io/atomic_file.hpp"
 #include "io/baseline_compare.hpp"
 #include "io/output_folder.hpp"
+#include "io/run_dispersion.hpp"
 #include "io/run_file.hpp"
 #include "io/scene_run.hpp"
 #include "scene/resource_estimate.hpp"
@@ -149,28 +149,10 @@ int compare_command(const std::string& current, const std::string& baseline, con
 
 int dispersion_command(const std::string& run_h5, double after_s) {
   return guarded([&] {
-    const io::RunFile file(run_h5);
-    const std::vector<double>& time = file.series("time_s");
-    std::size_t first = 0;
-    while (first < time.size() && time[first] < after_s) ++first;
-    std::vector<std::vector<double>> y;
-    for (int c = 0; file.has("cell_" + std::to_string(c) + "_centroid_y_um"); ++c) {
-      const std::vector<double>& s = file.series("cell_" + std::to_string(c) + "_centroid_y_um");
-      y.emplace_back(s.begin() + static_cast<std::ptrdiff_t>(std::min(first, s.size())), s.end());
-    }
-    if (y.empty()) throw InputError(run_h5 + ": no cell centroid series (cell_<c>_centroid_y_um): a run with cells?");
-    if (time.size() < first + 3) throw InputError(run_h5 + ": fewer than 3 samples after " + std::to_string(after_s) + " s");
-    const double dt = time[first + 1] - time[first];
-    std::size_t end = time.size();  // the run's last step is sampled too, usually off the interval: left out
-    if (std::abs(time[end - 1] - time[end - 2] - dt) > 1e-6 * dt) --end;
-    for (std::size_t i = first + 1; i < end; ++i)
-      if (std::abs(time[i] - time[i - 1] - dt) > 1e-6 * dt)
-        throw InputError(run_h5 + ": the samples are not evenly spaced in time from t = " + std::to_string(time[first]) +
-                         " s on: pass --after-s past the uneven ones");
-    for (auto& s : y) s.resize(std::min(s.size(), end - first));
-    const analysis::Dispersion d = analysis::transverse_dispersion(y, dt);
+    const io::RunDispersion r = io::run_dispersion(io::RunFile(run_h5), run_h5, after_s);
+    const analysis::Dispersion& d = r.result;
     std::printf("transverse dispersion of %zu cells, %zu samples every %.6g s from t = %.6g s (docs/model.md eq 12.4)\n",
-                y.size(), y.front().size(), dt, time[first]);
+                r.cells, r.samples, r.dt_s, r.first_time_s);
     std::printf("%14s %16s %8s %10s\n", "lag_s", "msd_um2", "slope", "pairs");
     for (const analysis::MsdPoint& p : d.msd) std::printf("%14.6g %16.6g %8.3f %10ld\n", p.lag, p.msd, p.slope, p.pairs);
     if (d.found)

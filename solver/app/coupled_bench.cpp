@@ -155,11 +155,6 @@ Measurement measure(const Prepared& coupled, const Prepared& fluid_only, int cel
 
 }  // namespace
 
-long supported_index_interval(double wall_speed_lattice) {
-  if (!(wall_speed_lattice > 0.0)) return 1;
-  return std::max(1L, static_cast<long>(std::floor(0.1 / wall_speed_lattice)));
-}
-
 void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
   record.set_parameter("coupled_scene", std::string("scenes/rbc_suspension_shear.toml, box sized per cell count"));
   record.set_parameter("coupled_area_fraction", kAreaFraction);
@@ -185,7 +180,7 @@ void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
     // The interval from the wall speed of this box (the fluid-only scene has no cells: k = 1).
     const long k = o.index_interval > 0
                        ? o.index_interval
-                       : supported_index_interval(prepare(n, 0, 10, o, 1).setup.boundaries.top.ux);
+                       : scene::supported_index_interval(prepare(n, 0, 10, o, 1).setup.boundaries.top.ux);
     // A whole number m of rebuild intervals per run, at least four, and one step: steps n =
     // 0 … mk run, and the index field is rebuilt before steps k, 2k, … mk (m rebuilds; the
     // one at set-up is not timed), one per k steps.

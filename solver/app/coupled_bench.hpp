@@ -23,11 +23,6 @@ struct CoupledBenchOptions {
   long index_interval = 0;
 };
 
-// The largest index-field interval k with k·U ≤ 0.1 h for wall speed U (lattice units),
-// at least 1: the lag δ = kU/2 ≤ 0.05 h that verification.suspension_index_interval and
-// validation.rbc_index_update_interval cover (docs/validation-interior-viscosity.md).
-long supported_index_interval(double wall_speed_lattice);
-
 // Runs the section, prints its table and adds its runs and metrics to `record`.
 void run_coupled_bench(const CoupledBenchOptions& options, io::ResultRecord& record);
 

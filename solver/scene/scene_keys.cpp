@@ -438,12 +438,14 @@ std::vector<KeySpec> make_keys() {
       {.path = "membrane.index_update_interval",
        .kind = Kind::integer,
        .unit = "steps",
-       .bound = Bound{1.0, false, 1e9, false},
+       .bound = Bound{0.0, false, 1e9, false},
        .when_absent = literal("1"),
        .rule = "only with `interior_viscosity_cP`",
        .meaning = "Rebuild the index field every k steps; validated for k U <= 0.1 h, U the fastest marker speed in "
                   "lattice units per step (cost and error of skipping: docs/validation-interior-viscosity.md, "
-                  "docs/verification-suspension.md section 2b)"},
+                  "docs/verification-suspension.md section 2b). 0: the largest such k for the run's max speed "
+                  "(walls, body force in a channel; shown by `erythro check`), every step when that speed is only "
+                  "an estimate (a force along a periodic direction)"},
       // [[cells]] entries: the schema path drops the index (cells[2].radius_um → cells.radius_um).
       {.path = "cells.shape",
        .kind = Kind::string,

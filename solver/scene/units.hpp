@@ -70,7 +70,8 @@ struct MembraneSetup {
   interior::Method indicator = interior::Method::indexless;
   double interior_viscosity = 0.0;  // lattice ν_in (= exterior ν when no interior viscosity is set)
   double interior_tau = 0.0;        // ½ + 3ν_in
-  long index_update_interval = 1;
+  long index_update_interval = 1;      // k, resolved (membrane.index_update_interval = 0: supported_index_interval)
+  bool index_interval_derived = false;  // k came from supported_index_interval (the scene asked for 0)
   bool area_projection = false;  // membrane.area_correction = "projection" (docs/model.md eq 3.14)
   // Morse aggregation between cells (lattice units), only with [aggregation].
   std::optional<aggregation::MorseParameters> aggregation;
@@ -198,6 +199,12 @@ LatticeSetup derive_lattice(const Scene& scene);
 // (lattice: |u_top − u_bottom| / n_y per step, the profile of initial.type = "shear").
 // Otherwise none. `L` needs its grid, scales, boundaries and body force.
 std::optional<double> wall_shear_rate_per_s(const LatticeSetup& L);
+
+// The largest index-field interval k with k·U ≤ 0.1 h for the fastest speed U (lattice units
+// per step), at least 1: the lag δ = kU/2 ≤ 0.05 h that verification.suspension_index_interval
+// and validation.rbc_index_update_interval cover (docs/model.md §5).
+// U ≤ 0 (nothing moves) gives 1.
+long supported_index_interval(double fastest_speed_lattice);
 
 // Human-readable table of the derived parameters (h, Δt, τ, ν, Ma, Re, steps...)
 // printed by `erythro check`.

@@ -337,10 +337,33 @@ TEST(SceneInterior, RejectsBadInput) {
   EXPECT_CONTAINS(error_of([] { derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 0.001\n" + interior_cell); }),
                   "interior relaxation time");
   EXPECT_CONTAINS(error_of([] {
-                    derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 6\nindex_update_interval = 0\n" +
+                    derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 6\nindex_update_interval = -1\n" +
                            interior_cell);
                   }),
                   "membrane.index_update_interval");
+}
+
+// k U <= 0.1 h: the largest such k, at least 1 (U in lattice units per step).
+TEST(SceneInterior, SupportedIndexInterval) {
+  EXPECT_EQ(supported_index_interval(0.01), 10);
+  EXPECT_EQ(supported_index_interval(0.0021), 47);
+  EXPECT_EQ(supported_index_interval(0.2), 1);
+  EXPECT_EQ(supported_index_interval(0.0), 1);
+}
+
+// index_update_interval = 0: k from the run's max speed (a sliding top wall here); at rest, 1.
+TEST(SceneInterior, DerivesTheIntervalFromTheMaxSpeed) {
+  const std::string text = interior_channel + "[membrane]\ninterior_viscosity_cP = 6\nindex_update_interval = 0\n" +
+                           interior_cell;
+  const LatticeSetup L = derive(text, {"boundaries.top.type=\"moving_wall\"", "boundaries.top.velocity_um_s=[100, 0]"});
+  ASSERT_GT(L.expected_max_speed, 0.0);
+  EXPECT_EQ(L.membrane->index_update_interval, supported_index_interval(L.expected_max_speed));
+  EXPECT_GT(L.membrane->index_update_interval, 1);
+  EXPECT_TRUE(L.membrane->index_interval_derived);
+  const LatticeSetup rest = derive(text);
+  EXPECT_EQ(rest.membrane->index_update_interval, 1);
+  EXPECT_FALSE(derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 6\n" + interior_cell)
+                   .membrane->index_interval_derived);
 }
 
 }  // namespace
