@@ -116,13 +116,11 @@ MembraneSetup derive_membrane(const Scene& s, const LatticeSetup& L, bool mechan
     } catch (const std::invalid_argument& e) {
       reject(s, std::string("membrane.interior_method: ") + e.what());
     }
-    M.index_update_interval = spec.index_update_interval;
-    if (spec.index_update_interval == 0) {
-      // The interval the validation supports for this flow (k U <= 0.1 h), U the run's expected
-      // fastest speed; a guessed speed (a force along a periodic direction) gives no bound: every step.
-      M.index_update_interval = L.speed_is_estimate ? 1 : supported_index_interval(L.expected_max_speed);
-      M.index_interval_derived = true;
-    }
+    // 0: the interval the validation supports for this flow (k U <= 0.1 h), U the run's expected
+    // fastest speed; a guessed speed (a force along a periodic direction) gives no bound: every step.
+    M.index_update_interval = spec.index_update_interval != 0 ? spec.index_update_interval
+                              : L.speed_is_estimate       ? 1
+                                                          : supported_index_interval(L.expected_max_speed);
   }
   M.interior_tau = d2q9::tau_of_viscosity(M.interior_viscosity);
   if (mechanics && M.interior_tau < 0.5 + s.limits.min_tau_margin)

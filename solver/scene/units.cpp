@@ -492,7 +492,7 @@ std::string format_lattice_report(const Scene& s, const LatticeSetup& L) {
                         : "interior " + num(spec.interior_viscosity_cP.value_or(0.0)) + " cP by " +
                               std::string(interior::to_string(M->indicator)) + " every " +
                               std::to_string(M->index_update_interval) + " step(s)" +
-                              (M->index_interval_derived ? " (k U <= 0.1 h at the max speed)" : "")});
+                              (spec.index_update_interval == 0 ? " (k U <= 0.1 h at the max speed)" : "")});
     if (M->indicator != interior::Method::indexless)
       rows.push_back({"interior τ", num(M->interior_tau), "limit >= " + num(0.5 + s.limits.min_tau_margin)});
     rows.push_back({"shear modulus E_s", num(M->model.tension.modulus),

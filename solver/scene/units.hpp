@@ -70,8 +70,7 @@ struct MembraneSetup {
   interior::Method indicator = interior::Method::indexless;
   double interior_viscosity = 0.0;  // lattice ν_in (= exterior ν when no interior viscosity is set)
   double interior_tau = 0.0;        // ½ + 3ν_in
-  long index_update_interval = 1;      // k, resolved (membrane.index_update_interval = 0: supported_index_interval)
-  bool index_interval_derived = false;  // k came from supported_index_interval (the scene asked for 0)
+  long index_update_interval = 1;  // k, resolved (membrane.index_update_interval = 0: supported_index_interval)
   bool area_projection = false;  // membrane.area_correction = "projection" (docs/model.md eq 3.14)
   // Morse aggregation between cells (lattice units), only with [aggregation].
   std::optional<aggregation::MorseParameters> aggregation;

@@ -31,7 +31,7 @@
 #include "common/case_support.hpp"
 #include "common/concurrent_runs.hpp"
 #include "common/scene_case.hpp"
-#include "common/settled_window.hpp"
+#include "common/channel_case.hpp"
 
 using namespace erythro;
 
@@ -68,19 +68,17 @@ struct SeedRun {
 };
 
 SeedRun run_seed(const Channel& channel, long seed) {
-  const double mu = vv::case_scene(kScene).fluid.viscosity_cP * 1e-3;
-  const double force = 2.0 * mu * kWallShearRate / (channel.height_um * 1e-6);  // N/m³
-  std::vector<std::string> o = {vv::set("domain.size_um", kLengthUm, channel.height_um),
-                                vv::set("domain.spacing_um", kSpacingUm),
-                                vv::set("cell_populations[0].markers", 69L),
-                                vv::set("cell_populations[0].min_gap_um", kSpacingUm),
-                                vv::set("cell_populations[0].seed", seed),
-                                vv::set("body_force.density_N_m3", force, 0.0),
-                                vv::set("run.duration_s", kStrain / kWallShearRate),
-                                vv::set("output.fields_interval_steps", 0L)};
-  // Every 0.05 strain units: Δt from the unit conversion of the scene's [time_mapping] (eq 10.8).
-  o.push_back(vv::set("output.diagnostics_interval_steps",
-                      vv::steps_per_strain_interval(vv::case_scene(kScene, o), kWallShearRate, kSampleStrain)));
+  // Every 0.05 strain units; the placement gap h (with the default 2h random sequential addition
+  // jams at 10 of 13 cells).
+  const std::vector<std::string> o = vv::channel_overrides({.scene = kScene,
+                                                            .length_um = kLengthUm,
+                                                            .height_um = channel.height_um,
+                                                            .spacing_um = kSpacingUm,
+                                                            .markers = 69,
+                                                            .seed = seed,
+                                                            .wall_shear_rate_per_s = kWallShearRate,
+                                                            .strain = kStrain,
+                                                            .sample_strain = kSampleStrain});
   char label[16];
   std::snprintf(label, sizeof label, "seed%ld", seed);
   const vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, o), channel.case_name, label);

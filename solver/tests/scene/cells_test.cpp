@@ -359,11 +359,8 @@ TEST(SceneInterior, DerivesTheIntervalFromTheMaxSpeed) {
   ASSERT_GT(L.expected_max_speed, 0.0);
   EXPECT_EQ(L.membrane->index_update_interval, supported_index_interval(L.expected_max_speed));
   EXPECT_GT(L.membrane->index_update_interval, 1);
-  EXPECT_TRUE(L.membrane->index_interval_derived);
   const LatticeSetup rest = derive(text);
   EXPECT_EQ(rest.membrane->index_update_interval, 1);
-  EXPECT_FALSE(derive(interior_channel + "[membrane]\ninterior_viscosity_cP = 6\n" + interior_cell)
-                   .membrane->index_interval_derived);
 }
 
 }  // namespace
