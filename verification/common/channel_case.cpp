@@ -14,7 +14,7 @@ std::vector<std::string> channel_overrides(const ChannelRunSpec& spec, const std
   std::vector<std::string> o = extra;
   for (const std::string& s : {set("domain.size_um", spec.length_um, spec.height_um),
                                set("domain.spacing_um", spec.spacing_um), set("cell_populations[0].markers", spec.markers),
-                               set("cell_populations[0].min_gap_um", spec.spacing_um),
+                               set("cell_populations[0].min_gap_um", spec.min_gap_um > 0.0 ? spec.min_gap_um : spec.spacing_um),
                                set("cell_populations[0].seed", spec.seed), set("body_force.density_N_m3", force, 0.0),
                                set("run.duration_s", spec.strain / spec.wall_shear_rate_per_s),
                                set("output.fields_interval_steps", 0L)})
@@ -23,6 +23,25 @@ std::vector<std::string> channel_overrides(const ChannelRunSpec& spec, const std
   o.push_back(set("output.diagnostics_interval_steps",
                   std::max(1L, std::lround(spec.sample_strain / (spec.wall_shear_rate_per_s * dt)))));
   return o;
+}
+
+ChannelSeries run_channel(const ChannelRunSpec& spec, const std::string& case_name, const std::string& label,
+                          const std::vector<std::string>& extra) {
+  const CaseRun r = run_case_scene(case_scene(spec.scene, channel_overrides(spec, extra)), case_name, label);
+  ChannelSeries out;
+  out.completed = r.ok();
+  out.diagnosis = r.summary.diagnosis;
+  for (double t : r.file.series("time_s")) out.strain.push_back(spec.wall_shear_rate_per_s * t);
+  out.eta = r.file.series("relative_apparent_viscosity");
+  out.cfl = r.file.series("cell_free_layer_normalised");
+  out.hd = r.file.series("discharge_haematocrit");
+  out.max_area_change = r.file.series("cells_max_area_change").back();
+  out.max_edge_strain = r.file.series("cells_max_edge_strain").back();
+  out.cells = static_cast<long>(r.setup.membrane->cells.size());
+  out.steps = r.setup.total_steps;
+  out.wall_s = r.wall_time_s;
+  out.scene_text = r.file.scene_text();
+  return out;
 }
 
 std::vector<double> block_means(const std::vector<double>& clock, const std::vector<double>& y, double from, double to,
@@ -52,6 +71,26 @@ WindowEstimate block_estimate(const std::vector<double>& clock, const std::vecto
   for (double m : means) ss += (m - e.mean) * (m - e.mean);
   e.se = std::sqrt(ss / (blocks - 1) / blocks);
   return e;
+}
+
+SeedEnsemble combine_seeds(const std::vector<WindowEstimate>& seeds, double t975) {
+  if (seeds.size() < 2) throw std::invalid_argument("combine_seeds: fewer than two estimates");
+  const double n = static_cast<double>(seeds.size());
+  SeedEnsemble out;
+  double w_sum = 0.0, wm = 0.0, ss = 0.0;
+  for (const WindowEstimate& x : seeds) {
+    out.mean += x.mean / n;
+    const double w = 1.0 / (x.se * x.se);
+    w_sum += w;
+    wm += w * x.mean;
+  }
+  out.weighted_mean = wm / w_sum;
+  for (const WindowEstimate& x : seeds) {
+    ss += (x.mean - out.mean) * (x.mean - out.mean);
+    out.chi2 += (x.mean - out.weighted_mean) * (x.mean - out.weighted_mean) / (x.se * x.se);
+  }
+  out.ci95 = t975 * std::sqrt(ss / (n - 1.0) / n);
+  return out;
 }
 
 }  // namespace erythro::vv

@@ -11,6 +11,7 @@ struct ChannelRunSpec {
   double length_um = 0.0, height_um = 0.0, spacing_um = 0.0;
   long markers = 0;  // per cell at this spacing
   long seed = 1;
+  double min_gap_um = 0.0;  // the placement's smallest gap between cells; 0: the spacing h
   double wall_shear_rate_per_s = 0.0;  // of plasma alone at the driving force: F = 2 μ γ̇_w / H
   double strain = 0.0;                 // run length, strain units at γ̇_w
   double sample_strain = 0.05;         // diagnostics interval, strain units
@@ -21,6 +22,23 @@ struct ChannelRunSpec {
 // (Δt from the scene's unit conversion and [time_mapping], docs/model.md eq 10.8, after `extra`,
 // which is appended first: e.g. time.tau).
 std::vector<std::string> channel_overrides(const ChannelRunSpec& spec, const std::vector<std::string>& extra = {});
+
+// One channel run's settled statistics and health, read back from its run.h5 (the series of
+// the channel and cell-shape probes; docs/model.md §12).
+struct ChannelSeries {
+  std::vector<double> strain, eta, cfl, hd;  // γ̇_w t; η_rel, δ*, H_d per diagnostics sample
+  double max_area_change = 0.0, max_edge_strain = 0.0;  // over the run (the probes' running extremes)
+  double wall_s = 0.0;
+  long steps = 0, cells = 0;
+  bool completed = false;  // false: the health monitor stopped it (`diagnosis` says why)
+  std::string diagnosis, scene_text;
+};
+
+// Runs the channel scene with channel_overrides(spec, extra) through vv::run_case_scene and reads
+// its series back. A run the monitor stops is returned with completed = false (its series up to
+// the last healthy sample), not thrown.
+ChannelSeries run_channel(const ChannelRunSpec& spec, const std::string& case_name, const std::string& label,
+                          const std::vector<std::string>& extra = {});
 
 // The means of `y` over `blocks` equal blocks of from <= clock < to (non-finite samples left
 // out); NaN for a block without samples.
@@ -36,5 +54,14 @@ struct WindowEstimate {
 // std::runtime_error when a block is empty.
 WindowEstimate block_estimate(const std::vector<double>& clock, const std::vector<double>& y, double from, double to,
                               int blocks);
+
+// Independent estimates of one quantity (one per seed) combined: their plain mean with its 95 %
+// confidence half-width (Student's t_0.975 for n − 1 degrees of freedom, given, times the standard
+// error over the seeds) and the homogeneity statistic χ² = Σ (m_s − m̄_w)²/se_s² about the
+// inverse-variance weighted mean m̄_w (n ≥ 2).
+struct SeedEnsemble {
+  double mean = 0.0, ci95 = 0.0, chi2 = 0.0, weighted_mean = 0.0;
+};
+SeedEnsemble combine_seeds(const std::vector<WindowEstimate>& seeds, double t975);
 
 }  // namespace erythro::vv

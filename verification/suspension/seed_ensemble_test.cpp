@@ -59,68 +59,32 @@ constexpr double kChi2_99_3 = 11.345, kT975_3 = 3.182;
 static_assert(kSeeds.size() == 4, "the quantiles above are those of three degrees of freedom");
 constexpr double kSampleStrain = 0.05;
 
-struct SeedRun {
+struct SeedRun : vv::ChannelSeries {
   long seed = 0;
-  std::vector<double> strain, eta, cfl, hd;
-  double wall_s = 0.0, max_area_change = 0.0;
-  long steps = 0, cells = 0;
-  std::string scene_text;
 };
 
 SeedRun run_seed(const Channel& channel, long seed) {
   // Every 0.05 strain units; the placement gap h (with the default 2h random sequential addition
   // jams at 10 of 13 cells).
-  const std::vector<std::string> o = vv::channel_overrides({.scene = kScene,
-                                                            .length_um = kLengthUm,
-                                                            .height_um = channel.height_um,
-                                                            .spacing_um = kSpacingUm,
-                                                            .markers = 69,
-                                                            .seed = seed,
-                                                            .wall_shear_rate_per_s = kWallShearRate,
-                                                            .strain = kStrain,
-                                                            .sample_strain = kSampleStrain});
   char label[16];
   std::snprintf(label, sizeof label, "seed%ld", seed);
-  const vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, o), channel.case_name, label);
-  if (!r.ok()) throw std::runtime_error(std::string(label) + ": " + r.summary.diagnosis);
   SeedRun out;
+  static_cast<vv::ChannelSeries&>(out) = vv::run_channel({.scene = kScene,
+                                                          .length_um = kLengthUm,
+                                                          .height_um = channel.height_um,
+                                                          .spacing_um = kSpacingUm,
+                                                          .markers = 69,
+                                                          .seed = seed,
+                                                          .wall_shear_rate_per_s = kWallShearRate,
+                                                          .strain = kStrain,
+                                                          .sample_strain = kSampleStrain},
+                                                         channel.case_name, label);
+  if (!out.completed) throw std::runtime_error(std::string(label) + ": " + out.diagnosis);
   out.seed = seed;
-  for (double t : r.file.series("time_s")) out.strain.push_back(kWallShearRate * t);
-  out.eta = r.file.series("relative_apparent_viscosity");
-  out.cfl = r.file.series("cell_free_layer_normalised");
-  out.hd = r.file.series("discharge_haematocrit");
-  out.max_area_change = r.file.series("cells_max_area_change").back();
-  out.cells = static_cast<long>(r.setup.membrane->cells.size());
-  out.steps = r.setup.total_steps;
-  out.wall_s = r.wall_time_s;
-  out.scene_text = r.file.scene_text();
   return out;
 }
 
 using Estimate = vv::WindowEstimate;  // one seed: the mean of its block means and their standard error
-
-struct Ensemble {
-  double mean = 0.0, ci95 = 0.0, chi2 = 0.0, weighted_mean = 0.0;
-};
-
-Ensemble combine(const std::vector<Estimate>& e) {
-  const double n = static_cast<double>(e.size());
-  Ensemble out;
-  double w_sum = 0.0, wm = 0.0, ss = 0.0;
-  for (const Estimate& x : e) {
-    out.mean += x.mean / n;
-    const double w = 1.0 / (x.se * x.se);
-    w_sum += w;
-    wm += w * x.mean;
-  }
-  out.weighted_mean = wm / w_sum;
-  for (const Estimate& x : e) {
-    ss += (x.mean - out.mean) * (x.mean - out.mean);
-    out.chi2 += (x.mean - out.weighted_mean) * (x.mean - out.weighted_mean) / (x.se * x.se);
-  }
-  out.ci95 = kT975_3 * std::sqrt(ss / (n - 1.0) / n);
-  return out;
-}
 
 // The case of one channel: four seeds, their settled estimates, the ensemble and its record.
 void seed_ensemble(const Channel& channel) {
@@ -177,7 +141,7 @@ void seed_ensemble(const Channel& channel) {
                        r.max_area_change, 0.01, 0.0, io::Comparison::at_most, "issue 19 item 6: the area within 1 %"});
   }
   for (std::size_t q = 0; q < quantities.size(); ++q) {
-    const Ensemble e = combine(per_seed[q]);
+    const vv::SeedEnsemble e = vv::combine_seeds(per_seed[q], kT975_3);
     const std::string n = quantities[q].name;
     record.add_metric({n + "_seed_homogeneity", std::string("chi^2 of the seeds' means of the ") + quantities[q].what +
                        " about their weighted mean", "", e.chi2, kChi2_99_3, 0.0, io::Comparison::at_most,

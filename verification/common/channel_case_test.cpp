@@ -1,0 +1,37 @@
+// The channel cases' statistics (common/channel_case.hpp) on numbers worked by hand.
+#include "common/channel_case.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+using namespace erythro;
+
+TEST(ChannelCase, BlockEstimateOfTwoLevels) {
+  // Samples at t = 0 … 9: 1 in [0, 5), 3 in [5, 10); window [0, 10) in two blocks → means 1, 3.
+  std::vector<double> t, y;
+  for (int k = 0; k < 10; ++k) {
+    t.push_back(k);
+    y.push_back(k < 5 ? 1.0 : 3.0);
+  }
+  const vv::WindowEstimate e = vv::block_estimate(t, y, 0.0, 10.0, 2);
+  EXPECT_DOUBLE_EQ(e.mean, 2.0);
+  EXPECT_DOUBLE_EQ(e.se, 1.0);  // sqrt(((1-2)² + (3-2)²) / (1 · 2))
+  EXPECT_THROW(vv::block_estimate(t, y, 0.0, 20.0, 4), std::runtime_error);  // blocks beyond the samples
+}
+
+TEST(ChannelCase, CombineSeedsByHand) {
+  // Means 1, 2, 3, 4 with standard errors 1, 1, 1, 2: plain mean 2.5; weights 1, 1, 1, 1/4 →
+  // weighted mean (1 + 2 + 3 + 1)/3.25 = 7/3.25; sample sd sqrt(5/3), se sqrt(5/12).
+  const std::vector<vv::WindowEstimate> s{{1.0, 1.0}, {2.0, 1.0}, {3.0, 1.0}, {4.0, 2.0}};
+  const vv::SeedEnsemble e = vv::combine_seeds(s, 3.182);
+  const double wm = 7.0 / 3.25;
+  EXPECT_DOUBLE_EQ(e.mean, 2.5);
+  EXPECT_NEAR(e.weighted_mean, wm, 1e-15);
+  EXPECT_NEAR(e.ci95, 3.182 * std::sqrt(5.0 / 12.0), 1e-14);
+  const double chi2 = (1 - wm) * (1 - wm) + (2 - wm) * (2 - wm) + (3 - wm) * (3 - wm) + (4 - wm) * (4 - wm) / 4.0;
+  EXPECT_NEAR(e.chi2, chi2, 1e-14);
+  EXPECT_THROW(vv::combine_seeds({{1.0, 1.0}}, 12.71), std::invalid_argument);
+}
