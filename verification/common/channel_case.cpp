@@ -1,6 +1,7 @@
 #include "common/channel_case.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include "common/scene_case.hpp"
@@ -41,6 +42,8 @@ ChannelSeries run_channel(const ChannelRunSpec& spec, const std::string& case_na
   out.steps = r.setup.total_steps;
   out.wall_s = r.wall_time_s;
   out.scene_text = r.file.scene_text();
+  if (spec.settled_strain >= 0.0 && out.completed)
+    out.heights = io::settled_centroid_heights(r.file, label, spec.settled_strain / spec.wall_shear_rate_per_s);
   return out;
 }
 
@@ -91,6 +94,27 @@ SeedEnsemble combine_seeds(const std::vector<WindowEstimate>& seeds, double t975
   }
   out.ci95 = t975 * std::sqrt(ss / (n - 1.0) / n);
   return out;
+}
+
+void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<std::string, io::Value> keys,
+                     double from, double to, int blocks, const std::string& label) {
+  auto window_mean = [&](const std::vector<double>& y) {
+    return r.completed ? block_estimate(r.strain, y, from, to, blocks).mean : std::nan("");
+  };
+  const double reached = r.strain.empty() ? 0.0 : r.strain.back();
+  keys["steps"] = static_cast<double>(r.steps);
+  keys["cells"] = static_cast<double>(r.cells);
+  keys["strain_reached"] = reached;
+  keys["relative_apparent_viscosity"] = window_mean(r.eta);
+  keys["cell_free_layer_normalised"] = window_mean(r.cfl);
+  keys["discharge_haematocrit"] = window_mean(r.hd);
+  keys["max_edge_strain"] = r.max_edge_strain;
+  keys["max_area_change"] = r.max_area_change;
+  keys["wall_time_s"] = r.wall_s;
+  record.add_run(std::move(keys), r.scene_text);
+  std::printf("%s: %s at strain %.1f, eta_rel %.4f, delta* %.4f, edge %.3f, area %.4f, %.0f s%s%s\n", label.c_str(),
+              r.completed ? "completed" : "stopped", reached, window_mean(r.eta), window_mean(r.cfl), r.max_edge_strain,
+              r.max_area_change, r.wall_s, r.completed ? "" : ": ", r.diagnosis.c_str());
 }
 
 }  // namespace erythro::vv

@@ -1,8 +1,12 @@
 #pragma once
 // What the many-cell channel cases share: the overrides that size and drive the user's channel
 // scene, and time means of a settled suspension (block means over a window of strain).
+#include <map>
 #include <string>
 #include <vector>
+
+#include "io/result_record.hpp"
+#include "io/run_dispersion.hpp"
 
 namespace erythro::vv {
 
@@ -15,6 +19,7 @@ struct ChannelRunSpec {
   double wall_shear_rate_per_s = 0.0;  // of plasma alone at the driving force: F = 2 μ γ̇_w / H
   double strain = 0.0;                 // run length, strain units at γ̇_w
   double sample_strain = 0.05;         // diagnostics interval, strain units
+  double settled_strain = -1.0;        // >= 0: keep the centroid heights from this strain on (dispersion)
 };
 
 // The --set overrides of one channel run: domain, spacing, markers, placement gap h and seed,
@@ -30,6 +35,7 @@ struct ChannelSeries {
   double max_area_change = 0.0, max_edge_strain = 0.0;  // over the run (the probes' running extremes)
   double wall_s = 0.0;
   long steps = 0, cells = 0;
+  io::CentroidHeights heights;  // with spec.settled_strain >= 0 and a completed run: y_c(t) from then on
   bool completed = false;  // false: the health monitor stopped it (`diagnosis` says why)
   std::string diagnosis, scene_text;
 };
@@ -63,5 +69,12 @@ struct SeedEnsemble {
   double mean = 0.0, ci95 = 0.0, chi2 = 0.0, weighted_mean = 0.0;
 };
 SeedEnsemble combine_seeds(const std::vector<WindowEstimate>& seeds, double t975);
+
+// One channel run as a row of a case's record (with its scene text): the case's own columns
+// `keys` (seed, spacing, rate …), then steps, strain reached, the means over the settled window
+// [from, to) of η_rel, δ* and H_d (NaN for a run the monitor stopped), the largest edge strain and
+// area change, and the wall time; the same in one line on stdout, after `label`.
+void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<std::string, io::Value> keys,
+                     double from, double to, int blocks, const std::string& label);
 
 }  // namespace erythro::vv

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -39,6 +40,42 @@ void fit_order(io::ConvergenceSeries& s) {
   rule << "finest local order within +-" << s.order_tolerance << " of the formal order " << s.formal_order
        << " and error decreasing at every refinement";
   s.asymptotic_rule = rule.str();
+}
+
+LimitFit fit_limit_and_order(const std::vector<double>& h, const std::vector<double>& q, double p_min, double p_max) {
+  const std::size_t n = h.size();
+  if (n < 3 || q.size() != n) throw std::invalid_argument("fit_limit_and_order: need three or more levels");
+  if (!(p_min > 0.0 && p_max > p_min)) throw std::invalid_argument("fit_limit_and_order: need 0 < p_min < p_max");
+  LimitFit best;
+  double best_ss = std::numeric_limits<double>::infinity();
+  const long steps = std::lround((p_max - p_min) / 1e-3);
+  for (long k = 0; k <= steps; ++k) {
+    const double p = p_min + (p_max - p_min) * static_cast<double>(k) / static_cast<double>(steps);
+    // q ≈ q0 + C x with x = h^p: the closed-form straight-line least squares.
+    double sx = 0.0, sy = 0.0;
+    std::vector<double> x(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      x[i] = std::pow(h[i], p);
+      sx += x[i];
+      sy += q[i];
+    }
+    const double mx = sx / static_cast<double>(n), my = sy / static_cast<double>(n);
+    double sxx = 0.0, sxy = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      sxx += (x[i] - mx) * (x[i] - mx);
+      sxy += (x[i] - mx) * (q[i] - my);
+    }
+    if (!(sxx > 0.0)) continue;
+    const double c = sxy / sxx, q0 = my - c * mx;
+    double ss = 0.0;
+    for (std::size_t i = 0; i < n; ++i) ss += (q[i] - q0 - c * x[i]) * (q[i] - q0 - c * x[i]);
+    if (ss < best_ss) {
+      best_ss = ss;
+      best = {q0, c, p, std::sqrt(ss / static_cast<double>(n))};
+    }
+  }
+  if (!std::isfinite(best_ss)) throw std::invalid_argument("fit_limit_and_order: the levels' h are all equal");
+  return best;
 }
 
 }  // namespace erythro::vv

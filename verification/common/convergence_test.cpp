@@ -46,3 +46,27 @@ TEST(Convergence, NeedsThreeLevels) {
   s.error = {1, 0.25};
   EXPECT_THROW(vv::fit_order(s), std::invalid_argument);
 }
+
+TEST(LimitFit, ExactPowerLawGivesLimitAndOrder) {
+  const std::vector<double> h{0.4, 0.3, 0.25, 0.2};
+  std::vector<double> q;
+  for (double x : h) q.push_back(1.4 + 2.7 * std::pow(x, 1.7));  // worked: q(0.4) = 1.4 + 2.7 * 0.2106 = 1.969
+  const vv::LimitFit f = vv::fit_limit_and_order(h, q);
+  EXPECT_NEAR(f.order, 1.7, 2e-3);
+  EXPECT_NEAR(f.limit, 1.4, 2e-3);
+  EXPECT_NEAR(f.coefficient, 2.7, 1e-2);
+  EXPECT_LT(f.residual_rms, 1e-4);
+}
+
+TEST(LimitFit, DecreasingFromBelowGivesNegativeCoefficient) {
+  const std::vector<double> h{0.4, 0.2, 0.1};
+  const std::vector<double> q{0.25 - 0.16, 0.25 - 0.04, 0.25 - 0.01};  // 0.25 − h²
+  const vv::LimitFit f = vv::fit_limit_and_order(h, q);
+  EXPECT_NEAR(f.order, 2.0, 2e-3);
+  EXPECT_NEAR(f.limit, 0.25, 1e-4);
+  EXPECT_NEAR(f.coefficient, -1.0, 1e-2);
+}
+
+TEST(LimitFit, NeedsThreeLevels) {
+  EXPECT_THROW(vv::fit_limit_and_order({0.4, 0.2}, {1.0, 0.5}), std::invalid_argument);
+}
