@@ -13,6 +13,8 @@
 //    every level) falls at every refinement and converges at an observed order between 0.5 and 2.5
 //    (fit of η(h) = η0 + C h^p over the four levels): first order is what the kernel's widening of
 //    each membrane by O(h) gives (a larger effective haematocrit), second order the lattice's own;
+//    the fit's rms residual is within √(3.84/4) of the levels' rms standard error (the four levels
+//    follow one power law within their noise: the asymptotic range);
 //  - the normalised cell-free layer's ensemble means at 0.25 and 0.2 µm agree within their 95 %
 //    confidence intervals (converged within the seed-to-seed uncertainty at the scene's resolution);
 //  - the extrapolated η0 (with a jackknife over the seeds), each level's error against it and the
@@ -143,7 +145,7 @@ TEST(ChannelResolution, FourSpacingsFourSeeds) {
       "100 strain units at 400 1/s: at h = 0.25 and 0.2 um every seed completes with every edge strain within 0.5, at "
       "every level every area within 1 %; the relative apparent viscosity (mean over strain 50-100 and over the "
       "seeds complete at every level) falls at every refinement and converges at an observed order in [0.5, 2.5] "
-      "(least-squares fit eta0 + C h^p); the normalised cell-free layer's ensemble means at 0.25 and 0.2 um agree "
+      "(least-squares fit eta0 + C h^p, its rms residual within sqrt(3.84/4) of the levels' standard error); the normalised cell-free layer's ensemble means at 0.25 and 0.2 um agree "
       "within their 95 % confidence intervals; the extrapolated eta0 (jackknife over seeds) and each level's error "
       "reported.");
   record.set_reference("Convergence of the suspension's statistics with h (kernel 4h and repulsion range 2h are "
