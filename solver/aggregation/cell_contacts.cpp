@@ -1,5 +1,7 @@
 #include "aggregation/cell_contacts.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -39,9 +41,8 @@ void check_view(const MarkerView& v) {
   }
 }
 
-// The shared arithmetic of the cell-list and brute-force paths (see the header).
-// pair_sums(m, cand) takes, for marker m, marker indices in ASCENDING order containing
-// every marker of another cell within the cut-off (it may contain more).
+// The shared arithmetic of the cell-list and brute-force paths (see the header): the
+// per-marker arrays and the walls. The pair sums are sums_over_candidates (below).
 struct Engine {
   const geometry::Domain& domain;
   const ContactPotential& potential;
@@ -51,12 +52,10 @@ struct Engine {
   std::vector<double> W;  // W(s_m) summed over the walls (eq 4.13); empty without wall repulsion
   std::size_t wall_markers = 0;
   double min_wall_gap = std::numeric_limits<double>::infinity();
-  std::vector<double> box_cx, box_cy, box_hx, box_hy;  // per-cell bounding box: centre, half-widths
   std::vector<std::size_t> count;
   std::atomic<bool> coincident{false};
   std::size_t beyond_wall = SIZE_MAX;  // the first marker on or beyond a wall (add_walls is serial)
   double beyond_wall_gap = 0.0;
-  bool use_boxes = true;  // bounding-box block skip (cell lists); the brute force tests every pair
 
   Engine(const geometry::Domain& d, const ContactPotential& p, const MarkerView& view) : domain(d), potential(p), v(view) {
     check_view(v);
@@ -76,44 +75,11 @@ struct Engine {
       }
       for (std::size_t k = o; k < e; ++k) ell[k] = 0.5 * (edge[k > o ? k - 1 : e - 1] + edge[k]);
     }
-    const std::size_t cells = v.offsets.size() - 1;
-    box_cx.resize(cells);
-    box_cy.resize(cells);
-    box_hx.resize(cells);
-    box_hy.resize(cells);
-    for (std::size_t c = 0; c < cells; ++c) {
-      const auto xs = std::minmax_element(v.x.begin() + static_cast<std::ptrdiff_t>(v.offsets[c]),
-                                          v.x.begin() + static_cast<std::ptrdiff_t>(v.offsets[c + 1]));
-      const auto ys = std::minmax_element(v.y.begin() + static_cast<std::ptrdiff_t>(v.offsets[c]),
-                                          v.y.begin() + static_cast<std::ptrdiff_t>(v.offsets[c + 1]));
-      box_cx[c] = 0.5 * (*xs.first + *xs.second);
-      box_hx[c] = 0.5 * (*xs.second - *xs.first) * (1.0 + 1e-12);
-      box_cy[c] = 0.5 * (*ys.first + *ys.second);
-      box_hy[c] = 0.5 * (*ys.second - *ys.first) * (1.0 + 1e-12);
-    }
     S.assign(N, 0.0);
     px.assign(N, 0.0);
     py.assign(N, 0.0);
     count.assign(N, 0);
     rmin.assign(N, std::numeric_limits<double>::infinity());
-  }
-
-  // Pair sums of marker m over its candidate list: S_m, the pair force, the pair count.
-  // The candidates are ascending, so marker m's own cell (a contiguous index range) is one
-  // contiguous block of them: skipped by two binary searches instead of a test per pair
-  // (same pairs, same order as testing each).
-  void pair_sums(std::size_t m, std::span<const std::size_t> cand) {
-    const std::size_t cm = cell_of[m];
-    const auto own_begin = std::lower_bound(cand.begin(), cand.end(), v.offsets[cm]);
-    const auto own_end = std::lower_bound(own_begin, cand.end(), v.offsets[cm + 1]);
-    Sums acc;
-    accumulate(m, cand.subspan(0, static_cast<std::size_t>(own_begin - cand.begin())), acc);
-    accumulate(m, cand.subspan(static_cast<std::size_t>(own_end - cand.begin())), acc);
-    S[m] = acc.s;
-    px[m] = acc.fx;
-    py[m] = acc.fy;
-    count[m] = acc.k;
-    rmin[m] = acc.rmin;
   }
 
   struct Sums {
@@ -122,51 +88,12 @@ struct Engine {
     std::size_t k = 0;
   };
 
-  // The candidates of one cell form a contiguous block of the (ascending) list. A block
-  // is skipped whole when the cell's bounding box is beyond r_c of marker m: the
-  // minimum-image distance d(a) is 1-Lipschitz, so |X_m − X_n| ≥ d(X_m − box centre) −
-  // half-width per axis for every marker n of the cell. Skipped pairs are ones the test
-  // r² < r_c² would drop anyway (margin 1e-9 against round-off), so the sums and their
-  // order are unchanged: still bitwise the brute-force result.
-  void accumulate(std::size_t m, std::span<const std::size_t> cand, Sums& sums) {
-    Sums acc = sums;  // in registers: the loop's stores would otherwise go through memory
-    const double Lx = domain.grid.nx, Ly = domain.grid.ny, ix = 1.0 / Lx, iy = 1.0 / Ly;
-    const bool perx = domain.periodic_x, pery = domain.periodic_y;
-    const double rc = potential.cutoff(), rc2 = rc * rc, skip2 = rc2 * (1.0 + 1e-9);
-    const double xm = v.x[m], ym = v.y[m], lm = ell[m];
-    std::size_t i = 0;
-    while (i < cand.size()) {
-      const std::size_t c = cell_of[cand[i]];
-      const double gx = std::max(std::abs(image(xm - box_cx[c], perx, Lx, ix)) - box_hx[c], 0.0);
-      const double gy = std::max(std::abs(image(ym - box_cy[c], pery, Ly, iy)) - box_hy[c], 0.0);
-      const std::size_t end = static_cast<std::size_t>(
-          std::lower_bound(cand.begin() + static_cast<std::ptrdiff_t>(i), cand.end(), v.offsets[c + 1]) - cand.begin());
-      if (use_boxes && gx * gx + gy * gy >= skip2) {
-        i = end;
-        continue;
-      }
-      for (; i < end; ++i) {
-        const std::size_t n = cand[i];
-        const double dx = image(xm - v.x[n], perx, Lx, ix);
-        const double dy = image(ym - v.y[n], pery, Ly, iy);
-        const double r2 = dx * dx + dy * dy;
-        if (!(r2 < rc2)) continue;
-        const double r = std::sqrt(r2);
-        if (!(r > 0.0)) {  // no direction: reported after the parallel loop (no throw inside OpenMP)
-          coincident.store(true, std::memory_order_relaxed);
-          continue;
-        }
-        double phi = 0.0, dphi = 0.0;
-        if (!potential.evaluate(r, phi, dphi)) continue;
-        acc.s += phi * ell[n];                        // S_m = Σ Φ ℓ_n
-        const double w = dphi * (lm * ell[n]) / r;    // symmetric in (m, n) bit for bit
-        acc.fx -= w * dx;                             // −Φ' ℓ_m ℓ_n (X_m − X_n)/r
-        acc.fy -= w * dy;
-        acc.rmin = std::min(acc.rmin, r);
-        ++acc.k;
-      }
-    }
-    sums = acc;
+  void store(std::size_t m, const Sums& acc) {
+    S[m] = acc.s;
+    px[m] = acc.fx;
+    py[m] = acc.fy;
+    count[m] = acc.k;
+    rmin[m] = acc.rmin;
   }
 
   // The walls' part (eq 4.13): W_m = Σ_walls W(s) and the normal force −W'(s) ℓ_m ∂s/∂X_m,
@@ -349,30 +276,201 @@ struct CellList {
   }
 };
 
-void run_cell_list(Engine& eng, const geometry::Domain& d, int nbx, int nby) {
-  CellList cl;
-  cl.nbx = nbx;
-  cl.nby = nby;
-  std::vector<int> bin;
-  cl.build(d, eng.v, bin);
-  cl.find_owners(eng.cell_of);
-  const int nbins = nbx * nby;
-#pragma omp parallel if (eng.v.x.size() >= kParallelMarkers)
+// Per-thread buffers of the pair search and sums, grown once and reused.
+struct PairScratch {
+  std::vector<int> nb;
+  std::vector<std::size_t> cand, merged, hits;
+  std::vector<double> cx, cy, cl, dx, dy, r2;  // per candidate
+  std::vector<double> mx, my, ml;              // per candidate: its marker m's position and ℓ_m
+  std::vector<double> hr, phi, dphi, w;        // per pair within the cut-off
+  std::vector<unsigned char> on;
+  std::vector<std::size_t> found;               // list building: the partners found by this thread
+};
+
+struct SeparationInput {
+  const double* cx;
+  const double* cy;
+  double xm, ym, Lx, Ly, ix, iy;
+};
+
+// X_m − X_n (minimum image on periodic axes, as image()) and r² for the candidates
+// 0 … n − 1, the periodic flags fixed at compile time so that the loop is straight code
+// the compiler vectorises (each lane does the scalar IEEE operations).
+template <bool PX, bool PY>
+void separations_of(const SeparationInput& in, std::size_t n, double* __restrict dx, double* __restrict dy,
+                    double* __restrict r2) {
+  const double* __restrict cx = in.cx;
+  const double* __restrict cy = in.cy;
+#pragma omp simd
+  for (std::size_t i = 0; i < n; ++i) {
+    const double ex = image(in.xm - cx[i], PX, in.Lx, in.ix);
+    const double ey = image(in.ym - cy[i], PY, in.Ly, in.iy);
+    dx[i] = ex;
+    dy[i] = ey;
+    r2[i] = ex * ex + ey * ey;
+  }
+}
+
+struct PairInput {
+  const double* mx;
+  const double* my;
+  const double* cx;
+  const double* cy;
+  double Lx, Ly, ix, iy;
+};
+
+// As separations_of, with marker m's position per entry (a range of several markers' lists).
+template <bool PX, bool PY>
+void pair_separations(const PairInput& in, std::size_t n, double* __restrict dx, double* __restrict dy,
+                      double* __restrict r2) {
+  const double* __restrict mx = in.mx;
+  const double* __restrict my = in.my;
+  const double* __restrict cx = in.cx;
+  const double* __restrict cy = in.cy;
+#pragma omp simd
+  for (std::size_t i = 0; i < n; ++i) {
+    const double ex = image(mx[i] - cx[i], PX, in.Lx, in.ix);
+    const double ey = image(my[i] - cy[i], PY, in.Ly, in.iy);
+    dx[i] = ex;
+    dy[i] = ey;
+    r2[i] = ex * ex + ey * ey;
+  }
+}
+
+// Marker m against the candidates `cand` (ascending, none of m's own cell): their
+// positions and lengths gathered, the separations and r² of each (vectorised). Returns
+// the count; the values are in s.dx, s.dy, s.r2, s.cl.
+std::size_t separations(const Engine& eng, std::size_t m, std::span<const std::size_t> cand, PairScratch& s) {
+  const std::size_t n = cand.size();
+  for (auto* buf : {&s.cx, &s.cy, &s.cl, &s.dx, &s.dy, &s.r2, &s.hr, &s.phi, &s.dphi, &s.w}) buf->resize(n);
+  s.hits.resize(n);
+  s.on.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    s.cx[i] = eng.v.x[cand[i]];
+    s.cy[i] = eng.v.y[cand[i]];
+    s.cl[i] = eng.ell[cand[i]];
+  }
+  const geometry::Domain& d = eng.domain;
+  const SeparationInput in{s.cx.data(), s.cy.data(), eng.v.x[m], eng.v.y[m], double(d.grid.nx), double(d.grid.ny),
+                           1.0 / double(d.grid.nx), 1.0 / double(d.grid.ny)};
+  if (d.periodic_x && d.periodic_y) separations_of<true, true>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  else if (d.periodic_x) separations_of<true, false>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  else if (d.periodic_y) separations_of<false, true>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  else separations_of<false, false>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  return n;
+}
+
+// Pass 2: the candidates with 0 < r² < r_c², in candidate order (branch-free
+// compaction into s.hits); r² = 0, two markers of different cells on one point, is
+// reported after the parallel loop (no throw inside OpenMP). Returns their count.
+std::size_t within_cutoff(Engine& eng, std::size_t n, PairScratch& s) {
+  const double rc = eng.potential.cutoff(), rc2 = rc * rc;
+  std::size_t k = 0;
+  bool zero = false;
+  std::size_t* __restrict h = s.hits.data();
+  const double* __restrict r2 = s.r2.data();
+  for (std::size_t i = 0; i < n; ++i) {
+    h[k] = i;
+    k += (r2[i] < rc2 && r2[i] > 0.0) ? 1 : 0;
+    zero = zero || r2[i] == 0.0;
+  }
+  if (zero) eng.coincident.store(true, std::memory_order_relaxed);
+  return k;
+}
+
+// Pass 3a: r, the pair law and the weight w = Φ'(ℓ_m ℓ_n)/r of the k pairs (vectorised;
+// ContactPotential::evaluate_many). lm[i] is ℓ of candidate i's marker m.
+void weights(const Engine& eng, std::size_t k, const double* lm_of, PairScratch& s) {
   {
+    const std::size_t* __restrict h = s.hits.data();
+    const double* __restrict r2 = s.r2.data();
+    double* __restrict hr = s.hr.data();
+#pragma omp simd
+    for (std::size_t q = 0; q < k; ++q) hr[q] = std::sqrt(r2[h[q]]);
+  }
+  eng.potential.evaluate_many(s.hr.data(), k, s.phi.data(), s.dphi.data(), s.on.data());
+  const std::size_t* __restrict h = s.hits.data();
+  const double* __restrict cl = s.cl.data();
+  const double* __restrict lm = lm_of;
+  const double* __restrict hr = s.hr.data();
+  const double* __restrict dphi = s.dphi.data();
+  double* __restrict w = s.w.data();
+#pragma omp simd
+  for (std::size_t q = 0; q < k; ++q) w[q] = dphi[q] * (lm[h[q]] * cl[h[q]]) / hr[q];  // symmetric in (m, n) bit for bit
+}
+
+// Pass 3b: one marker's sums over the pairs q … (its hits below candidate index `end`), in
+// candidate order; q is left at the next marker's first pair.
+Engine::Sums ordered_sums(const PairScratch& s, std::size_t& q, std::size_t k, std::size_t end) {
+  Engine::Sums acc;  // in registers
+  for (; q < k && s.hits[q] < end; ++q) {
+    if (!s.on[q]) continue;
+    const std::size_t i = s.hits[q];
+    acc.s += s.phi[q] * s.cl[i];  // S_m = Σ Φ ℓ_n
+    acc.fx -= s.w[q] * s.dx[i];   // −Φ' ℓ_m ℓ_n (X_m − X_n)/r
+    acc.fy -= s.w[q] * s.dy[i];
+    acc.rmin = std::min(acc.rmin, s.hr[q]);
+    ++acc.k;
+  }
+  return acc;
+}
+
+// The pair sums of marker m over `cand`: ascending marker indices, none of m's own cell,
+// containing every marker of another cell within the cut-off (it may contain more):
+// S_m, the pair force, the pair count and the closest partner. Three passes:
+//   1. separations and r² (vectorised);
+//   2. the candidates within the cut-off, in candidate order (within_cutoff);
+//   3. the pair law and weights of those (weights), then the sums in candidate order
+//      (ordered_sums).
+// The order is ascending marker order for the pair lists (chunk_sums) and the brute force
+// alike, and both use these passes, so the two give the same sums bit for bit, on any
+// number of threads.
+void pair_sums(Engine& eng, std::size_t m, std::span<const std::size_t> cand, PairScratch& s) {
+  const std::size_t n = separations(eng, m, cand, s);
+  const std::size_t k = within_cutoff(eng, n, s);
+  s.ml.assign(n, eng.ell[m]);
+  weights(eng, k, s.ml.data(), s);
+  std::size_t q = 0;
+  eng.store(m, ordered_sums(s, q, k, n));
+}
+
+}  // namespace
+
+// The pair lists (Verlet lists, header): for each marker the markers of other cells within
+// r_c + skin when they were built, ascending, found through a cell list of bins of side
+// ≥ r_c + skin. Built in parallel over bins into per-thread buffers, then laid out per marker
+// in marker order (CSR), the same lists for any thread count.
+void CellContacts::build_pair_lists(const MarkerView& v, const std::vector<std::size_t>& cell_of) {
+  const std::size_t N = v.x.size();
+  const double reach = potential_.cutoff() + skin_, reach2 = reach * reach;
+  CellList cl;
+  cl.nbx = nbx_;
+  cl.nby = nby_;
+  std::vector<int> bin;
+  cl.build(domain_, v, bin);
+  cl.find_owners(cell_of);
+  std::vector<std::size_t> begin(N, 0), length(N, 0);
+  std::vector<int> thread_of(N, 0);
+  const int nbins = nbx_ * nby_;
+  const int threads = threads_forces(N) ? omp_get_max_threads() : 1;
+  std::vector<std::vector<std::size_t>> found(static_cast<std::size_t>(threads));
+  const geometry::Domain& d = domain_;
+  const double Lx = d.grid.nx, Ly = d.grid.ny, ix = 1.0 / Lx, iy = 1.0 / Ly;
+#pragma omp parallel num_threads(threads)
+  {
+    const int t = omp_get_thread_num();
+    std::vector<std::size_t>& out = found[static_cast<std::size_t>(t)];
+    out.clear();
     std::vector<int> nb;
     std::vector<std::size_t> cand, merged;
+    std::vector<double> cx, cy, dx, dy, r2;
 #pragma omp for schedule(dynamic, 64)
     for (int b = 0; b < nbins; ++b) {
       const std::size_t b0 = cl.start[static_cast<std::size_t>(b)], b1 = cl.start[static_cast<std::size_t>(b) + 1];
       if (b0 == b1) continue;
-      cl.neighbours(d, b % nbx, b / nbx, nb);
-      // A neighbourhood of one cell's markers only (most of them at a short range): nothing
-      // to add, the sums keep their initial zeros (the same bits as visiting them).
-      if (cl.one_cell(nb)) continue;
-      // One ascending candidate list serves every marker of bin b (ascending = brute-force
-      // order): the bins' ascending runs merged one after the other into reused buffers
-      // (linear per run, no allocation once the buffers have grown; the same order as
-      // sorting them, so the same bits).
+      cl.neighbours(d, b % nbx_, b / nbx_, nb);
+      if (cl.one_cell(nb)) continue;  // one cell's markers only: empty lists
+      // The bins' ascending runs merged into one ascending candidate list for the bin.
       cand.clear();
       for (const int q : nb) {
         const auto first = cl.items.begin() + static_cast<std::ptrdiff_t>(cl.start[static_cast<std::size_t>(q)]);
@@ -382,19 +480,140 @@ void run_cell_list(Engine& eng, const geometry::Domain& d, int nbx, int nby) {
         std::merge(cand.begin(), cand.end(), first, last, merged.begin());
         cand.swap(merged);
       }
-      for (std::size_t k = b0; k < b1; ++k) eng.pair_sums(cl.items[k], cand);
+      const std::size_t n = cand.size();
+      cx.resize(n);
+      cy.resize(n);
+      dx.resize(n);
+      dy.resize(n);
+      r2.resize(n);
+      for (std::size_t i = 0; i < n; ++i) {
+        cx[i] = v.x[cand[i]];
+        cy[i] = v.y[cand[i]];
+      }
+      for (std::size_t k = b0; k < b1; ++k) {
+        const std::size_t m = cl.items[k], c = cell_of[m];
+        const SeparationInput in{cx.data(), cy.data(), v.x[m], v.y[m], Lx, Ly, ix, iy};
+        if (d.periodic_x && d.periodic_y) separations_of<true, true>(in, n, dx.data(), dy.data(), r2.data());
+        else if (d.periodic_x) separations_of<true, false>(in, n, dx.data(), dy.data(), r2.data());
+        else if (d.periodic_y) separations_of<false, true>(in, n, dx.data(), dy.data(), r2.data());
+        else separations_of<false, false>(in, n, dx.data(), dy.data(), r2.data());
+        begin[m] = out.size();
+        thread_of[m] = t;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (r2[i] < reach2 && (cand[i] < v.offsets[c] || cand[i] >= v.offsets[c + 1])) out.push_back(cand[i]);
+        }
+        length[m] = out.size() - begin[m];
+      }
+    }
+  }
+  list_start_.assign(N + 1, 0);
+  for (std::size_t m = 0; m < N; ++m) list_start_[m + 1] = list_start_[m] + length[m];
+  list_.resize(list_start_[N]);
+  for (std::size_t m = 0; m < N; ++m) {
+    const std::vector<std::size_t>& src = found[static_cast<std::size_t>(thread_of[m])];
+    std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(begin[m]), length[m],
+                list_.begin() + static_cast<std::ptrdiff_t>(list_start_[m]));
+  }
+  list_owner_.resize(list_.size());
+  for (std::size_t m = 0; m < N; ++m)
+    std::fill(list_owner_.begin() + static_cast<std::ptrdiff_t>(list_start_[m]),
+              list_owner_.begin() + static_cast<std::ptrdiff_t>(list_start_[m + 1]), m);
+  list_x_.assign(v.x.begin(), v.x.end());
+  list_y_.assign(v.y.begin(), v.y.end());
+  list_offsets_.assign(v.offsets.begin(), v.offsets.end());
+  ++list_builds_;
+}
+
+// Whether the lists still hold every pair within r_c: the same cells, and no marker moved
+// by skin/2 or more since they were built (two markers then close by less than the skin).
+bool CellContacts::pair_lists_valid(const MarkerView& v) const {
+  if (list_offsets_.size() != v.offsets.size() || !std::equal(list_offsets_.begin(), list_offsets_.end(), v.offsets.begin()))
+    return false;
+  const double limit2 = 0.25 * skin_ * skin_ * (1.0 - 1e-9);
+  double worst = 0.0;
+  const std::size_t N = v.x.size();
+  for (std::size_t m = 0; m < N; ++m) {
+    const double ex = v.x[m] - list_x_[m], ey = v.y[m] - list_y_[m];
+    worst = std::max(worst, ex * ex + ey * ey);
+  }
+  return worst < limit2;
+}
+
+namespace {
+
+// The pair sums of markers first … last − 1 over their pair lists, whose entries are one
+// contiguous range of the CSR arrays: the same three passes as pair_sums, each over all of
+// the range's entries at once (long vector loops instead of one short loop per marker),
+// then each marker's sums over its own entries in list order. Per pair the same
+// arithmetic as pair_sums, per marker the same order: the same bits.
+void chunk_sums(Engine& eng, std::size_t first, std::size_t last, std::span<const std::size_t> start,
+                std::span<const std::size_t> list, std::span<const std::size_t> owner, PairScratch& s) {
+  const std::size_t e0 = start[first], n = start[last] - e0;
+  if (n == 0) return;  // no partner: the sums keep their zeros
+  for (auto* buf : {&s.cx, &s.cy, &s.cl, &s.dx, &s.dy, &s.r2, &s.hr, &s.phi, &s.dphi, &s.w, &s.mx, &s.my, &s.ml})
+    buf->resize(n);
+  s.hits.resize(n);
+  s.on.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t p = list[e0 + i], m = owner[e0 + i];
+    s.cx[i] = eng.v.x[p];
+    s.cy[i] = eng.v.y[p];
+    s.cl[i] = eng.ell[p];
+    s.mx[i] = eng.v.x[m];
+    s.my[i] = eng.v.y[m];
+    s.ml[i] = eng.ell[m];
+  }
+  const geometry::Domain& d = eng.domain;
+  const PairInput in{s.mx.data(), s.my.data(), s.cx.data(), s.cy.data(), double(d.grid.nx), double(d.grid.ny),
+                     1.0 / double(d.grid.nx), 1.0 / double(d.grid.ny)};
+  if (d.periodic_x && d.periodic_y) pair_separations<true, true>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  else if (d.periodic_x) pair_separations<true, false>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  else if (d.periodic_y) pair_separations<false, true>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  else pair_separations<false, false>(in, n, s.dx.data(), s.dy.data(), s.r2.data());
+  const std::size_t k = within_cutoff(eng, n, s);
+  weights(eng, k, s.ml.data(), s);
+  std::size_t q = 0;
+  for (std::size_t m = first; m < last; ++m) {
+    const std::size_t end = start[m + 1] - e0;
+    if (q < k && s.hits[q] < end) eng.store(m, ordered_sums(s, q, k, end));
+  }
+}
+
+// Every marker's pair sums over its pair list, chunks of markers over the threads.
+void run_pair_lists(Engine& eng, std::span<const std::size_t> start, std::span<const std::size_t> list,
+                    std::span<const std::size_t> owner) {
+  const std::size_t N = eng.v.x.size();
+  const long long chunks = static_cast<long long>((N + 63) / 64);
+#pragma omp parallel if (N >= kParallelMarkers)
+  {
+    PairScratch s;
+#pragma omp for schedule(dynamic, 4)
+    for (long long q = 0; q < chunks; ++q) {
+      const std::size_t first = static_cast<std::size_t>(q) * 64, last = std::min(N, first + 64);
+      chunk_sums(eng, first, last, start, list, owner, s);
     }
   }
 }
 
+// Every marker against every marker of the other cells (ascending, its own cell left
+// out), chunks of markers over the threads: any thread count gives the same bits.
 void run_brute_force(Engine& eng) {
-  eng.use_boxes = false;
   const std::size_t N = eng.v.x.size();
-  std::vector<std::size_t> all(N);
-  std::iota(all.begin(), all.end(), std::size_t{0});
   const long long n_ll = static_cast<long long>(N);
-#pragma omp parallel for schedule(static) if (N >= kParallelMarkers)
-  for (long long i = 0; i < n_ll; ++i) eng.pair_sums(static_cast<std::size_t>(i), all);
+#pragma omp parallel if (N >= kParallelMarkers)
+  {
+    PairScratch s;
+    std::vector<std::size_t> others;
+#pragma omp for schedule(static)
+    for (long long q = 0; q < n_ll; ++q) {
+      const std::size_t m = static_cast<std::size_t>(q), c = eng.cell_of[m];
+      others.clear();
+      for (std::size_t n = 0; n < N; ++n) {
+        if (n < eng.v.offsets[c] || n >= eng.v.offsets[c + 1]) others.push_back(n);
+      }
+      pair_sums(eng, m, others, s);
+    }
+  }
 }
 
 void check_periodic_cutoff(const geometry::Domain& d, double rc) {
@@ -420,21 +639,36 @@ void check_same_domain(const geometry::Domain& a, const geometry::Domain& b) {
 }  // namespace
 
 CellContacts::CellContacts(const geometry::Domain& domain, const ContactLaw& law) : domain_(domain), potential_(law) {
-  check_periodic_cutoff(domain, potential_.cutoff());
-  nbx_ = CellList::bins(domain.grid.nx, potential_.cutoff());
-  nby_ = CellList::bins(domain.grid.ny, potential_.cutoff());
+  const double rc = potential_.cutoff();
+  check_periodic_cutoff(domain, rc);
+  // The skin: kSkin, at most a quarter of the cut-off, and small enough that r_c + skin
+  // stays below half of every periodic side (the minimum image stays the only image).
+  skin_ = std::min(kSkin, 0.25 * rc);
+  if (domain.periodic_x) skin_ = std::min(skin_, 0.99 * (0.5 * domain.grid.nx - rc));
+  if (domain.periodic_y) skin_ = std::min(skin_, 0.99 * (0.5 * domain.grid.ny - rc));
+  skin_ = std::max(skin_, 0.0);
+  nbx_ = CellList::bins(domain.grid.nx, rc + skin_);
+  nby_ = CellList::bins(domain.grid.ny, rc + skin_);
+}
+
+// The pair sums of every marker (E is this file's Engine): the lists rebuilt when needed.
+template <class E>
+void CellContacts::pair_sums_all(E& eng) {
+  if (!pair_lists_valid(eng.v)) build_pair_lists(eng.v, eng.cell_of);
+  run_pair_lists(eng, list_start_, list_, list_owner_);
 }
 
 ContactStats CellContacts::add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy) {
   Engine eng(domain_, potential_, markers);
-  run_cell_list(eng, domain_, nbx_, nby_);
+  pair_sums_all(eng);
   eng.add_walls();
   return eng.finish(fx, fy, &magnitude_);
 }
 
 double CellContacts::energy(const MarkerView& markers) const {
+  CellContacts fresh(domain_, potential_.law());  // its own pair lists: this object's are left as they are
   Engine eng(domain_, potential_, markers);
-  run_cell_list(eng, domain_, nbx_, nby_);
+  fresh.pair_sums_all(eng);
   eng.add_walls();
   return eng.energy();
 }

@@ -24,20 +24,23 @@
 // periodic axes (markers may be unwrapped: ImmersedCells shifts whole cells only), so the cut-off must be < half the
 // period (checked). Within a cell the edges use the plain coordinate differences.
 //
-// Neighbour search: cell lists with bins of side ≥ r_c (O(N) in markers). The markers
-// of a bin share one candidate list: the markers of its ≤ 9 neighbouring bins, in
-// ASCENDING index order (the bins' items, sorted). A
-// marker sums over it in that order, skipping its own cell (a contiguous block), whole
-// blocks of cells whose bounding box lies beyond r_c (exact: the minimum-image distance
-// is 1-Lipschitz) and pairs beyond r_c: exactly the pairs and the order of the
-// brute-force loop over all n (add_forces_brute_force, which tests every pair), so the
-// two give BITWISE identical forces and energies (asserted in
-// verification.aggregation_forces). Each pair term uses exactly antisymmetric arithmetic
-// (X_m − X_n = −(X_n − X_m) in IEEE, odd-symmetric minimum image; the weight
-// Φ'(r)(ℓ_mℓ_n)/r is symmetric), so the force marker n gets from m is bit for bit minus
-// the force m gets from n; only their accumulation into different sums rounds. Each
-// marker writes only its own force: parallel over bins and markers (OpenMP, from 2000
-// markers on), deterministic for any thread count.
+// Neighbour search: pair (Verlet) lists. Each marker keeps the markers of other cells
+// that were within r_c + skin when the lists were built, in ASCENDING index order; the
+// lists are kept between calls and rebuilt (through a cell list of bins of side
+// ≥ r_c + skin, O(N) in markers) once some marker has moved skin/2 since, or the cells
+// changed. Until then every pair within r_c is in them (two markers close by less than
+// the skin). A marker sums over its list in that order, dropping the pairs beyond r_c:
+// exactly the pairs and the order of the brute-force loop over all n
+// (add_forces_brute_force, which tests every pair with the same arithmetic), so the two
+// give BITWISE identical forces and energies whenever the lists were built (asserted in
+// verification.aggregation_forces and the unit tests with moving markers). Each pair term
+// uses exactly antisymmetric arithmetic (X_m − X_n = −(X_n − X_m) in IEEE, odd-symmetric
+// minimum image; the weight Φ'(r)(ℓ_mℓ_n)/r is symmetric), so the force marker n gets
+// from m is bit for bit minus the force m gets from n; only their accumulation into
+// different sums rounds. The separations, the pair law and the weights run as vector
+// loops over many pairs at once (the exponential is numeric::exp_portable, the same bits
+// in every lane); each marker writes only its own sums: parallel over markers (OpenMP,
+// from 2000 markers on), deterministic for any thread count.
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -109,11 +112,31 @@ class CellContacts {
   int bins_x() const { return nbx_; }
   int bins_y() const { return nby_; }
 
+ // The pair lists' skin (h): lists hold the partners within r_c + skin and are rebuilt
+  // once a marker has moved skin/2 since they were built (at most r_c/4, and less when a
+  // periodic side needs it).
+  static constexpr double kSkin = 1.0;
+  double skin() const { return skin_; }
+  // How many times the pair lists were built (tests, the benchmark).
+  std::size_t pair_list_builds() const { return list_builds_; }
+
  private:
+  template <class E>
+  void pair_sums_all(E& eng);
+  void build_pair_lists(const MarkerView& v, const std::vector<std::size_t>& cell_of);
+  bool pair_lists_valid(const MarkerView& v) const;
+
   geometry::Domain domain_;
   ContactPotential potential_;
+  double skin_ = 0.0;
   int nbx_ = 1, nby_ = 1;
   std::vector<double> magnitude_;
+  // Pair lists (CSR): the partners of marker m are list_[list_start_[m] … list_start_[m+1]),
+  // built at the positions list_x_, list_y_ and the cell layout list_offsets_.
+  std::vector<std::size_t> list_start_, list_, list_owner_;  // list_owner_: m for each entry of m
+  std::vector<double> list_x_, list_y_;
+  std::vector<std::size_t> list_offsets_;
+  std::size_t list_builds_ = 0;
 };
 
 // Relative contact area of cell c (thesis §III.2, after Bagchi et al.): the fraction of

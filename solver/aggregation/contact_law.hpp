@@ -3,6 +3,7 @@
 // docs/model.md §4), short-range repulsion (repulsion.hpp, §4b), or both. Their pair
 // densities add up into one potential, so one neighbour search serves both (cell_contacts.hpp).
 #include <algorithm>
+#include <cstddef>
 #include <optional>
 #include <stdexcept>
 
@@ -38,6 +39,14 @@ class ContactPotential {
     }
     return any;
   }
+  // The same for k separations r[0 … k−1] (each > 0): phi[i], dphi[i] and on[i] = whether
+  // pair i interacts, bit for bit what evaluate(r[i]) gives, in straight loops the
+  // compiler vectorises (the exponential is numeric::exp_portable, morse.hpp).
+  void evaluate_many(const double* r, std::size_t k, double* phi, double* dphi, unsigned char* on) const {
+    if (morse_ && repulsion_) evaluate_many_of<true, true>(r, k, phi, dphi, on);
+    else if (morse_) evaluate_many_of<true, false>(r, k, phi, dphi, on);
+    else evaluate_many_of<false, true>(r, k, phi, dphi, on);
+  }
   // The largest distance at which a pair interacts (max of r_c and d).
   double cutoff() const { return cutoff_; }
   const ContactLaw& law() const { return law_; }
@@ -47,6 +56,10 @@ class ContactPotential {
   }
 
  private:
+  template <bool kMorse, bool kRepulsion>
+  void evaluate_many_of(const double* __restrict r, std::size_t k, double* __restrict phi, double* __restrict dphi,
+                        unsigned char* __restrict on) const;
+
   ContactLaw law_;
   std::optional<ShiftedMorse> morse_;
   std::optional<Repulsion> repulsion_;
@@ -62,6 +75,48 @@ inline ContactPotential::ContactPotential(const ContactLaw& law) : law_(law) {
   if (law.repulsion) {
     repulsion_.emplace(*law.repulsion);
     cutoff_ = std::max(cutoff_, law.repulsion->range);
+  }
+}
+
+// Each lane: the parts' formulas of ShiftedMorse::evaluate and Repulsion::evaluate with the
+// same operations, combined as evaluate() combines them (a part beyond its cut-off adds
+// nothing; the Morse part alone is its value unchanged).
+template <bool kMorse, bool kRepulsion>
+void ContactPotential::evaluate_many_of(const double* __restrict r, std::size_t k, double* __restrict phi,
+                                        double* __restrict dphi, unsigned char* __restrict on) const {
+  MorseParameters m{};
+  double phi_c = 0.0, dphi_c = 0.0;
+  if constexpr (kMorse) {
+    m = morse_->parameters();
+    phi_c = morse_->phi_c();
+    dphi_c = morse_->dphi_c();
+  }
+  double range = 0.0, pressure = 0.0;
+  if constexpr (kRepulsion) {
+    range = repulsion_->parameters().range;
+    pressure = repulsion_->parameters().pressure;
+  }
+#pragma omp simd
+  for (std::size_t i = 0; i < k; ++i) {
+    const double ri = r[i];
+    double pm = 0.0, dpm = 0.0, pr = 0.0, dpr = 0.0;
+    bool m_on = false, r_on = false;
+    if constexpr (kMorse) {
+      const double e1 = numeric::exp_portable(m.beta * (m.r0 - ri));
+      const double e2 = e1 * e1;
+      m_on = ri < m.cutoff;
+      pm = m_on ? m.De * (e2 - 2.0 * e1) - phi_c - (ri - m.cutoff) * dphi_c : 0.0;
+      dpm = m_on ? 2.0 * m.beta * m.De * (e1 - e2) - dphi_c : 0.0;
+    }
+    if constexpr (kRepulsion) {
+      const double q = range / ri - 1.0;
+      r_on = ri < range;
+      pr = pressure * q * q;
+      dpr = -2.0 * pressure * q * range / (ri * ri);
+    }
+    phi[i] = r_on ? (m_on ? pm + pr : pr) : pm;
+    dphi[i] = r_on ? (m_on ? dpm + dpr : dpr) : dpm;
+    on[i] = (m_on || r_on) ? 1 : 0;
   }
 }
 

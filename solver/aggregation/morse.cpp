@@ -17,12 +17,12 @@ void check(const MorseParameters& p) {
 }
 
 double morse_energy(const MorseParameters& p, double r) {
-  const double e1 = std::exp(p.beta * (p.r0 - r));
+  const double e1 = numeric::exp_portable(p.beta * (p.r0 - r));
   return p.De * (e1 * e1 - 2.0 * e1);
 }
 
 double morse_derivative(const MorseParameters& p, double r) {
-  const double e1 = std::exp(p.beta * (p.r0 - r));
+  const double e1 = numeric::exp_portable(p.beta * (p.r0 - r));
   return 2.0 * p.beta * p.De * (e1 - e1 * e1);
 }
 

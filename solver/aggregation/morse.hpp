@@ -14,11 +14,16 @@
 // differences. The shift moves the minimum slightly (use the shifted form for
 // predictions: solver/aggregation/morse_units.hpp does).
 //
+// e^x is numeric::exp_portable (common/portable_exp.hpp): the pair loop evaluates it in
+// vector lanes with the bits of a scalar call.
+//
 // Units: lattice (h = Δt = ρ0 = 1). In the 2D pair model (cell_contacts.hpp) the
 // pair energy of markers m, n is Φ_s(r_mn) ℓ_m ℓ_n, so D_e is an energy per unit depth
 // per length², i.e. a PRESSURE (lattice ρ0 h²/Δt²); r0, r_c are lengths (h), β an
 // inverse length (1/h). See morse_units.hpp for the physical parameters.
 #include <cmath>
+
+#include "common/portable_exp.hpp"
 
 namespace erythro::aggregation {
 
@@ -47,13 +52,15 @@ struct ShiftedMorse {
       phi = dphi = 0.0;
       return false;
     }
-    const double e1 = std::exp(p_.beta * (p_.r0 - r));
+    const double e1 = numeric::exp_portable(p_.beta * (p_.r0 - r));
     const double e2 = e1 * e1;
     phi = p_.De * (e2 - 2.0 * e1) - phi_c_ - (r - p_.cutoff) * dphi_c_;
     dphi = 2.0 * p_.beta * p_.De * (e1 - e2) - dphi_c_;
     return true;
   }
   const MorseParameters& parameters() const { return p_; }
+  double phi_c() const { return phi_c_; }
+  double dphi_c() const { return dphi_c_; }
 
  private:
   MorseParameters p_;

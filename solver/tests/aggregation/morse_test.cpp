@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include <omp.h>
+
 #include "aggregation/morse.hpp"
 #include "aggregation/cell_contacts.hpp"
 #include "aggregation/morse_units.hpp"
@@ -260,4 +262,88 @@ TEST(CellContacts, FarOutsideWallsStillBinned) {
   EXPECT_EQ(a.energy, b.energy);
   EXPECT_GT(a.pairs, 0u);
   for (int i = 0; i < 6; ++i) EXPECT_EQ(fx[i], bx[i]);
+}
+
+TEST(CellContacts, PairListsFollowMovingMarkersBitForBit) {
+  // The pair lists are kept between calls and rebuilt once a marker has moved half the
+  // skin: at every call the forces and energy equal the brute force's to the bit, whether
+  // the lists were rebuilt or not, on one thread and on several; small moves reuse them,
+  // a large move or a whole cell shifted by a period rebuilds them.
+  const geometry::Domain dom{Grid{60, 50}, true, false};
+  const ContactLaw law{MorseParameters{0.3, 2.5, 0.8, 6.0}, RepulsionParameters{0.2, 1.5, true}};
+  std::vector<double> x, y;
+  std::vector<std::size_t> off{0};
+  const double centres[4][2] = {{12, 14}, {23.5, 15}, {17, 26}, {55, 30}};  // the last across the periodic side
+  for (const auto& c : centres) {
+    for (int k = 0; k < 40; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / 40.0;
+      x.push_back(c[0] + 5.2 * std::cos(a));
+      y.push_back(c[1] + 4.6 * std::sin(a));
+    }
+    off.push_back(x.size());
+  }
+  CellContacts agg(dom, law);
+  ASSERT_GT(agg.skin(), 0.0);
+  std::size_t builds = 0;
+  for (int call = 0; call < 40; ++call) {
+    // Jiggle every marker by a deterministic small amount; the first cell slides along y.
+    for (std::size_t m = 0; m < x.size(); ++m) {
+      x[m] += 0.013 * std::sin(0.7 * double(m) + call);
+      y[m] += 0.011 * std::cos(1.3 * double(m) - call) + (m < 40 ? 0.04 : 0.0);
+    }
+    if (call == 25)
+      for (std::size_t m = 120; m < 160; ++m) x[m] -= 60.0;  // cell 3 unwrapped by one period
+    const MarkerView v{x, y, off};
+    std::vector<double> fx(x.size(), 0.0), fy(x.size(), 0.0), bx(x.size(), 0.0), by(x.size(), 0.0);
+    const ContactStats a = agg.add_forces(v, fx, fy);
+    const ContactStats b = add_forces_brute_force(dom, law, v, bx, by);
+    ASSERT_GT(a.pairs, 0u) << call;
+    EXPECT_EQ(a.pairs, b.pairs) << call;
+    EXPECT_EQ(a.energy, b.energy) << call;
+    EXPECT_EQ(a.min_pair_distance, b.min_pair_distance) << call;
+    for (std::size_t m = 0; m < x.size(); ++m) {
+      ASSERT_EQ(fx[m], bx[m]) << call << " " << m;
+      ASSERT_EQ(fy[m], by[m]) << call << " " << m;
+    }
+    if (call == 25) {
+      EXPECT_EQ(agg.pair_list_builds(), builds + 1) << "a whole cell shifted by a period rebuilds";
+    }
+    builds = agg.pair_list_builds();
+  }
+  // 40 calls, the first cell moving 0.04 per call, half the skin 0.5: a handful of builds.
+  EXPECT_GE(builds, 3u);
+  EXPECT_LE(builds, 12u);
+}
+
+TEST(CellContacts, PairListsSameOnAnyThreadCount) {
+  // 3 000 markers (above kParallelMarkers): lists built and summed on 1 and 2 threads agree.
+  const geometry::Domain dom{Grid{200, 200}, true, true};
+  const MorseParameters p{0.3, 2.5, 0.8, 6.0};
+  std::vector<double> x, y;
+  std::vector<std::size_t> off{0};
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 30; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / 30.0;
+        x.push_back(10.0 + 19.0 * i + 0.3 * j + 9.1 * std::cos(a));
+        y.push_back(10.0 + 19.5 * j + 0.2 * i + 9.3 * std::sin(a));
+        if (k == 29) off.push_back(x.size());
+      }
+  ASSERT_GE(x.size(), CellContacts::kParallelMarkers);
+  const MarkerView v{x, y, off};
+  std::vector<double> f1(x.size(), 0.0), g1(x.size(), 0.0), f2(x.size(), 0.0), g2(x.size(), 0.0);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  CellContacts one(dom, p);
+  const ContactStats a = one.add_forces(v, f1, g1);
+  omp_set_num_threads(2);
+  CellContacts two(dom, p);
+  const ContactStats b = two.add_forces(v, f2, g2);
+  omp_set_num_threads(threads);
+  ASSERT_GT(a.pairs, 1000u);
+  EXPECT_EQ(a.energy, b.energy);
+  for (std::size_t m = 0; m < x.size(); ++m) {
+    ASSERT_EQ(f1[m], f2[m]) << m;
+    ASSERT_EQ(g1[m], g2[m]) << m;
+  }
 }
