@@ -47,18 +47,34 @@ struct Engine {
   const geometry::Domain& domain;
   const ContactPotential& potential;
   const MarkerView& v;
-  std::vector<std::size_t> cell_of;
-  std::vector<double> edge, ell, S, px, py, rmin;
-  std::vector<double> W;  // W(s_m) summed over the walls (eq 4.13); empty without wall repulsion
+  // The per-marker arrays live in a workspace kept by the caller (no allocation per step).
+  std::vector<std::size_t>& cell_of;
+  std::vector<double>&edge, &ell, &S, &px, &py, &rmin;
+  std::vector<double>& W;  // W(s_m) summed over the walls (eq 4.13); empty without wall repulsion
   std::size_t wall_markers = 0;
   double min_wall_gap = std::numeric_limits<double>::infinity();
-  std::vector<std::size_t> count;
+  std::vector<std::size_t>& count;
+  std::vector<detail::PairScratch>& per_thread;
   std::atomic<bool> coincident{false};
   std::size_t beyond_wall = SIZE_MAX;  // the first marker on or beyond a wall (add_walls is serial)
   double beyond_wall_gap = 0.0;
 
-  Engine(const geometry::Domain& d, const ContactPotential& p, const MarkerView& view) : domain(d), potential(p), v(view) {
+  Engine(const geometry::Domain& d, const ContactPotential& p, const MarkerView& view, detail::ContactWorkspace& ws)
+      : domain(d),
+        potential(p),
+        v(view),
+        cell_of(ws.cell_of),
+        edge(ws.edge),
+        ell(ws.ell),
+        S(ws.S),
+        px(ws.px),
+        py(ws.py),
+        rmin(ws.rmin),
+        W(ws.W),
+        count(ws.count),
+        per_thread(ws.per_thread) {
     check_view(v);
+    W.clear();
     const std::size_t N = v.x.size();
     cell_of.resize(N);
     edge.resize(N);
@@ -276,16 +292,7 @@ struct CellList {
   }
 };
 
-// Per-thread buffers of the pair search and sums, grown once and reused.
-struct PairScratch {
-  std::vector<int> nb;
-  std::vector<std::size_t> cand, merged, hits;
-  std::vector<double> cx, cy, cl, dx, dy, r2;  // per candidate
-  std::vector<double> mx, my, ml;              // per candidate: its marker m's position and ℓ_m
-  std::vector<double> hr, phi, dphi, w;        // per pair within the cut-off
-  std::vector<unsigned char> on;
-  std::vector<std::size_t> found;               // list building: the partners found by this thread
-};
+using detail::PairScratch;
 
 struct SeparationInput {
   const double* cx;
@@ -584,9 +591,13 @@ void run_pair_lists(Engine& eng, std::span<const std::size_t> start, std::span<c
                     std::span<const std::size_t> owner) {
   const std::size_t N = eng.v.x.size();
   const long long chunks = static_cast<long long>((N + 63) / 64);
+  // Each thread its own scratch, kept in the workspace (a team of one inside a parallel region
+  // of the caller uses the first).
+  if (eng.per_thread.size() < static_cast<std::size_t>(omp_get_max_threads()))
+    eng.per_thread.resize(static_cast<std::size_t>(omp_get_max_threads()));
 #pragma omp parallel if (N >= kParallelMarkers)
   {
-    PairScratch s;
+    PairScratch& s = eng.per_thread[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 4)
     for (long long q = 0; q < chunks; ++q) {
       const std::size_t first = static_cast<std::size_t>(q) * 64, last = std::min(N, first + 64);
@@ -659,7 +670,7 @@ void CellContacts::pair_sums_all(E& eng) {
 }
 
 ContactStats CellContacts::add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy) {
-  Engine eng(domain_, potential_, markers);
+  Engine eng(domain_, potential_, markers, work_);
   pair_sums_all(eng);
   eng.add_walls();
   return eng.finish(fx, fy, &magnitude_);
@@ -667,7 +678,7 @@ ContactStats CellContacts::add_forces(const MarkerView& markers, std::span<doubl
 
 double CellContacts::energy(const MarkerView& markers) const {
   CellContacts fresh(domain_, potential_.law());  // its own pair lists: this object's are left as they are
-  Engine eng(domain_, potential_, markers);
+  Engine eng(domain_, potential_, markers, fresh.work_);
   fresh.pair_sums_all(eng);
   eng.add_walls();
   return eng.energy();
@@ -675,7 +686,10 @@ double CellContacts::energy(const MarkerView& markers) const {
 
 ContactStats CellContacts::add_forces(membrane::ImmersedCells& cells) {
   check_same_domain(domain_, cells.transfer().domain());
-  const std::vector<std::size_t> offsets = cell_offsets(cells);
+  std::vector<std::size_t>& offsets = work_.offsets;  // reused: no allocation per step
+  offsets.assign(static_cast<std::size_t>(cells.cell_count()) + 1, 0);
+  for (int c = 0; c < cells.cell_count(); ++c)
+    offsets[static_cast<std::size_t>(c) + 1] = cells.offset(c) + cells.size(c);
   return add_forces(view_of(cells, offsets), cells.marker_fx(), cells.marker_fy());
 }
 
@@ -704,7 +718,8 @@ ContactStats add_forces_brute_force(const geometry::Domain& domain, const Contac
                                     std::span<double> fx, std::span<double> fy) {
   const ContactPotential potential(law);
   check_periodic_cutoff(domain, potential.cutoff());
-  Engine eng(domain, potential, markers);
+  detail::ContactWorkspace work;
+  Engine eng(domain, potential, markers, work);
   run_brute_force(eng);
   eng.add_walls();
   std::vector<double> mag;
@@ -714,7 +729,8 @@ ContactStats add_forces_brute_force(const geometry::Domain& domain, const Contac
 double energy_brute_force(const geometry::Domain& domain, const ContactLaw& law, const MarkerView& markers) {
   const ContactPotential potential(law);
   check_periodic_cutoff(domain, potential.cutoff());
-  Engine eng(domain, potential, markers);
+  detail::ContactWorkspace work;
+  Engine eng(domain, potential, markers, work);
   run_brute_force(eng);
   eng.add_walls();
   return eng.energy();

@@ -64,6 +64,24 @@ struct MarkerView {
   std::span<const std::size_t> offsets;
 };
 
+namespace detail {
+// Per-thread buffers of the pair sums (cell_contacts.cpp), grown once and reused.
+struct PairScratch {
+  std::vector<std::size_t> hits;
+  std::vector<double> cx, cy, cl, dx, dy, r2;  // per candidate: its position and ℓ, the separation, r²
+  std::vector<double> mx, my, ml;              // per candidate: its marker m's position and ℓ_m
+  std::vector<double> hr, phi, dphi, w;        // per pair within the cut-off
+  std::vector<unsigned char> on;
+};
+// What a call of add_forces needs beyond its inputs, kept so that a step allocates nothing
+// once the buffers have grown: the per-marker arrays and each thread's scratch.
+struct ContactWorkspace {
+  std::vector<std::size_t> cell_of, count, offsets;
+  std::vector<double> edge, ell, S, px, py, rmin, W;
+  std::vector<PairScratch> per_thread;
+};
+}  // namespace detail
+
 struct ContactStats {
   std::size_t pairs = 0;   // marker pairs of different cells within the cut-off (each once)
   double energy = 0.0;     // E (lattice energy per depth), walls included
@@ -131,6 +149,7 @@ class CellContacts {
   double skin_ = 0.0;
   int nbx_ = 1, nby_ = 1;
   std::vector<double> magnitude_;
+  detail::ContactWorkspace work_;
   // Pair lists (CSR): the partners of marker m are list_[list_start_[m] … list_start_[m+1]),
   // built at the positions list_x_, list_y_ and the cell layout list_offsets_.
   std::vector<std::size_t> list_start_, list_, list_owner_;  // list_owner_: m for each entry of m

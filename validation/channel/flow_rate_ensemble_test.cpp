@@ -1,13 +1,15 @@
-// Case validation.channel_flow_rate_ensemble (study): the flow-rate trends of thesis Figs. IV-1 and
-// IV-2 with four seeds per flow rate, at the user's scene's own resolution (issue 19 item 8: the
-// one-seed study validation.channel_flow_rate runs at h = 0.4 µm, where η_rel is 20 % too high and
-// its trends are within one seed's wander; docs/verification-suspension.md §8, §8b).
+// Cases validation.channel_flow_rate_ensemble and validation.channel_flow_rate_ensemble_aggregated
+// (studies): the flow-rate trends of thesis Figs. IV-1 and IV-2 with four seeds per flow rate, at the
+// user's scene's own resolution (issue 19 item 8: the one-seed study validation.channel_flow_rate runs
+// at h = 0.4 µm, where η_rel is 20 % too high and its trends are within one seed's wander;
+// docs/verification-suspension.md §8, §8b). The first runs the scene as it is (no aggregation), the
+// second with the thesis's Morse aggregation at De* = 5 (its ch. IV set-up).
 //
-// Requirement: the user's channel scene as it is (scenes/rbc_channel.toml: case I RBCs, E_S = 6e-3
-// dyn/cm, no aggregation, 2D haematocrit 0.3, h = 0.25 µm, 110 markers per cell, [time_mapping]
-// Re = 0.1) in its 30 µm channel, 30 µm long, driven so that plasma alone would have the wall shear
-// rate γ̇_w = 50 and 200 1/s (the repulsion's pressure 2 μ γ̇_w at each rate, as the one-seed study),
-// seeds 1–4 each, 100 strain units, means over strain 50–100:
+// Requirement: the user's channel scene (scenes/rbc_channel.toml: case I RBCs, E_S = 6e-3 dyn/cm,
+// 2D haematocrit 0.3, h = 0.25 µm, 110 markers per cell, [time_mapping] Re = 0.1; no aggregation, or
+// aggregation.de_star = 5) in its 30 µm channel, 30 µm long, driven so that plasma alone would have
+// the wall shear rate γ̇_w = 50 and 200 1/s (the repulsion's pressure 2 μ γ̇_w at each rate, as the
+// one-seed study), seeds 1–4 each, 100 strain units, means over strain 50–100:
 //  - every run completes with every cell's area within 1 % and every edge strain within 0.5;
 //  - the relative apparent viscosity falls with flow rate: the ensemble mean at 50 1/s exceeds that
 //    at 200 1/s (thesis Fig. IV-1; shear thinning by deformation and alignment, Ca 0.039 → 0.16);
@@ -18,9 +20,9 @@
 //  - the transverse dispersion D_yy (eq 12.4) from the lateral mean-square displacement of the cells
 //    of all four seeds pooled over strain 50–100, its diffusive window and the MSD curve are reported
 //    (informative here: validation.channel_flow_rate asserts D_yy's window and growth).
-// Reference: thesis Figs. IV-1, IV-2 (trends only: the thesis's cells aggregate, these do not, as
-// Freund & Orescanin's; docs/validation-channel.md says why this set-up); four independent seeds,
-// Student's t_0.975 = 3.182. docs/validation-channel.md, "Seed ensembles at the scene's resolution".
+// Reference: thesis Figs. IV-1, IV-2 (trends; the thesis's cells aggregate at De* = 5); four
+// independent seeds, Student's t_0.975 = 3.182. docs/validation-channel.md, "Seed ensembles at the
+// scene's resolution".
 #include <gtest/gtest.h>
 
 #include <array>
@@ -41,7 +43,6 @@ using namespace erythro;
 
 namespace {
 
-constexpr const char* kCase = "validation.channel_flow_rate_ensemble";
 constexpr double kSizeUm = 30.0, kSpacingUm = 0.25, kMinGapUm = 0.4;  // as verification.channel_resolution
 constexpr long kMarkers = 110;                                        // 0.70 h apart, as there
 constexpr std::array<double, 2> kWallShearRates{50.0, 200.0};         // 1/s, plasma at the same force
@@ -81,25 +82,31 @@ RateSummary summarise(const std::vector<vv::ChannelSeries>& runs) {
   return s;
 }
 
-}  // namespace
+// One ensemble study: the scene, with Morse aggregation at de_star (0: none, the scene as it is).
+struct EnsembleSpec {
+  const char* name;
+  double de_star;
+  const char* requirement;
+  const char* reference;
+  const char* scene;
+};
 
-TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
+void run_ensemble(const EnsembleSpec& spec) {
+  const char* kCase = spec.name;
   vv::Stopwatch total;
   io::ResultRecord record(kCase, "channel");
-  record.set_requirement(
-      "The user's channel scene as it is (case I RBCs, no aggregation, 2D haematocrit 0.3, h = 0.25 um, 110 markers, "
-      "time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), "
-      "seeds 1-4, 100 strain units, means over strain 50-100: every run completes with areas within 1 % and edge "
-      "strains within 0.5; the relative apparent viscosity's ensemble mean falls from 50 to 200 1/s and the normalised "
-      "cell-free layer's rises (thesis Figs. IV-1, IV-2); each difference reported against its 95 % half-width.");
-  record.set_reference("Thesis Figs. IV-1 and IV-2 (trends; the thesis's cells aggregate, these do not, as Freund & "
-                       "Orescanin's); four independent seeds, Student's t_0.975 = 3.182, the two ensembles' 95 % "
-                       "half-widths in quadrature for a difference.");
-  record.set_parameter("scene", "scenes/rbc_channel.toml with domain 30 x 30 um, h = 0.25 um, 110 markers, min_gap "
-                                "0.4 um, F = 2 mu gamma_w / H, repulsion.pressure_Pa = 2 mu gamma_w, seeds 1-4");
+  record.set_requirement(spec.requirement);
+  record.set_reference(spec.reference);
+  record.set_parameter("scene", spec.scene);
 
   const double mu = vv::case_scene("scenes/rbc_channel.toml").fluid.viscosity_cP * 1e-3;
   std::vector<std::vector<vv::ChannelSeries>> runs(kWallShearRates.size(), std::vector<vv::ChannelSeries>(kSeeds.size()));
+  // The repulsion's pressure 2 μ γ̇_w at each rate; aggregation at De* when on.
+  auto overrides = [&](double rate) {
+    std::vector<std::string> o{vv::set("repulsion.pressure_Pa", 2.0 * mu * rate)};
+    if (spec.de_star > 0.0) o.push_back(vv::set("aggregation.de_star", spec.de_star));
+    return o;
+  };
   std::vector<std::function<void()>> jobs;
   for (std::size_t ri = 0; ri < kWallShearRates.size(); ++ri)
     for (std::size_t si = 0; si < kSeeds.size(); ++si)
@@ -114,8 +121,7 @@ TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
                                         .wall_shear_rate_per_s = rate,
                                         .strain = kStrain,
                                         .settled_strain = kSettled},
-                                       kCase, tag(rate) + "_seed" + std::to_string(kSeeds[si]),
-                                       {vv::set("repulsion.pressure_Pa", 2.0 * mu * rate)});
+                                       kCase, tag(rate) + "_seed" + std::to_string(kSeeds[si]), overrides(rate));
       });
   vv::run_concurrently(jobs);
 
@@ -223,4 +229,37 @@ TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();
   for (const auto& m : record.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+}
+
+}  // namespace
+
+TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
+  run_ensemble(
+      {"validation.channel_flow_rate_ensemble", 0.0,
+       "The user's channel scene as it is (case I RBCs, no aggregation, 2D haematocrit 0.3, h = 0.25 um, 110 markers, "
+       "time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), "
+       "seeds 1-4, 100 strain units, means over strain 50-100: every run completes with areas within 1 % and edge "
+       "strains within 0.5; the relative apparent viscosity's ensemble mean falls from 50 to 200 1/s and the normalised "
+       "cell-free layer's rises (thesis Figs. IV-1, IV-2); each difference reported against its 95 % half-width.",
+       "Thesis Figs. IV-1 and IV-2 (trends; the thesis's cells aggregate, these do not, as Freund & Orescanin's); four "
+       "independent seeds, Student's t_0.975 = 3.182, the two ensembles' 95 % half-widths in quadrature for a "
+       "difference.",
+       "scenes/rbc_channel.toml with domain 30 x 30 um, h = 0.25 um, 110 markers, min_gap 0.4 um, F = 2 mu gamma_w / H, "
+       "repulsion.pressure_Pa = 2 mu gamma_w, seeds 1-4"});
+}
+
+TEST(ChannelFlowRateEnsemble, AggregatedFourSeedsTwoRates) {
+  run_ensemble(
+      {"validation.channel_flow_rate_ensemble_aggregated", 5.0,
+       "The user's channel scene with the thesis's Morse aggregation De* = 5 (case I RBCs, 2D haematocrit 0.3, "
+       "h = 0.25 um, 110 markers, time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s "
+       "(repulsion 2 mu gamma_w), seeds 1-4, 100 strain units, means over strain 50-100: every run completes with areas "
+       "within 1 % and edge strains within 0.5; the relative apparent viscosity's ensemble mean falls from 50 to "
+       "200 1/s and the normalised cell-free layer's rises (thesis Figs. IV-1, IV-2, whose cells aggregate at De* = 5); "
+       "each difference reported against its 95 % half-width.",
+       "Thesis Figs. IV-1 and IV-2 (trends, case I with aggregation at De* = 5: gamma = 1.3e-7 J/m^2, docs/model.md "
+       "eq 4.7); four independent seeds, Student's t_0.975 = 3.182, the two ensembles' 95 % half-widths in quadrature "
+       "for a difference.",
+       "scenes/rbc_channel.toml with domain 30 x 30 um, h = 0.25 um, 110 markers, min_gap 0.4 um, F = 2 mu gamma_w / H, "
+       "repulsion.pressure_Pa = 2 mu gamma_w, aggregation.de_star = 5, seeds 1-4"});
 }
