@@ -47,6 +47,8 @@
 #include <vector>
 
 #include "aggregation/contact_law.hpp"
+#include "aggregation/pair_lists.hpp"
+#include "aggregation/pair_terms.hpp"
 #include "common/state_record.hpp"
 #include "geometry/domain.hpp"
 
@@ -56,23 +58,7 @@ class ImmersedCells;
 
 namespace erythro::aggregation {
 
-// The markers of all cells: positions and the cell ranges, cell c owning markers
-// offsets[c] … offsets[c+1] − 1 (offsets.size() = cells + 1, offsets[0] = 0). A cell
-// needs ≥ 3 markers.
-struct MarkerView {
-  std::span<const double> x, y;
-  std::span<const std::size_t> offsets;
-};
-
 namespace detail {
-// Per-thread buffers of the pair sums (cell_contacts.cpp), grown once and reused.
-struct PairScratch {
-  std::vector<std::size_t> hits;
-  std::vector<double> cx, cy, cl, dx, dy, r2;  // per candidate: its position and ℓ, the separation, r²
-  std::vector<double> mx, my, ml;              // per candidate: its marker m's position and ℓ_m
-  std::vector<double> hr, phi, dphi, w;        // per pair within the cut-off
-  std::vector<unsigned char> on;
-};
 // What a call of add_forces needs beyond its inputs, kept so that a step allocates nothing
 // once the buffers have grown: the per-marker arrays and each thread's scratch.
 struct ContactWorkspace {
@@ -126,36 +112,22 @@ class CellContacts {
   // 2 × 100 markers: ~10 µs of work per call), and add_forces runs on one thread.
   static constexpr std::size_t kParallelMarkers = 2000;
   static bool threads_forces(std::size_t markers) { return markers >= kParallelMarkers; }
-  // Bins per axis of the cell list (for tests and the benchmark).
-  int bins_x() const { return nbx_; }
-  int bins_y() const { return nby_; }
-
- // The pair lists' skin (h): lists hold the partners within r_c + skin and are rebuilt
-  // once a marker has moved skin/2 since they were built (at most r_c/4, and less when a
-  // periodic side needs it).
-  static constexpr double kSkin = 1.0;
-  double skin() const { return skin_; }
-  // How many times the pair lists were built (tests, the benchmark).
-  std::size_t pair_list_builds() const { return list_builds_; }
+  // The pair lists (pair_lists.hpp): their skin, the bins per axis of the cell list that
+  // builds them, how many times they were built (tests, the benchmark).
+  double skin() const { return lists_.skin(); }
+  int bins_x() const { return lists_.bins_x(); }
+  int bins_y() const { return lists_.bins_y(); }
+  std::size_t pair_list_builds() const { return lists_.builds(); }
 
  private:
   template <class E>
   void pair_sums_all(E& eng);
-  void build_pair_lists(const MarkerView& v, const std::vector<std::size_t>& cell_of);
-  bool pair_lists_valid(const MarkerView& v) const;
 
   geometry::Domain domain_;
   ContactPotential potential_;
-  double skin_ = 0.0;
-  int nbx_ = 1, nby_ = 1;
+  PairLists lists_;
   std::vector<double> magnitude_;
   detail::ContactWorkspace work_;
-  // Pair lists (CSR): the partners of marker m are list_[list_start_[m] … list_start_[m+1]),
-  // built at the positions list_x_, list_y_ and the cell layout list_offsets_.
-  std::vector<std::size_t> list_start_, list_, list_owner_;  // list_owner_: m for each entry of m
-  std::vector<double> list_x_, list_y_;
-  std::vector<std::size_t> list_offsets_;
-  std::size_t list_builds_ = 0;
 };
 
 // Relative contact area of cell c (thesis §III.2, after Bagchi et al.): the fraction of

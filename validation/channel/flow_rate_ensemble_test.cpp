@@ -1,15 +1,18 @@
-// Cases validation.channel_flow_rate_ensemble and validation.channel_flow_rate_ensemble_aggregated
-// (studies): the flow-rate trends of thesis Figs. IV-1 and IV-2 with four seeds per flow rate, at the
-// user's scene's own resolution (issue 19 item 8: the one-seed study validation.channel_flow_rate runs
-// at h = 0.4 µm, where η_rel is 20 % too high and its trends are within one seed's wander;
-// docs/verification-suspension.md §8, §8b). The first runs the scene as it is (no aggregation), the
-// second with the thesis's Morse aggregation at De* = 5 (its ch. IV set-up).
+// Cases validation.channel_flow_rate_ensemble, validation.channel_flow_rate_ensemble_aggregated and
+// validation.channel_flow_rate_ensemble_aggregated_case_ii (studies): the flow-rate trends of thesis
+// Figs. IV-1 and IV-2 with four seeds per flow rate, at the user's scene's own resolution (issue 19
+// item 8: the one-seed study validation.channel_flow_rate runs at h = 0.4 µm, where η_rel is 20 % too
+// high and its trends are within one seed's wander; docs/verification-suspension.md §8, §8b). The
+// first runs the scene as it is (no aggregation), the second with the thesis's Morse aggregation at
+// De* = 5 (its ch. IV set-up), the third the same with the thesis's stiffer case II membrane
+// (E_S = 20e-3 dyn/cm).
 //
 // Requirement: the user's channel scene (scenes/rbc_channel.toml: case I RBCs, E_S = 6e-3 dyn/cm,
 // 2D haematocrit 0.3, h = 0.25 µm, 110 markers per cell, [time_mapping] Re = 0.1; no aggregation, or
-// aggregation.de_star = 5) in its 30 µm channel, 30 µm long, driven so that plasma alone would have
-// the wall shear rate γ̇_w = 50 and 200 1/s (the repulsion's pressure 2 μ γ̇_w at each rate, as the
-// one-seed study), seeds 1–4 each, 100 strain units, means over strain 50–100:
+// aggregation.de_star = 5 with case I or case II membranes) in its 30 µm channel, 30 µm long, driven
+// so that plasma alone would have the wall shear rate γ̇_w = 50 and 200 1/s (the repulsion's pressure
+// 2 μ γ̇_w at each rate, as the one-seed study), seeds 1–4 each, 100 strain units, means over strain
+// 50–100:
 //  - every run completes with every cell's area within 1 % and every edge strain within 0.5;
 //  - the relative apparent viscosity falls with flow rate: the ensemble mean at 50 1/s exceeds that
 //    at 200 1/s (thesis Fig. IV-1; shear thinning by deformation and alignment, Ca 0.039 → 0.16);
@@ -82,10 +85,12 @@ RateSummary summarise(const std::vector<vv::ChannelSeries>& runs) {
   return s;
 }
 
-// One ensemble study: the scene, with Morse aggregation at de_star (0: none, the scene as it is).
+// One ensemble study: the scene, with Morse aggregation at de_star (0: none, the scene as it is)
+// and the membrane's shear modulus (0: the scene's, case I).
 struct EnsembleSpec {
   const char* name;
   double de_star;
+  double shear_modulus_dyn_cm;
   const char* requirement;
   const char* reference;
   const char* scene;
@@ -105,6 +110,7 @@ void run_ensemble(const EnsembleSpec& spec) {
   auto overrides = [&](double rate) {
     std::vector<std::string> o{vv::set("repulsion.pressure_Pa", 2.0 * mu * rate)};
     if (spec.de_star > 0.0) o.push_back(vv::set("aggregation.de_star", spec.de_star));
+    if (spec.shear_modulus_dyn_cm > 0.0) o.push_back(vv::set("membrane.shear_modulus_dyn_cm", spec.shear_modulus_dyn_cm));
     return o;
   };
   std::vector<std::function<void()>> jobs;
@@ -235,7 +241,7 @@ void run_ensemble(const EnsembleSpec& spec) {
 
 TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
   run_ensemble(
-      {"validation.channel_flow_rate_ensemble", 0.0,
+      {"validation.channel_flow_rate_ensemble", 0.0, 0.0,
        "The user's channel scene as it is (case I RBCs, no aggregation, 2D haematocrit 0.3, h = 0.25 um, 110 markers, "
        "time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), "
        "seeds 1-4, 100 strain units, means over strain 50-100: every run completes with areas within 1 % and edge "
@@ -250,7 +256,7 @@ TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
 
 TEST(ChannelFlowRateEnsemble, AggregatedFourSeedsTwoRates) {
   run_ensemble(
-      {"validation.channel_flow_rate_ensemble_aggregated", 5.0,
+      {"validation.channel_flow_rate_ensemble_aggregated", 5.0, 0.0,
        "The user's channel scene with the thesis's Morse aggregation De* = 5 (case I RBCs, 2D haematocrit 0.3, "
        "h = 0.25 um, 110 markers, time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s "
        "(repulsion 2 mu gamma_w), seeds 1-4, 100 strain units, means over strain 50-100: every run completes with areas "
@@ -262,4 +268,20 @@ TEST(ChannelFlowRateEnsemble, AggregatedFourSeedsTwoRates) {
        "for a difference.",
        "scenes/rbc_channel.toml with domain 30 x 30 um, h = 0.25 um, 110 markers, min_gap 0.4 um, F = 2 mu gamma_w / H, "
        "repulsion.pressure_Pa = 2 mu gamma_w, aggregation.de_star = 5, seeds 1-4"});
+}
+
+TEST(ChannelFlowRateEnsemble, AggregatedCaseIIFourSeedsTwoRates) {
+  run_ensemble(
+      {"validation.channel_flow_rate_ensemble_aggregated_case_ii", 5.0, 20.0e-3,
+       "The user's channel scene with the thesis's case II membrane (E_S = 20e-3 dyn/cm, the scene's other membrane "
+       "values) and Morse aggregation De* = 5 (2D haematocrit 0.3, h = 0.25 um, 110 markers, time mapping Re = 0.1) in "
+       "its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), seeds 1-4, 100 strain "
+       "units, means over strain 50-100: every run completes with areas within 1 % and edge strains within 0.5; the "
+       "relative apparent viscosity's ensemble mean falls from 50 to 200 1/s and the normalised cell-free layer's rises "
+       "(thesis Figs. IV-1, IV-2); each difference reported against its 95 % half-width.",
+       "Thesis Figs. IV-1 and IV-2 (trends, case II with aggregation at De* = 5: gamma = 1.3e-7 J/m^2, docs/model.md "
+       "eq 4.7); four independent seeds, Student's t_0.975 = 3.182, the two ensembles' 95 % half-widths in quadrature "
+       "for a difference.",
+       "scenes/rbc_channel.toml with domain 30 x 30 um, h = 0.25 um, 110 markers, min_gap 0.4 um, F = 2 mu gamma_w / H, "
+       "repulsion.pressure_Pa = 2 mu gamma_w, aggregation.de_star = 5, membrane.shear_modulus_dyn_cm = 0.02, seeds 1-4"});
 }

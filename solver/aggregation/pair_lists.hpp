@@ -1,0 +1,56 @@
+#pragma once
+// Pair (Verlet) lists of the contact forces (docs/model.md §4, "Neighbour search";
+// docs/verification-aggregation.md §4): for each marker, the markers of OTHER cells that were
+// within r_c + skin when the lists were built, in ascending index order. Kept between steps
+// and rebuilt once some marker has moved skin/2 (so that every pair now within r_c is in
+// them) or the cells changed; built through a cell list of bins of side ≥ r_c + skin, O(N) in
+// markers, in parallel over bins, the same lists for any thread count.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "geometry/domain.hpp"
+
+namespace erythro::aggregation {
+
+// The markers of all cells: positions and the cell ranges, cell c owning markers
+// offsets[c] … offsets[c+1] − 1 (offsets.size() = cells + 1, offsets[0] = 0). A cell
+// needs ≥ 3 markers.
+struct MarkerView {
+  std::span<const double> x, y;
+  std::span<const std::size_t> offsets;
+};
+
+class PairLists {
+ public:
+  // The skin: kSkin, at most a quarter of the cut-off, and small enough that r_c + skin
+  // stays below half of every periodic side (the minimum image stays the only image).
+  static constexpr double kSkin = 1.0;
+  PairLists(const geometry::Domain& domain, double cutoff);
+
+  // Whether the lists still hold every pair within the cut-off for these markers.
+  bool valid(const MarkerView& v) const;
+  // Builds them for these markers (cell_of[m]: marker m's cell); `parallel`: over the threads.
+  void build(const MarkerView& v, std::span<const std::size_t> cell_of, bool parallel);
+
+  // CSR: the partners of marker m are list()[start()[m] … start()[m+1]), and owner()[e] is
+  // the marker of entry e.
+  std::span<const std::size_t> start() const { return start_; }
+  std::span<const std::size_t> list() const { return list_; }
+  std::span<const std::size_t> owner() const { return owner_; }
+  double skin() const { return skin_; }
+  int bins_x() const { return nbx_; }
+  int bins_y() const { return nby_; }
+  std::size_t builds() const { return builds_; }
+
+ private:
+  geometry::Domain domain_;
+  double cutoff_ = 0.0, skin_ = 0.0;
+  int nbx_ = 1, nby_ = 1;
+  std::vector<std::size_t> start_, list_, owner_;
+  std::vector<double> x_, y_;           // the positions they were built at
+  std::vector<std::size_t> offsets_;    // the cells they were built for
+  std::size_t builds_ = 0;
+};
+
+}  // namespace erythro::aggregation
