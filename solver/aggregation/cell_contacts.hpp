@@ -24,7 +24,7 @@
 // periodic axes (markers may be unwrapped: ImmersedCells shifts whole cells only), so the cut-off must be < half the
 // period (checked). Within a cell the edges use the plain coordinate differences.
 //
-// Neighbour search: pair (Verlet) lists. Each marker keeps the markers of other cells
+// Neighbour search: pair (Verlet) lists (pair_lists.hpp). Each marker keeps the markers of other cells
 // that were within r_c + skin when the lists were built, in ASCENDING index order; the
 // lists are kept between calls and rebuilt (through a cell list of bins of side
 // ≥ r_c + skin, O(N) in markers) once some marker has moved skin/2 since, or the cells
@@ -38,7 +38,7 @@
 // minimum image; the weight Φ'(r)(ℓ_mℓ_n)/r is symmetric), so the force marker n gets
 // from m is bit for bit minus the force m gets from n; only their accumulation into
 // different sums rounds. The separations, the pair law and the weights run as vector
-// loops over many pairs at once (the exponential is numeric::exp_portable, the same bits
+// loops over many pairs at once (pair_terms.hpp) (the exponential is numeric::exp_portable, the same bits
 // in every lane); each marker writes only its own sums: parallel over markers (OpenMP,
 // from 2000 markers on), deterministic for any thread count.
 #include <cstddef>
