@@ -151,12 +151,7 @@ void run_ensemble(const EnsembleSpec& spec) {
     record.add_metric({"max_area_change_" + t, "largest |A/A0 - 1| of any cell over the runs", "", s.max_area_change,
                        kAreaLimit, 0.0, io::Comparison::at_most, "issue 19 item 6: every cell's area within 1 %"});
     if (s.ensemble) {
-      record.add_metric({"relative_apparent_viscosity_" + t, "ensemble mean of eta_rel over strain 50-100 (eq 12.1)",
-                         "", s.eta.mean, lowest, 0.0, io::Comparison::at_least,
-                         "informative; 95 % half-width " + std::to_string(s.eta.ci95)});
-      record.add_metric({"cell_free_layer_normalised_" + t, "ensemble mean of delta* over strain 50-100 (eq 12.2)", "",
-                         s.cfl.mean, lowest, 0.0, io::Comparison::at_least,
-                         "informative; 95 % half-width " + std::to_string(s.cfl.ci95)});
+      vv::add_ensemble_means(record, t, s.eta, s.cfl);
       record.add_metric({"discharge_haematocrit_" + t, "ensemble mean of H_d over strain 50-100", "", s.hd.mean, lowest,
                          0.0, io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(s.hd.ci95)});
     }

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 
 #include "common/scene_case.hpp"
@@ -115,6 +116,17 @@ void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<
   std::printf("%s: %s at strain %.1f, eta_rel %.4f, delta* %.4f, edge %.3f, area %.4f, %.0f s%s%s\n", label.c_str(),
               r.completed ? "completed" : "stopped", reached, window_mean(r.eta), window_mean(r.cfl), r.max_edge_strain,
               r.max_area_change, r.wall_s, r.completed ? "" : ": ", r.diagnosis.c_str());
+}
+
+void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
+                        const SeedEnsemble& cfl) {
+  const double lowest = -std::numeric_limits<double>::infinity();
+  record.add_metric({"relative_apparent_viscosity_" + tag, "ensemble mean of eta_rel over strain 50-100 (eq 12.1)", "",
+                     eta.mean, lowest, 0.0, io::Comparison::at_least,
+                     "informative; 95 % half-width " + std::to_string(eta.ci95)});
+  record.add_metric({"cell_free_layer_normalised_" + tag, "ensemble mean of delta* over strain 50-100 (eq 12.2)", "",
+                     cfl.mean, lowest, 0.0, io::Comparison::at_least,
+                     "informative; 95 % half-width " + std::to_string(cfl.ci95)});
 }
 
 }  // namespace erythro::vv

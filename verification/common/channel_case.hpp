@@ -77,4 +77,10 @@ SeedEnsemble combine_seeds(const std::vector<WindowEstimate>& seeds, double t975
 void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<std::string, io::Value> keys,
                      double from, double to, int blocks, const std::string& label);
 
+// The informative metrics of a seed ensemble's means over strain 50-100, suffixed `tag`:
+// relative_apparent_viscosity_<tag> and cell_free_layer_normalised_<tag>, each with its 95 %
+// half-width in the reason.
+void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
+                        const SeedEnsemble& cfl);
+
 }  // namespace erythro::vv
