@@ -46,18 +46,21 @@ struct ShiftedMorse {
   explicit ShiftedMorse(const MorseParameters& p);
   double energy(double r) const;
   double derivative(double r) const;
-  // Both at once (one exponential); returns false (and zeros) beyond r_c. Branch-free (the
-  // values are selected, not branched to), so that a loop over many r vectorises
-  // (ContactPotential::evaluate_many).
+  // Both at once (one pair of exponentials); returns false (and zeros) beyond r_c.
   bool evaluate(double r, double& phi, double& dphi) const {
-    const bool on = r < p_.cutoff;
+    if (!(r < p_.cutoff)) {
+      phi = dphi = 0.0;
+      return false;
+    }
     const double e1 = numeric::exp_portable(p_.beta * (p_.r0 - r));
     const double e2 = e1 * e1;
-    phi = on ? p_.De * (e2 - 2.0 * e1) - phi_c_ - (r - p_.cutoff) * dphi_c_ : 0.0;
-    dphi = on ? 2.0 * p_.beta * p_.De * (e1 - e2) - dphi_c_ : 0.0;
-    return on;
+    phi = p_.De * (e2 - 2.0 * e1) - phi_c_ - (r - p_.cutoff) * dphi_c_;
+    dphi = 2.0 * p_.beta * p_.De * (e1 - e2) - dphi_c_;
+    return true;
   }
   const MorseParameters& parameters() const { return p_; }
+  double phi_c() const { return phi_c_; }
+  double dphi_c() const { return dphi_c_; }
 
  private:
   MorseParameters p_;

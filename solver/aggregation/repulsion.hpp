@@ -32,14 +32,16 @@ void check(const RepulsionParameters& p);
 // Φ_r and dΦ_r/dr (eq 4.11).
 struct Repulsion {
   explicit Repulsion(const RepulsionParameters& p);
-  // Both at once; returns false (and zeros) at r ≥ d. Branch-free (the values are selected,
-  // not branched to), so that a loop over many r vectorises (ContactPotential::evaluate_many).
+  // Both at once; returns false (and zeros) at r ≥ d.
   bool evaluate(double r, double& phi, double& dphi) const {
-    const bool on = r < p_.range;
+    if (!(r < p_.range)) {
+      phi = dphi = 0.0;
+      return false;
+    }
     const double q = p_.range / r - 1.0;
-    phi = on ? p_.pressure * q * q : 0.0;
-    dphi = on ? -2.0 * p_.pressure * q * p_.range / (r * r) : 0.0;
-    return on;
+    phi = p_.pressure * q * q;
+    dphi = -2.0 * p_.pressure * q * p_.range / (r * r);
+    return true;
   }
   const RepulsionParameters& parameters() const { return p_; }
 

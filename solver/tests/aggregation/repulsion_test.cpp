@@ -123,6 +123,31 @@ TEST(ContactPotential, MorseAloneIsBitwiseShiftedMorseAndBothAdd) {
   EXPECT_THROW(ContactPotential(ContactLaw{std::nullopt, std::nullopt}), std::invalid_argument);
 }
 
+TEST(ContactPotential, EvaluateManyGivesTheBitsOfEvaluate) {
+  // The vector loop writes the two parts' formulas out (calling the parts from it was measured
+  // not to vectorise): every lane must give evaluate()'s bits, for each combination of parts,
+  // inside and beyond each cut-off.
+  const std::vector<ContactPotential> laws{ContactPotential(ContactLaw{kMorse, std::nullopt}),
+                                           ContactPotential(ContactLaw{std::nullopt, kRep}),
+                                           ContactPotential(ContactLaw{kMorse, kRep})};
+  std::vector<double> r;
+  for (int i = 1; i <= 301; ++i) r.push_back(0.021 * i);  // 0.021 … 6.32: across d and r_c
+  r.push_back(kRep.range);
+  r.push_back(kMorse.cutoff);
+  for (const ContactPotential& law : laws) {
+    std::vector<double> phi(r.size()), dphi(r.size());
+    std::vector<unsigned char> on(r.size());
+    law.evaluate_many(r.data(), r.size(), phi.data(), dphi.data(), on.data());
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      double p, dp;
+      const bool o = law.evaluate(r[i], p, dp);
+      ASSERT_EQ(on[i] != 0, o) << r[i];
+      ASSERT_EQ(phi[i], p) << r[i];
+      ASSERT_EQ(dphi[i], dp) << r[i];
+    }
+  }
+}
+
 // Forces are −∂E/∂X (pairs, edges and walls), the cell list gives the brute force's bits, and
 // without walls the total force vanishes.
 TEST(CellContacts, RepulsionForcesAreTheNegativeGradient) {
