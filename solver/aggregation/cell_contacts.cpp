@@ -11,6 +11,7 @@
 #include <string>
 
 #include "aggregation/pair_terms.hpp"
+#include "common/portable_hypot.hpp"
 #include "membrane/immersed_cells.hpp"
 
 namespace erythro::aggregation {
@@ -80,7 +81,7 @@ struct Engine {
       for (std::size_t k = o; k < e; ++k) {
         const std::size_t next = k + 1 < e ? k + 1 : o;
         cell_of[k] = c;
-        edge[k] = std::hypot(v.x[next] - v.x[k], v.y[next] - v.y[k]);  // L_k: edge k → k+1
+        edge[k] = numeric::hypot_portable(v.x[next] - v.x[k], v.y[next] - v.y[k]);  // L_k: edge k → k+1
       }
       for (std::size_t k = o; k < e; ++k) ell[k] = 0.5 * (edge[k > o ? k - 1 : e - 1] + edge[k]);
     }
@@ -192,7 +193,7 @@ struct Engine {
       const double gy = py[m] + Tm * um_y - Tp * up_y;
       fx[m] += gx;
       fy[m] += gy;
-      if (magnitude) (*magnitude)[m] = std::hypot(gx, gy);
+      if (magnitude) (*magnitude)[m] = numeric::hypot_portable(gx, gy);
     }
     ContactStats st;
     st.wall_markers = wall_markers;
@@ -254,10 +255,11 @@ void chunk_sums(Engine& eng, std::size_t first, std::size_t last, std::span<cons
 }
 
 // Every marker's pair sums over its pair list, chunks of markers over the threads.
+constexpr std::size_t kChunk = 64;  // markers per chunk
 void run_pair_lists(Engine& eng, std::span<const std::size_t> start, std::span<const std::size_t> list,
                     std::span<const std::size_t> owner) {
   const std::size_t N = eng.v.x.size();
-  const long long chunks = static_cast<long long>((N + 63) / 64);
+  const long long chunks = static_cast<long long>((N + kChunk - 1) / kChunk);
   // Each thread its own scratch, kept in the workspace (a team of one inside a parallel region
   // of the caller uses the first).
   if (eng.per_thread.size() < static_cast<std::size_t>(omp_get_max_threads()))
@@ -267,7 +269,7 @@ void run_pair_lists(Engine& eng, std::span<const std::size_t> start, std::span<c
     PairScratch& s = eng.per_thread[static_cast<std::size_t>(omp_get_thread_num())];
 #pragma omp for schedule(dynamic, 4)
     for (long long q = 0; q < chunks; ++q) {
-      const std::size_t first = static_cast<std::size_t>(q) * 64, last = std::min(N, first + 64);
+      const std::size_t first = static_cast<std::size_t>(q) * kChunk, last = std::min(N, first + kChunk);
       chunk_sums(eng, first, last, start, list, owner, s);
     }
   }

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "fluid/node_moments.hpp"
 #include "fluid/stream_collide.hpp"
 #include "lattice/d2q9.hpp"
 
@@ -136,10 +137,23 @@ void FluidLattice::step() {
   args.row_tau = row_tau_known_ && !tau_field_.empty() ? row_tau_.data() : nullptr;
   args.uniform_fx = uniform_force_[0];
   args.uniform_fy = uniform_force_[1];
+  args.moments_rho = moments_request_[0];
+  args.moments_ux = moments_request_[1];
+  args.moments_uy = moments_request_[2];
+  moments_request_ = {nullptr, nullptr, nullptr};
   detail::stream_collide(args);
   applied_force_ = uniform_force_;
   streamed_ = !streamed_;
   ++steps_done_;
+  moments_written_ux_ = args.moments_ux;
+  moments_written_step_ = args.moments_ux ? steps_done_ : -1;
+}
+
+void FluidLattice::write_moments_with_next_step(std::span<double> rho, std::span<double> ux, std::span<double> uy) {
+  const std::size_t N = grid_.size();
+  if (rho.size() != N || ux.size() != N || uy.size() != N)
+    throw std::invalid_argument("FluidLattice::write_moments_with_next_step: arrays must have one entry per node");
+  moments_request_ = {rho.data(), ux.data(), uy.data()};
 }
 
 void FluidLattice::save_state(StateRecord& r, const std::string& prefix) const {
@@ -162,6 +176,8 @@ void FluidLattice::restore_state(const StateRecord& r, const std::string& prefix
   r.copy_to(prefix + "uniform_force", uniform_force_);
   r.copy_to(prefix + "applied_force", applied_force_);
   steps_done_ = static_cast<long>(r.scalar(prefix + "steps_done"));
+  moments_request_ = {nullptr, nullptr, nullptr};
+  moments_written_step_ = -1;
   if (r.has(prefix + "force_x")) {
     enable_force_field();
     r.copy_to(prefix + "force_x", force_x_);
@@ -178,6 +194,7 @@ void FluidLattice::restore_state(const StateRecord& r, const std::string& prefix
 void FluidLattice::mark_natural() {
   streamed_ = false;
   natural_copy_step_ = -1;  // populations() gathers afresh
+  moments_written_step_ = -1;  // the populations changed since
 }
 
 std::size_t FluidLattice::slot_of(int x, int y, int k) const {
@@ -231,23 +248,7 @@ std::span<const double> FluidLattice::populations() const {
 }
 
 namespace {
-// ρ and u of one node from its nine post-collision populations pop(i) (ρ0 = 1 deviations)
-// and the force F of the collision: ρ = 1 + Σ f̃, ρu = Σ c f* − F/2 (Guo forcing: Σ c f* =
-// ρu + F/2). The one place this is computed, so every caller gets the same bits: the sums
-// run over i = 0 … 8 in order, unrolled at compile time (no loop over an array, so that
-// row_moments vectorises across nodes).
-template <class Population>
-[[gnu::always_inline]] inline void moments_of(const Population& pop, double Fx, double Fy, double& rho, double& ux,
-                                              double& uy) {
-  double dr = 0.0, jx = 0.0, jy = 0.0;
-  [&]<std::size_t... I>(std::index_sequence<I...>) {
-    ((dr += pop(I), jx += d2q9::cx[I] * pop(I), jy += d2q9::cy[I] * pop(I)), ...);
-  }(std::make_index_sequence<d2q9::Q>{});
-  const double r = 1.0 + dr;
-  rho = r;
-  ux = (jx - 0.5 * Fx) / r;
-  uy = (jy - 0.5 * Fy) / r;
-}
+using detail::moments_of;
 
 // moments_of for the nodes [x0, x1) of one row, from its population rows p[i], with F = A +
 // field(x) when the row has a force field (kField): node by node the same operations, the

@@ -18,6 +18,10 @@
 //    Each span starts its vector loop at the first cache-line aligned node (the few
 //    nodes before it go through the loop's scalar remainder).
 //    Both paths collide through the same node_update() → collide_node().
+//  - On request (KernelArgs::moments_*) each node's ρ and u after its collision are
+//    written as well, from the post-collision values still in registers (24 B more per
+//    node, against a separate pass that reads the 72 B of populations again): the dense
+//    immersed cells need the velocity at nearly every node after each step.
 //
 // Rounding: floating-point contraction is off project-wide (-ffp-contract=off in
 // cmake/CompilerSettings.cmake), so every path and thread count gives the same bits, and
@@ -30,6 +34,7 @@
 #include <stdexcept>
 
 #include "fluid/collide_node.hpp"
+#include "fluid/node_moments.hpp"
 #include "lattice/d2q9.hpp"
 
 namespace erythro::fluid::detail {
@@ -44,7 +49,26 @@ struct NodeInputs {
   const double* fy = nullptr;
   double uniform_fx = 0.0, uniform_fy = 0.0, magic = 0.0;
   Rates uniform_rates{1.0, 1.0};
+  double* rho = nullptr;  // the moments after the step, or null (KernelArgs::moments_*)
+  double* ux = nullptr;
+  double* uy = nullptr;
 };
+
+// The force of node n's collision: the uniform force plus the field's, in that order.
+template <bool HasForce, bool ForceField>
+[[gnu::always_inline]] inline void force_at(const double* fx, const double* fy, std::size_t n, double ufx, double ufy,
+                                            double& Fx, double& Fy) {
+  Fx = 0.0;
+  Fy = 0.0;
+  if constexpr (HasForce) {
+    Fx = ufx;
+    Fy = ufy;
+    if constexpr (ForceField) {
+      Fx += fx[n];
+      Fy += fy[n];
+    }
+  }
+}
 
 // The collision of node n (streamed populations in f). The one place where both
 // the interior and the general path compute, so both round identically. `flatten`
@@ -54,15 +78,8 @@ template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField>
 [[gnu::flatten]] inline void node_update(const double* tau, const double* fx, const double* fy, std::size_t n,
                                          double ufx, double ufy, double magic, Rates uniform_rates, double* f) {
   const Rates r = TauField ? rates_for(Model, tau[n], magic) : uniform_rates;
-  double Fx = 0.0, Fy = 0.0;
-  if constexpr (HasForce) {
-    Fx = ufx;
-    Fy = ufy;
-    if constexpr (ForceField) {
-      Fx += fx[n];
-      Fy += fy[n];
-    }
-  }
+  double Fx, Fy;
+  force_at<HasForce, ForceField>(fx, fy, n, ufx, ufy, Fx, Fy);
   collide_node<Model, HasForce>(f, r, Fx, Fy);
 }
 
@@ -71,7 +88,8 @@ template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField>
 // f*_ī (in both AA steps the slot a population came from takes its opposite back; see
 // stream_collide.hpp). Nine streams, each read and then written at the same index: no
 // dependence between iterations (ivdep), no branches, so the loop vectorises along x.
-template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField>
+// With Moments, each node's ρ and u after the collision too (node_moments.hpp).
+template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Moments>
 void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int len) {
   double* s0 = src[0];
   double* s1 = src[1];
@@ -85,6 +103,9 @@ void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int
   const double* __restrict tau = TauField ? in.tau + n0 : nullptr;
   const double* __restrict fx = ForceField ? in.fx + n0 : nullptr;
   const double* __restrict fy = ForceField ? in.fy + n0 : nullptr;
+  double* __restrict rho = Moments ? in.rho + n0 : nullptr;
+  double* __restrict ux = Moments ? in.ux + n0 : nullptr;
+  double* __restrict uy = Moments ? in.uy + n0 : nullptr;
   const double ufx = in.uniform_fx, ufy = in.uniform_fy, magic = in.magic;
   const Rates ur = in.uniform_rates;
 #if defined(__GNUC__) && !defined(__clang__)
@@ -94,6 +115,11 @@ void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int
     double f[Q] = {s0[k], s1[k], s2[k], s3[k], s4[k], s5[k], s6[k], s7[k], s8[k]};
     node_update<Model, TauField, HasForce, ForceField>(tau, fx, fy, static_cast<std::size_t>(k), ufx, ufy, magic,
                                                        ur, f);
+    if constexpr (Moments) {
+      double Fx, Fy;
+      force_at<HasForce, ForceField>(fx, fy, static_cast<std::size_t>(k), ufx, ufy, Fx, Fy);
+      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho[k], ux[k], uy[k]);
+    }
     // opposite = {0, 3, 4, 1, 2, 7, 8, 5, 6}
     s0[k] = f[0];
     s3[k] = f[1];
@@ -107,7 +133,7 @@ void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int
   }
 }
 
-template <AaStep Step, CollisionModel Model, bool TauField, bool HasForce, bool ForceField>
+template <AaStep Step, CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Moments>
 void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
   const Grid& g = a.grid;
   const std::size_t N = a.stride;  // distance between the population arrays
@@ -130,6 +156,11 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
     }
     node_update<Model, TauField, HasForce, ForceField>(in.tau, in.fx, in.fy, n, in.uniform_fx, in.uniform_fy,
                                                        in.magic, in.uniform_rates, f);
+    if constexpr (Moments) {
+      double Fx, Fy;
+      force_at<HasForce, ForceField>(in.fx, in.fy, n, in.uniform_fx, in.uniform_fy, Fx, Fy);
+      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, in.rho[n], in.ux[n], in.uy[n]);
+    }
 #pragma GCC unroll 9
     for (int i = 0; i < Q; ++i) {
       if constexpr (Step == AaStep::pull_swap) {
@@ -155,10 +186,10 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
   const int len = end - begin;
   const auto misalign = reinterpret_cast<std::uintptr_t>(src[0]) % 64;  // a multiple of 8 B
   const int head = std::min(len, static_cast<int>((64 - misalign) % 64 / sizeof(double)));
-  if (head > 0) interior_span<Model, TauField, HasForce, ForceField>(in, src, n0, head);
+  if (head > 0) interior_span<Model, TauField, HasForce, ForceField, Moments>(in, src, n0, head);
   if (len > head) {
     for (int i = 0; i < Q; ++i) src[i] += head;
-    interior_span<Model, TauField, HasForce, ForceField>(in, src, n0 + head, len - head);
+    interior_span<Model, TauField, HasForce, ForceField, Moments>(in, src, n0 + head, len - head);
   }
   general(g.nx - 1);
 }
@@ -166,16 +197,16 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
 // Row y with the kernel variant its inputs need: τ node by node only where the row's τ
 // varies, the force field only on rows that may hold force ("quiet rows",
 // docs/performance.md). A skipped zero force or a row's one τ gives the same values.
-template <AaStep Step, CollisionModel Model>
+template <AaStep Step, CollisionModel Model, bool Moments>
 void update_row_variant(const KernelArgs& a, const NodeInputs& in, int y, bool tau, bool field, bool force) {
   if (tau) {
-    if (field) return update_row<Step, Model, true, true, true>(a, in, y);
-    if (force) return update_row<Step, Model, true, true, false>(a, in, y);
-    return update_row<Step, Model, true, false, false>(a, in, y);
+    if (field) return update_row<Step, Model, true, true, true, Moments>(a, in, y);
+    if (force) return update_row<Step, Model, true, true, false, Moments>(a, in, y);
+    return update_row<Step, Model, true, false, false, Moments>(a, in, y);
   }
-  if (field) return update_row<Step, Model, false, true, true>(a, in, y);
-  if (force) return update_row<Step, Model, false, true, false>(a, in, y);
-  return update_row<Step, Model, false, false, false>(a, in, y);
+  if (field) return update_row<Step, Model, false, true, true, Moments>(a, in, y);
+  if (force) return update_row<Step, Model, false, true, false, Moments>(a, in, y);
+  return update_row<Step, Model, false, false, false, Moments>(a, in, y);
 }
 
 template <AaStep Step, CollisionModel Model>
@@ -189,6 +220,10 @@ void run_kernel(const KernelArgs& a) {
   base.uniform_fy = a.uniform_fy;
   base.magic = a.collision.trt_magic;
   base.uniform_rates = rates_for(Model, a.collision.tau, a.collision.trt_magic);
+  base.rho = a.moments_rho;
+  base.ux = a.moments_ux;
+  base.uy = a.moments_uy;
+  const bool moments = a.moments_ux != nullptr;
   const bool uniform_force = a.uniform_fx != 0.0 || a.uniform_fy != 0.0;
 #pragma omp parallel for schedule(static) if (g.worth_threading())
   for (int y = 0; y < g.ny; ++y) {
@@ -196,7 +231,8 @@ void run_kernel(const KernelArgs& a) {
     const bool tau = a.tau_field != nullptr && (a.row_tau == nullptr || a.row_tau[y] == 0.0);
     NodeInputs in = base;
     if (a.tau_field != nullptr && !tau) in.uniform_rates = rates_for(Model, a.row_tau[y], a.collision.trt_magic);
-    update_row_variant<Step, Model>(a, in, y, tau, field, field || uniform_force);
+    if (moments) update_row_variant<Step, Model, true>(a, in, y, tau, field, field || uniform_force);
+    else update_row_variant<Step, Model, false>(a, in, y, tau, field, field || uniform_force);
   }
 }
 
@@ -213,6 +249,9 @@ void dispatch_model(const KernelArgs& a) {
 
 void stream_collide(const KernelArgs& args) {
   if (args.stride < args.grid.size()) throw std::invalid_argument("stream_collide: population arrays overlap");
+  if ((args.moments_rho == nullptr) != (args.moments_ux == nullptr) ||
+      (args.moments_ux == nullptr) != (args.moments_uy == nullptr))
+    throw std::invalid_argument("stream_collide: the moment outputs are all three or none");
   if (args.step == AaStep::pull_swap) return dispatch_model<AaStep::pull_swap>(args);
   return dispatch_model<AaStep::local>(args);
 }

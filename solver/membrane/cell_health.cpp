@@ -4,6 +4,7 @@
 #include <limits>
 #include <string>
 
+#include "common/portable_hypot.hpp"
 #include "geometry/polygon.hpp"
 
 namespace erythro::membrane {
@@ -33,7 +34,7 @@ HealthReport check_health(const ImmersedCells& cells, const CellHealthLimits& li
     if (!(std::abs(dA) <= limits.max_area_change)) return fail(c, -1, "area change", dA, limits.max_area_change);
     for (std::size_t e = 0; e < x.size(); ++e) {
       const std::size_t f = (e + 1) % x.size();
-      const double strain = std::hypot(x[f] - x[e], y[f] - y[e]) / rest.length[e] - 1.0;
+      const double strain = numeric::hypot_portable(x[f] - x[e], y[f] - y[e]) / rest.length[e] - 1.0;
       if (!(std::abs(strain) <= limits.max_edge_strain))
         return fail(c, static_cast<long>(e), "edge strain", strain, limits.max_edge_strain);
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/portable_hypot.hpp"
 #include "geometry/grid_polygon.hpp"
 #include "geometry/polygon.hpp"
 #include "lattice/d2q9.hpp"
@@ -57,6 +58,18 @@ void ImmersedCells::spread_forces(fluid::FluidLattice& lattice) {
 void ImmersedCells::add_spread_forces(fluid::FluidLattice& lattice) {
   const fluid::FluidLattice::ForceRowsWriter field = lattice.force_rows_writer();
   transfer_.spread(x_, y_, fx_, fy_, field.fx, field.fy, field.rows);
+  if (dense_supports()) {  // the next step writes the velocity support_velocity() needs
+    const std::size_t N = transfer_.domain().grid.size();
+    rho_.resize(N);
+    grid_ux_.resize(N);
+    grid_uy_.resize(N);
+    lattice.write_moments_with_next_step(rho_, grid_ux_, grid_uy_);
+  }
+}
+
+bool ImmersedCells::dense_supports() const {
+  const int W = ib::width(transfer_.kernel());
+  return x_.size() * static_cast<std::size_t>(W * W) >= transfer_.domain().grid.size();
 }
 
 void ImmersedCells::move_markers(std::span<const double> ux, std::span<const double> uy) {
@@ -95,7 +108,8 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
   grid_ux_.resize(N);
   grid_uy_.resize(N);
   const int W = ib::width(transfer_.kernel());
-  if (x_.size() * static_cast<std::size_t>(W * W) >= N) {  // dense markers: the whole grid is cheaper
+  if (dense_supports()) {  // dense markers: the whole grid is cheaper
+    if (lattice.last_step_wrote_moments(grid_ux_.data())) return;  // written by the step (add_spread_forces)
     rho_.resize(N);
     lattice.compute_moments(rho_, grid_ux_, grid_uy_);
     return;
@@ -187,7 +201,7 @@ Energy ImmersedCells::energy(int c) const { return membrane_energy(cells_[c].mod
 
 double ImmersedCells::max_marker_speed() const {
   double s = 0.0;
-  for (std::size_t m = 0; m < ux_.size(); ++m) s = std::max(s, std::hypot(ux_[m], uy_[m]));
+  for (std::size_t m = 0; m < ux_.size(); ++m) s = std::max(s, numeric::hypot_portable(ux_[m], uy_[m]));
   return s;
 }
 

@@ -62,7 +62,10 @@ class ImmersedCells {
   // Enables the lattice's force field and sets it to zero (grid work, O(nodes)).
   static void clear_force_field(fluid::FluidLattice& lattice);
   // Step 2 without the zeroing: ADDS the spread marker forces to the lattice force
-  // field (which must be enabled). spread_forces() = zero the field + this.
+  // field (which must be enabled). spread_forces() = zero the field + this. When the
+  // supports cover the grid anyway (dense_supports()), it also asks the lattice to write
+  // the moments of its next step (FluidLattice::write_moments_with_next_step), which
+  // support_velocity() then takes as they are.
   void add_spread_forces(fluid::FluidLattice& lattice);
   // Steps 4–5 from the velocity of the last fluid step.
   void move_markers(std::span<const double> ux, std::span<const double> uy);
@@ -72,6 +75,9 @@ class ImmersedCells {
   // those nodes; advance() = forces, spread, step, this, move_markers(support_ux/uy).
   // Call right after lattice.step(), before its forces change (as compute_moments).
   void support_velocity(fluid::FluidLattice& lattice);
+  // Whether the markers' W×W supports hold at least as many nodes as the grid: then the
+  // velocity is computed everywhere rather than support by support.
+  bool dense_supports() const;
   std::span<const double> support_ux() const { return grid_ux_; }
   std::span<const double> support_uy() const { return grid_uy_; }
   // Step 5 from the support velocity of the last fluid step: move_markers(support_ux/uy),

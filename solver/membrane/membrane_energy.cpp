@@ -4,6 +4,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/portable_hypot.hpp"
+
 namespace erythro::membrane {
 
 namespace {
@@ -24,7 +26,7 @@ Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<con
   for (std::size_t e = 0; e < n; ++e) {
     const std::size_t f = (e + 1 == n) ? 0 : e + 1;
     const double dx = x[f] - x[e], dy = y[f] - y[e];
-    const double l = std::hypot(dx, dy);
+    const double l = numeric::hypot_portable(dx, dy);
     const double lambda = l / rest.length[e];
     if constexpr (kEnergy) E.tension += rest.length[e] * model.tension.energy(lambda);
     if constexpr (kForces) {

@@ -1,0 +1,31 @@
+#pragma once
+// ρ and u of one node from its nine post-collision populations (docs/model.md eq 1.3),
+// the one place this is computed: FluidLattice::compute_moments and node_moments after a
+// step, and the stream–collide kernel when it writes the moments during the step
+// (KernelArgs::moments_*), so that all of them give the same bits. Internal to the fluid
+// layer.
+#include <cstddef>
+#include <utility>
+
+#include "lattice/d2q9.hpp"
+
+namespace erythro::fluid::detail {
+
+// pop(i): the post-collision population f̃*_i (a deviation from w_i); F the force of that
+// collision. ρ = 1 + Σ f̃*, ρu = Σ c f* − F/2 (Guo forcing: Σ c f* = ρu + F/2). The sums run
+// over i = 0 … 8 in order, unrolled at compile time (no loop over an array, so that a loop
+// over nodes around it vectorises).
+template <class Population>
+[[gnu::always_inline]] inline void moments_of(const Population& pop, double Fx, double Fy, double& rho, double& ux,
+                                              double& uy) {
+  double dr = 0.0, jx = 0.0, jy = 0.0;
+  [&]<std::size_t... I>(std::index_sequence<I...>) {
+    ((dr += pop(I), jx += d2q9::cx[I] * pop(I), jy += d2q9::cy[I] * pop(I)), ...);
+  }(std::make_index_sequence<d2q9::Q>{});
+  const double r = 1.0 + dr;
+  rho = r;
+  ux = (jx - 0.5 * Fx) / r;
+  uy = (jy - 0.5 * Fy) / r;
+}
+
+}  // namespace erythro::fluid::detail
