@@ -137,23 +137,22 @@ void FluidLattice::step() {
   args.row_tau = row_tau_known_ && !tau_field_.empty() ? row_tau_.data() : nullptr;
   args.uniform_fx = uniform_force_[0];
   args.uniform_fy = uniform_force_[1];
-  args.moments_rho = moments_request_[0];
-  args.moments_ux = moments_request_[1];
-  args.moments_uy = moments_request_[2];
-  moments_request_ = {nullptr, nullptr, nullptr};
+  args.velocity_x = velocity_request_[0];
+  args.velocity_y = velocity_request_[1];
+  velocity_request_ = {nullptr, nullptr};
   detail::stream_collide(args);
   applied_force_ = uniform_force_;
   streamed_ = !streamed_;
   ++steps_done_;
-  moments_written_ux_ = args.moments_ux;
-  moments_written_step_ = args.moments_ux ? steps_done_ : -1;
+  velocity_written_ux_ = args.velocity_x;
+  velocity_written_step_ = args.velocity_x ? steps_done_ : -1;
 }
 
-void FluidLattice::write_moments_with_next_step(std::span<double> rho, std::span<double> ux, std::span<double> uy) {
+void FluidLattice::write_velocity_with_next_step(std::span<double> ux, std::span<double> uy) {
   const std::size_t N = grid_.size();
-  if (rho.size() != N || ux.size() != N || uy.size() != N)
-    throw std::invalid_argument("FluidLattice::write_moments_with_next_step: arrays must have one entry per node");
-  moments_request_ = {rho.data(), ux.data(), uy.data()};
+  if (ux.size() != N || uy.size() != N)
+    throw std::invalid_argument("FluidLattice::write_velocity_with_next_step: arrays must have one entry per node");
+  velocity_request_ = {ux.data(), uy.data()};
 }
 
 void FluidLattice::save_state(StateRecord& r, const std::string& prefix) const {
@@ -176,8 +175,8 @@ void FluidLattice::restore_state(const StateRecord& r, const std::string& prefix
   r.copy_to(prefix + "uniform_force", uniform_force_);
   r.copy_to(prefix + "applied_force", applied_force_);
   steps_done_ = static_cast<long>(r.scalar(prefix + "steps_done"));
-  moments_request_ = {nullptr, nullptr, nullptr};
-  moments_written_step_ = -1;
+  velocity_request_ = {nullptr, nullptr};
+  velocity_written_step_ = -1;
   if (r.has(prefix + "force_x")) {
     enable_force_field();
     r.copy_to(prefix + "force_x", force_x_);
@@ -194,7 +193,7 @@ void FluidLattice::restore_state(const StateRecord& r, const std::string& prefix
 void FluidLattice::mark_natural() {
   streamed_ = false;
   natural_copy_step_ = -1;  // populations() gathers afresh
-  moments_written_step_ = -1;  // the populations changed since
+  velocity_written_step_ = -1;  // the populations changed since
 }
 
 std::size_t FluidLattice::slot_of(int x, int y, int k) const {

@@ -106,15 +106,15 @@ class FluidLattice {
   void step();
   long steps_done() const { return steps_done_; }
 
-  // The next step() also writes every node's ρ and u after it into rho, ux and uy (grid-
-  // sized), as it collides the node: the values compute_moments() gives after that step,
-  // bit for bit, without a second pass over the lattice (for a caller that needs them at
-  // most nodes, the dense immersed cells). For that one step only.
-  void write_moments_with_next_step(std::span<double> rho, std::span<double> ux, std::span<double> uy);
-  // Whether the last step() wrote its moments into this ux array (and the rho and uy given
-  // with it).
-  bool last_step_wrote_moments(const double* ux) const {
-    return moments_written_step_ == steps_done_ && moments_written_ux_ == ux;
+  // The next step() also writes every node's velocity after it into ux and uy (grid-
+  // sized), as it collides the node: the u of compute_moments() after that step, bit for
+  // bit, without a second pass over the lattice (for a caller that needs it at most nodes,
+  // the dense immersed cells). For that one step only.
+  void write_velocity_with_next_step(std::span<double> ux, std::span<double> uy);
+  // Whether the last step() wrote its velocity into this ux array (and the uy given with it),
+  // and nothing has changed the populations since.
+  bool last_step_wrote_velocity(const double* ux) const {
+    return velocity_written_step_ == steps_done_ && velocity_written_ux_ == ux;
   }
 
   // Density and velocity of the last collision, from the stored post-collision
@@ -185,9 +185,9 @@ class FluidLattice {
   std::array<double, 2> uniform_force_{0.0, 0.0};
   std::array<double, 2> applied_force_{0.0, 0.0};  // uniform force of the last step
   long steps_done_ = 0;
-  std::array<double*, 3> moments_request_{nullptr, nullptr, nullptr};  // ρ, ux, uy for the next step
-  const double* moments_written_ux_ = nullptr;  // where the step moments_written_step_ wrote them
-  long moments_written_step_ = -1;
+  std::array<double*, 2> velocity_request_{nullptr, nullptr};  // ux, uy for the next step
+  const double* velocity_written_ux_ = nullptr;  // where the step velocity_written_step_ wrote it
+  long velocity_written_step_ = -1;
 };
 
 }  // namespace erythro::fluid

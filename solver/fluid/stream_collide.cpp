@@ -18,9 +18,9 @@
 //    Each span starts its vector loop at the first cache-line aligned node (the few
 //    nodes before it go through the loop's scalar remainder).
 //    Both paths collide through the same node_update() → collide_node().
-//  - On request (KernelArgs::moments_*) each node's ρ and u after its collision are
-//    written as well, from the post-collision values still in registers (24 B more per
-//    node, against a separate pass that reads the 72 B of populations again): the dense
+//  - On request (KernelArgs::velocity_*) each node's u after its collision is written as
+//    well, from the post-collision values still in registers (16 B more per node, against
+//    a separate pass that reads the 72 B of populations and the force again): the dense
 //    immersed cells need the velocity at nearly every node after each step.
 //
 // Rounding: floating-point contraction is off project-wide (-ffp-contract=off in
@@ -49,8 +49,7 @@ struct NodeInputs {
   const double* fy = nullptr;
   double uniform_fx = 0.0, uniform_fy = 0.0, magic = 0.0;
   Rates uniform_rates{1.0, 1.0};
-  double* rho = nullptr;  // the moments after the step, or null (KernelArgs::moments_*)
-  double* ux = nullptr;
+  double* ux = nullptr;  // the velocity after the step, or null (KernelArgs::velocity_*)
   double* uy = nullptr;
 };
 
@@ -88,8 +87,8 @@ template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField>
 // f*_ī (in both AA steps the slot a population came from takes its opposite back; see
 // stream_collide.hpp). Nine streams, each read and then written at the same index: no
 // dependence between iterations (ivdep), no branches, so the loop vectorises along x.
-// With Moments, each node's ρ and u after the collision too (node_moments.hpp).
-template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Moments>
+// With Velocity, each node's u after the collision too (node_moments.hpp).
+template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Velocity>
 void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int len) {
   double* s0 = src[0];
   double* s1 = src[1];
@@ -103,9 +102,8 @@ void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int
   const double* __restrict tau = TauField ? in.tau + n0 : nullptr;
   const double* __restrict fx = ForceField ? in.fx + n0 : nullptr;
   const double* __restrict fy = ForceField ? in.fy + n0 : nullptr;
-  double* __restrict rho = Moments ? in.rho + n0 : nullptr;
-  double* __restrict ux = Moments ? in.ux + n0 : nullptr;
-  double* __restrict uy = Moments ? in.uy + n0 : nullptr;
+  double* __restrict ux = Velocity ? in.ux + n0 : nullptr;
+  double* __restrict uy = Velocity ? in.uy + n0 : nullptr;
   const double ufx = in.uniform_fx, ufy = in.uniform_fy, magic = in.magic;
   const Rates ur = in.uniform_rates;
 #if defined(__GNUC__) && !defined(__clang__)
@@ -115,10 +113,10 @@ void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int
     double f[Q] = {s0[k], s1[k], s2[k], s3[k], s4[k], s5[k], s6[k], s7[k], s8[k]};
     node_update<Model, TauField, HasForce, ForceField>(tau, fx, fy, static_cast<std::size_t>(k), ufx, ufy, magic,
                                                        ur, f);
-    if constexpr (Moments) {
-      double Fx, Fy;
+    if constexpr (Velocity) {
+      double Fx, Fy, rho;
       force_at<HasForce, ForceField>(fx, fy, static_cast<std::size_t>(k), ufx, ufy, Fx, Fy);
-      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho[k], ux[k], uy[k]);
+      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho, ux[k], uy[k]);
     }
     // opposite = {0, 3, 4, 1, 2, 7, 8, 5, 6}
     s0[k] = f[0];
@@ -133,7 +131,7 @@ void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int
   }
 }
 
-template <AaStep Step, CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Moments>
+template <AaStep Step, CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Velocity>
 void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
   const Grid& g = a.grid;
   const std::size_t N = a.stride;  // distance between the population arrays
@@ -156,10 +154,10 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
     }
     node_update<Model, TauField, HasForce, ForceField>(in.tau, in.fx, in.fy, n, in.uniform_fx, in.uniform_fy,
                                                        in.magic, in.uniform_rates, f);
-    if constexpr (Moments) {
-      double Fx, Fy;
+    if constexpr (Velocity) {
+      double Fx, Fy, rho;
       force_at<HasForce, ForceField>(in.fx, in.fy, n, in.uniform_fx, in.uniform_fy, Fx, Fy);
-      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, in.rho[n], in.ux[n], in.uy[n]);
+      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho, in.ux[n], in.uy[n]);
     }
 #pragma GCC unroll 9
     for (int i = 0; i < Q; ++i) {
@@ -186,10 +184,10 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
   const int len = end - begin;
   const auto misalign = reinterpret_cast<std::uintptr_t>(src[0]) % 64;  // a multiple of 8 B
   const int head = std::min(len, static_cast<int>((64 - misalign) % 64 / sizeof(double)));
-  if (head > 0) interior_span<Model, TauField, HasForce, ForceField, Moments>(in, src, n0, head);
+  if (head > 0) interior_span<Model, TauField, HasForce, ForceField, Velocity>(in, src, n0, head);
   if (len > head) {
     for (int i = 0; i < Q; ++i) src[i] += head;
-    interior_span<Model, TauField, HasForce, ForceField, Moments>(in, src, n0 + head, len - head);
+    interior_span<Model, TauField, HasForce, ForceField, Velocity>(in, src, n0 + head, len - head);
   }
   general(g.nx - 1);
 }
@@ -197,16 +195,16 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
 // Row y with the kernel variant its inputs need: τ node by node only where the row's τ
 // varies, the force field only on rows that may hold force ("quiet rows",
 // docs/performance.md). A skipped zero force or a row's one τ gives the same values.
-template <AaStep Step, CollisionModel Model, bool Moments>
+template <AaStep Step, CollisionModel Model, bool Velocity>
 void update_row_variant(const KernelArgs& a, const NodeInputs& in, int y, bool tau, bool field, bool force) {
   if (tau) {
-    if (field) return update_row<Step, Model, true, true, true, Moments>(a, in, y);
-    if (force) return update_row<Step, Model, true, true, false, Moments>(a, in, y);
-    return update_row<Step, Model, true, false, false, Moments>(a, in, y);
+    if (field) return update_row<Step, Model, true, true, true, Velocity>(a, in, y);
+    if (force) return update_row<Step, Model, true, true, false, Velocity>(a, in, y);
+    return update_row<Step, Model, true, false, false, Velocity>(a, in, y);
   }
-  if (field) return update_row<Step, Model, false, true, true, Moments>(a, in, y);
-  if (force) return update_row<Step, Model, false, true, false, Moments>(a, in, y);
-  return update_row<Step, Model, false, false, false, Moments>(a, in, y);
+  if (field) return update_row<Step, Model, false, true, true, Velocity>(a, in, y);
+  if (force) return update_row<Step, Model, false, true, false, Velocity>(a, in, y);
+  return update_row<Step, Model, false, false, false, Velocity>(a, in, y);
 }
 
 template <AaStep Step, CollisionModel Model>
@@ -220,10 +218,9 @@ void run_kernel(const KernelArgs& a) {
   base.uniform_fy = a.uniform_fy;
   base.magic = a.collision.trt_magic;
   base.uniform_rates = rates_for(Model, a.collision.tau, a.collision.trt_magic);
-  base.rho = a.moments_rho;
-  base.ux = a.moments_ux;
-  base.uy = a.moments_uy;
-  const bool moments = a.moments_ux != nullptr;
+  base.ux = a.velocity_x;
+  base.uy = a.velocity_y;
+  const bool velocity = a.velocity_x != nullptr;
   const bool uniform_force = a.uniform_fx != 0.0 || a.uniform_fy != 0.0;
 #pragma omp parallel for schedule(static) if (g.worth_threading())
   for (int y = 0; y < g.ny; ++y) {
@@ -231,7 +228,7 @@ void run_kernel(const KernelArgs& a) {
     const bool tau = a.tau_field != nullptr && (a.row_tau == nullptr || a.row_tau[y] == 0.0);
     NodeInputs in = base;
     if (a.tau_field != nullptr && !tau) in.uniform_rates = rates_for(Model, a.row_tau[y], a.collision.trt_magic);
-    if (moments) update_row_variant<Step, Model, true>(a, in, y, tau, field, field || uniform_force);
+    if (velocity) update_row_variant<Step, Model, true>(a, in, y, tau, field, field || uniform_force);
     else update_row_variant<Step, Model, false>(a, in, y, tau, field, field || uniform_force);
   }
 }
@@ -249,9 +246,8 @@ void dispatch_model(const KernelArgs& a) {
 
 void stream_collide(const KernelArgs& args) {
   if (args.stride < args.grid.size()) throw std::invalid_argument("stream_collide: population arrays overlap");
-  if ((args.moments_rho == nullptr) != (args.moments_ux == nullptr) ||
-      (args.moments_ux == nullptr) != (args.moments_uy == nullptr))
-    throw std::invalid_argument("stream_collide: the moment outputs are all three or none");
+  if ((args.velocity_x == nullptr) != (args.velocity_y == nullptr))
+    throw std::invalid_argument("stream_collide: the velocity outputs are both or none");
   if (args.step == AaStep::pull_swap) return dispatch_model<AaStep::pull_swap>(args);
   return dispatch_model<AaStep::local>(args);
 }

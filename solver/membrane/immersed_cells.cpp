@@ -60,10 +60,9 @@ void ImmersedCells::add_spread_forces(fluid::FluidLattice& lattice) {
   transfer_.spread(x_, y_, fx_, fy_, field.fx, field.fy, field.rows);
   if (dense_supports()) {  // the next step writes the velocity support_velocity() needs
     const std::size_t N = transfer_.domain().grid.size();
-    rho_.resize(N);
     grid_ux_.resize(N);
     grid_uy_.resize(N);
-    lattice.write_moments_with_next_step(rho_, grid_ux_, grid_uy_);
+    lattice.write_velocity_with_next_step(grid_ux_, grid_uy_);
   }
 }
 
@@ -109,7 +108,7 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
   grid_uy_.resize(N);
   const int W = ib::width(transfer_.kernel());
   if (dense_supports()) {  // dense markers: the whole grid is cheaper
-    if (lattice.last_step_wrote_moments(grid_ux_.data())) return;  // written by the step (add_spread_forces)
+    if (lattice.last_step_wrote_velocity(grid_ux_.data())) return;  // written by the step (add_spread_forces)
     rho_.resize(N);
     lattice.compute_moments(rho_, grid_ux_, grid_uy_);
     return;

@@ -64,8 +64,8 @@ class ImmersedCells {
   // Step 2 without the zeroing: ADDS the spread marker forces to the lattice force
   // field (which must be enabled). spread_forces() = zero the field + this. When the
   // supports cover the grid anyway (dense_supports()), it also asks the lattice to write
-  // the moments of its next step (FluidLattice::write_moments_with_next_step), which
-  // support_velocity() then takes as they are.
+  // the velocity of its next step (FluidLattice::write_velocity_with_next_step), which
+  // support_velocity() then takes as it is.
   void add_spread_forces(fluid::FluidLattice& lattice);
   // Steps 4–5 from the velocity of the last fluid step.
   void move_markers(std::span<const double> ux, std::span<const double> uy);
