@@ -1,6 +1,7 @@
 // The IB cycle of membrane::ImmersedCells: bitwise reproducible across thread
 // counts, advects a cell with a uniform flow and wraps it across periodic sides, and
-// its support-node velocity (advance) equals the whole-grid moments bit for bit.
+// its support-node velocity (advance), or the velocity the step wrote for dense cells,
+// equals the whole-grid moments bit for bit.
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -58,16 +59,20 @@ TEST(ImmersedCells, UniformFlowCarriesTheCellAcrossThePeriodicSide) {
 
 namespace {
 // Marker positions and populations after `steps` IB cycles, either by advance() (velocity
-// at the kernel-support nodes only) or by the same cycle with the whole-grid moments.
-std::vector<double> cycle(bool whole_grid, const fluid::BoundaryConfig& bc, ib::KernelType kernel) {
+// at the kernel-support nodes only, or written by the step when the supports are dense)
+// or by the same cycle with the whole-grid moments. `dense`: a grid small enough that
+// the cell's supports hold as many nodes as it has (ImmersedCells::dense_supports).
+std::vector<double> cycle(bool whole_grid, const fluid::BoundaryConfig& bc, ib::KernelType kernel,
+                          bool dense = false) {
   omp_set_num_threads(1);
-  fluid::FluidLattice lat(Grid{64, 48}, {fluid::CollisionModel::bgk, 0.8, 3.0 / 16}, bc);
+  fluid::FluidLattice lat(dense ? Grid{64, 14} : Grid{64, 48}, {fluid::CollisionModel::bgk, 0.8, 3.0 / 16}, bc);
   lat.initialize_uniform(1.0, 0.05, 0.0);
   lat.set_uniform_force(1e-6, -2e-6);
   ImmersedCells cells(kernel, lat);
   // Straddles x = 64 (periodic wrap) and reaches within 1 of y = 0 (wall clipping).
   cells.add_cell(transformed(ellipse(60, 11.0, 5.0), 1.0, 0.2, 58.0, 6.5), RestShape::from_polygon(circle(60, 8.0)),
                  {{TensionLawType::skalak, 0.01, 2.0}, 0.05, 0.02});
+  EXPECT_EQ(cells.dense_supports(), dense && ib::width(kernel) == 4) << ib::to_string(kernel);
   const std::size_t N = lat.grid().size();
   std::vector<double> rho(N), ux(N), uy(N);
   for (int s = 0; s < 30; ++s) {
@@ -96,6 +101,22 @@ TEST(ImmersedCells, SupportVelocityEqualsWholeGridMomentsBitwise) {
   for (ib::KernelType k : ib::kAllKernels) {
     for (const fluid::BoundaryConfig& bc : {fluid::BoundaryConfig{}, walls}) {
       const auto a = cycle(false, bc, k), b = cycle(true, bc, k);
+      for (double v : a) ASSERT_TRUE(std::isfinite(v));
+      EXPECT_EQ(a, b) << ib::to_string(k);
+    }
+  }
+}
+
+// Dense supports: the fluid step writes the velocity (FluidLattice::write_velocity_with_
+// next_step, asked for by the spreading) and advance() takes it as it is. The same bits as
+// the whole-grid moments after the step, with and without walls.
+TEST(ImmersedCells, VelocityWrittenByTheStepEqualsWholeGridMomentsBitwise) {
+  fluid::BoundaryConfig walls;
+  walls.bottom = {fluid::SideType::wall, 0.0, 0.0};
+  walls.top = {fluid::SideType::wall, 0.0, 0.0};
+  for (ib::KernelType k : ib::kAllKernels) {
+    for (const fluid::BoundaryConfig& bc : {fluid::BoundaryConfig{}, walls}) {
+      const auto a = cycle(false, bc, k, true), b = cycle(true, bc, k, true);
       for (double v : a) ASSERT_TRUE(std::isfinite(v));
       EXPECT_EQ(a, b) << ib::to_string(k);
     }
