@@ -53,12 +53,17 @@ struct NodeInputs {
   double* uy = nullptr;
 };
 
-// The force of node n's collision: the uniform force plus the field's, in that order.
-template <bool HasForce, bool ForceField>
-[[gnu::always_inline]] inline void force_at(const double* fx, const double* fy, std::size_t n, double ufx, double ufy,
-                                            double& Fx, double& Fy) {
-  Fx = 0.0;
-  Fy = 0.0;
+// The collision of node n (streamed populations in f) and, with Velocity, its velocity
+// after it into ux[n], uy[n] (node_moments.hpp, with the collision's own force). The one
+// place where both the interior and the general path compute, so both round identically.
+// `flatten` inlines collide_node() here: an out-of-line copy of that header function could
+// be taken by the linker from another file compiled with contraction.
+template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Velocity>
+[[gnu::flatten]] inline void node_update(const double* tau, const double* fx, const double* fy, std::size_t n,
+                                         double ufx, double ufy, double magic, Rates uniform_rates, double* f,
+                                         double* ux, double* uy) {
+  const Rates r = TauField ? rates_for(Model, tau[n], magic) : uniform_rates;
+  double Fx = 0.0, Fy = 0.0;
   if constexpr (HasForce) {
     Fx = ufx;
     Fy = ufy;
@@ -67,19 +72,11 @@ template <bool HasForce, bool ForceField>
       Fy += fy[n];
     }
   }
-}
-
-// The collision of node n (streamed populations in f). The one place where both
-// the interior and the general path compute, so both round identically. `flatten`
-// inlines collide_node() here: an out-of-line copy of that header function could be
-// taken by the linker from another file compiled with contraction.
-template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField>
-[[gnu::flatten]] inline void node_update(const double* tau, const double* fx, const double* fy, std::size_t n,
-                                         double ufx, double ufy, double magic, Rates uniform_rates, double* f) {
-  const Rates r = TauField ? rates_for(Model, tau[n], magic) : uniform_rates;
-  double Fx, Fy;
-  force_at<HasForce, ForceField>(fx, fy, n, ufx, ufy, Fx, Fy);
   collide_node<Model, HasForce>(f, r, Fx, Fy);
+  if constexpr (Velocity) {
+    double rho;
+    moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho, ux[n], uy[n]);
+  }
 }
 
 // `len` interior nodes n0, n0+1, …: s_i[k] holds the value streaming into node n0+k
@@ -111,13 +108,8 @@ void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int
 #endif
   for (int k = 0; k < len; ++k) {
     double f[Q] = {s0[k], s1[k], s2[k], s3[k], s4[k], s5[k], s6[k], s7[k], s8[k]};
-    node_update<Model, TauField, HasForce, ForceField>(tau, fx, fy, static_cast<std::size_t>(k), ufx, ufy, magic,
-                                                       ur, f);
-    if constexpr (Velocity) {
-      double Fx, Fy, rho;
-      force_at<HasForce, ForceField>(fx, fy, static_cast<std::size_t>(k), ufx, ufy, Fx, Fy);
-      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho, ux[k], uy[k]);
-    }
+    node_update<Model, TauField, HasForce, ForceField, Velocity>(tau, fx, fy, static_cast<std::size_t>(k), ufx, ufy,
+                                                                 magic, ur, f, ux, uy);
     // opposite = {0, 3, 4, 1, 2, 7, 8, 5, 6}
     s0[k] = f[0];
     s3[k] = f[1];
@@ -152,13 +144,9 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
       if (s.wall && s.wall->type == SideType::moving_wall) value += wall_term(*s.wall, i);
       f[i] = value;
     }
-    node_update<Model, TauField, HasForce, ForceField>(in.tau, in.fx, in.fy, n, in.uniform_fx, in.uniform_fy,
-                                                       in.magic, in.uniform_rates, f);
-    if constexpr (Velocity) {
-      double Fx, Fy, rho;
-      force_at<HasForce, ForceField>(in.fx, in.fy, n, in.uniform_fx, in.uniform_fy, Fx, Fy);
-      moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho, in.ux[n], in.uy[n]);
-    }
+    node_update<Model, TauField, HasForce, ForceField, Velocity>(in.tau, in.fx, in.fy, n, in.uniform_fx,
+                                                                 in.uniform_fy, in.magic, in.uniform_rates, f, in.ux,
+                                                                 in.uy);
 #pragma GCC unroll 9
     for (int i = 0; i < Q; ++i) {
       if constexpr (Step == AaStep::pull_swap) {

@@ -7,19 +7,10 @@
 #include <vector>
 
 #include "common/portable_exp.hpp"
+#include "tests/ulp_error.hpp"
 
 using erythro::numeric::exp_portable;
-
-namespace {
-
-// Distance in units in the last place of the exact value (long double, 64-bit mantissa).
-double ulp_error(double got, long double exact) {
-  const double nearest = static_cast<double>(exact);
-  const double ulp = std::nextafter(nearest, INFINITY) - nearest;
-  return static_cast<double>(std::fabs(static_cast<long double>(got) - exact) / ulp);
-}
-
-}  // namespace
+using erythro::testing::ulp_error;
 
 TEST(PortableExp, WithinOneUlpOverItsDomain) {
   double worst = 0.0, at = 0.0;
