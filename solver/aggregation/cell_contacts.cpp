@@ -28,11 +28,13 @@ void check_view(const MarkerView& v) {
   for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
     if (v.offsets[c + 1] < v.offsets[c] + 3) throw std::invalid_argument("cell contacts: a cell needs >= 3 markers");
   }
-  for (std::size_t m = 0; m < v.x.size(); ++m) {
-    if (!std::isfinite(v.x[m]) || !std::isfinite(v.y[m])) {
-      throw std::domain_error("cell contacts: marker " + std::to_string(m) + " has a non-finite position");
-    }
-  }
+}
+
+// The first marker with a non-finite position (called once a parallel pass has found one).
+[[noreturn]] void report_non_finite(const MarkerView& v) {
+  std::size_t m = 0;
+  while (m < v.x.size() && std::isfinite(v.x[m]) && std::isfinite(v.y[m])) ++m;
+  throw std::domain_error("cell contacts: marker " + std::to_string(m) + " has a non-finite position");
 }
 
 // The shared arithmetic of the pair-list and brute-force paths (see the header): the
@@ -70,26 +72,29 @@ struct Engine {
     check_view(v);
     W.clear();
     const std::size_t N = v.x.size();
+    for (auto* a : {&edge, &ell, &S, &px, &py, &rmin}) a->resize(N);
     cell_of.resize(N);
-    edge.resize(N);
-    ell.resize(N);
-    const long n_cells = static_cast<long>(v.offsets.size()) - 1;  // each cell its own markers: the same bits
-#pragma omp parallel for schedule(static) if (N >= kParallelMarkers)
+    count.resize(N);
+    // Per cell, in parallel (each cell its own markers: the same bits for any thread count):
+    // the positions checked, the edge lengths, ℓ_m, and the pair sums' starting values.
+    bool finite = true;
+    const long n_cells = static_cast<long>(v.offsets.size()) - 1;
+#pragma omp parallel for schedule(static) if (N >= kParallelMarkers) reduction(&& : finite)
     for (long q = 0; q < n_cells; ++q) {
       const std::size_t c = static_cast<std::size_t>(q);
       const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
       for (std::size_t k = o; k < e; ++k) {
         const std::size_t next = k + 1 < e ? k + 1 : o;
+        finite = finite && std::isfinite(v.x[k]) && std::isfinite(v.y[k]);
         cell_of[k] = c;
         edge[k] = numeric::hypot_portable(v.x[next] - v.x[k], v.y[next] - v.y[k]);  // L_k: edge k → k+1
+        S[k] = px[k] = py[k] = 0.0;
+        count[k] = 0;
+        rmin[k] = std::numeric_limits<double>::infinity();
       }
       for (std::size_t k = o; k < e; ++k) ell[k] = 0.5 * (edge[k > o ? k - 1 : e - 1] + edge[k]);
     }
-    S.assign(N, 0.0);
-    px.assign(N, 0.0);
-    py.assign(N, 0.0);
-    count.assign(N, 0);
-    rmin.assign(N, std::numeric_limits<double>::infinity());
+    if (!finite) report_non_finite(v);
   }
 
   // Passes 1–3 of pair_terms.hpp over the n candidates of s; returns the pairs within r_c
@@ -118,10 +123,18 @@ struct Engine {
     const RepulsionParameters* rep = potential.wall_repulsion();
     if (!rep || (domain.periodic_x && domain.periodic_y)) return;
     const std::size_t N = v.x.size();
-    W.assign(N, 0.0);
+    W.resize(N);
     const double Lx = domain.grid.nx, Ly = domain.grid.ny, d = rep->range;
-    std::size_t near = 0;
-    for (std::size_t m = 0; m < N; ++m) {
+    // Marker by marker in parallel (each marker its own W_m and force); the statistics are a
+    // minimum, an integer sum and the first offending index: the same for any thread count.
+    std::size_t near = 0, first_beyond = SIZE_MAX;
+    double closest = std::numeric_limits<double>::infinity();
+    const long long n_ll = static_cast<long long>(N);
+#pragma omp parallel for schedule(static) if (N >= kParallelMarkers) reduction(+ : near) \
+    reduction(min : closest, first_beyond)
+    for (long long i = 0; i < n_ll; ++i) {
+      const std::size_t m = static_cast<std::size_t>(i);
+      W[m] = 0.0;
       bool touched = false;
       // One axis: walls at 0 (s = q, ∂s/∂q = 1) and at L (s = L − q, ∂s/∂q = −1).
       auto side = [&](double q, double L, double& force) {
@@ -129,16 +142,13 @@ struct Engine {
           const double gap = sign > 0 ? q : L - q;
           if (!(gap < d)) continue;
           if (!(gap > 0.0)) {
-            if (beyond_wall == SIZE_MAX) {
-              beyond_wall = m;
-              beyond_wall_gap = gap;
-            }
+            first_beyond = std::min(first_beyond, m);
             continue;
           }
           double w = 0.0, dw = 0.0;
           wall_evaluate(*rep, gap, w, dw);
           W[m] += w;
-          min_wall_gap = std::min(min_wall_gap, gap);
+          closest = std::min(closest, gap);
           force -= sign * dw * ell[m];
           touched = true;
         }
@@ -148,6 +158,23 @@ struct Engine {
       near += touched ? 1 : 0;
     }
     wall_markers = near;
+    min_wall_gap = closest;
+    if (first_beyond != SIZE_MAX) {  // its first gap ≤ 0, in the order the loop above visits them
+      beyond_wall = first_beyond;
+      const double q[2] = {v.x[first_beyond], v.y[first_beyond]}, L[2] = {Lx, Ly};
+      const bool wall_axis[2] = {!domain.periodic_x, !domain.periodic_y};
+      bool found = false;
+      for (int a = 0; a < 2 && !found; ++a) {
+        if (!wall_axis[a]) continue;
+        for (const double g : {q[a], L[a] - q[a]}) {
+          if (g < d && !(g > 0.0)) {
+            beyond_wall_gap = g;
+            found = true;
+            break;
+          }
+        }
+      }
+    }
   }
 
   void check_coincident() const {
@@ -177,9 +204,13 @@ struct Engine {
     check_coincident();
     const std::size_t N = S.size();
     if (fx.size() != N || fy.size() != N) throw std::invalid_argument("cell contacts: force arrays differ in size");
-    if (magnitude) magnitude->assign(N, 0.0);
+    if (magnitude) magnitude->resize(N);
     const long long n_ll = static_cast<long long>(N);
-#pragma omp parallel for schedule(static) if (N >= kParallelMarkers)
+    // The closest pair and the pair count ride along: a minimum and an integer sum are exact
+    // in any order, so any thread count gives the same statistics.
+    double closest = std::numeric_limits<double>::infinity();
+    std::size_t pairs2 = 0;
+#pragma omp parallel for schedule(static) if (N >= kParallelMarkers) reduction(min : closest) reduction(+ : pairs2)
     for (long long i = 0; i < n_ll; ++i) {
       const std::size_t m = static_cast<std::size_t>(i);
       const std::size_t c = cell_of[m], o = v.offsets[c], e = v.offsets[c + 1];
@@ -194,13 +225,13 @@ struct Engine {
       fx[m] += gx;
       fy[m] += gy;
       if (magnitude) (*magnitude)[m] = numeric::hypot_portable(gx, gy);
+      closest = std::min(closest, rmin[m]);
+      pairs2 += count[m];
     }
     ContactStats st;
     st.wall_markers = wall_markers;
     st.min_wall_distance = min_wall_gap;
-    for (std::size_t m = 0; m < N; ++m) st.min_pair_distance = std::min(st.min_pair_distance, rmin[m]);
-    std::size_t pairs2 = 0;
-    for (std::size_t m = 0; m < N; ++m) pairs2 += count[m];
+    st.min_pair_distance = std::min(st.min_pair_distance, closest);
     st.pairs = pairs2 / 2;
     st.energy = energy();
     if (magnitude) st.max_force = magnitude->empty() ? 0.0 : *std::max_element(magnitude->begin(), magnitude->end());

@@ -113,8 +113,11 @@ bool PairLists::valid(const MarkerView& v) const {
   if (offsets_.size() != v.offsets.size() || !std::equal(offsets_.begin(), offsets_.end(), v.offsets.begin()))
     return false;
   const double limit2 = 0.25 * skin_ * skin_ * (1.0 - 1e-9);
-  double worst = 0.0;
-  for (std::size_t m = 0; m < v.x.size(); ++m) {
+  double worst = 0.0;  // a maximum: the same in any order, so for any thread count
+  const long long n = static_cast<long long>(v.x.size());
+#pragma omp parallel for schedule(static) if (n >= 2000) reduction(max : worst)
+  for (long long i = 0; i < n; ++i) {
+    const std::size_t m = static_cast<std::size_t>(i);
     const double ex = v.x[m] - x_[m], ey = v.y[m] - y_[m];
     worst = std::max(worst, ex * ex + ey * ey);
   }

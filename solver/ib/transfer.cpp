@@ -190,7 +190,10 @@ void Transfer::interpolate(std::span<const double> X, std::span<const double> Y,
 
 void advance_markers(std::span<double> X, std::span<double> Y, std::span<const double> Ux,
                      std::span<const double> Uy, double dt) {
-  for (std::size_t m = 0; m < X.size(); ++m) {
+  const long markers = static_cast<long>(X.size());  // each marker its own: any thread count, the same bits
+#pragma omp parallel for schedule(static) if (markers >= 2048)
+  for (long q = 0; q < markers; ++q) {
+    const std::size_t m = static_cast<std::size_t>(q);
     X[m] += Ux[m] * dt;
     Y[m] += Uy[m] * dt;
   }

@@ -3,6 +3,7 @@
 // pair density, and CellContacts with repulsion (and Morse): forces = −∇E, the cell list
 // equal to the brute force bit for bit, Morse alone unchanged.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <numbers>
@@ -214,4 +215,76 @@ TEST(CellContacts, RepulsionPushesApartAndAMarkerOnAWallIsReported) {
   // The range must stay below half a periodic side.
   EXPECT_THROW(CellContacts(geometry::Domain{Grid{3, 30}, true, false}, ContactLaw{std::nullopt, kRep}),
                std::invalid_argument);
+}
+
+TEST(CellContacts, WallsAndStatisticsSameOnAnyThreadCount) {
+  // 3 000 markers (above kParallelMarkers, so the per-marker passes run in parallel) in a
+  // channel, the lowest and highest rings within the walls' range: forces, energy and every
+  // statistic (closest pair, pairs, closest wall, markers near a wall) equal on 1 and 2
+  // threads; a marker beyond a wall and a non-finite one are reported by their first index.
+  const geometry::Domain dom{Grid{200, 204}, true, false};
+  const ContactLaw law{kMorse, kRep};
+  std::vector<double> x, y;
+  std::vector<std::size_t> off{0};
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j)
+      for (int k = 0; k < 30; ++k) {
+        const double a = 2.0 * std::numbers::pi * k / 30.0;
+        x.push_back(10.0 + 19.0 * i + 0.3 * j + 9.1 * std::cos(a));
+        y.push_back(10.5 + 20.0 * j + 0.2 * i + 9.3 * std::sin(a));  // the lowest rings come within 1.2 of the wall
+        if (k == 29) off.push_back(x.size());
+      }
+  ASSERT_GE(x.size(), CellContacts::kParallelMarkers);
+  const std::size_t N = x.size();
+  const int threads = omp_get_max_threads();
+  auto run = [&](int t, std::vector<double>& fx, std::vector<double>& fy) {
+    omp_set_num_threads(t);
+    CellContacts c(dom, law);
+    fx.assign(N, 0.0);
+    fy.assign(N, 0.0);
+    const ContactStats s = c.add_forces(MarkerView{x, y, off}, fx, fy);
+    omp_set_num_threads(threads);
+    return s;
+  };
+  std::vector<double> f1, g1, f2, g2;
+  const ContactStats a = run(1, f1, g1), b = run(2, f2, g2);
+  ASSERT_GT(a.wall_markers, 0u);
+  ASSERT_GT(a.pairs, 0u);
+  EXPECT_EQ(a.wall_markers, b.wall_markers);
+  EXPECT_EQ(a.min_wall_distance, b.min_wall_distance);
+  EXPECT_EQ(a.min_pair_distance, b.min_pair_distance);
+  EXPECT_EQ(a.pairs, b.pairs);
+  EXPECT_EQ(a.energy, b.energy);
+  EXPECT_EQ(a.max_force, b.max_force);
+  for (std::size_t m = 0; m < N; ++m) {
+    ASSERT_EQ(f1[m], f2[m]) << m;
+    ASSERT_EQ(g1[m], g2[m]) << m;
+  }
+  // Markers 2 990 and 1 215 beyond the walls (top, then bottom): the lower index is named.
+  y[2990] = 204.3;
+  y[1215] = -0.25;
+  for (const int t : {1, 2}) {
+    omp_set_num_threads(t);
+    CellContacts c(dom, law);
+    try {
+      c.add_forces(MarkerView{x, y, off}, f1, g1);
+      ADD_FAILURE() << "no error for markers beyond the walls";
+    } catch (const std::domain_error& e) {
+      EXPECT_NE(std::string(e.what()).find("marker 1215 (cell 40) is 0.25"), std::string::npos) << e.what();
+    }
+    omp_set_num_threads(threads);
+  }
+  y[2990] = NAN;
+  x[1701] = INFINITY;
+  for (const int t : {1, 2}) {
+    omp_set_num_threads(t);
+    CellContacts c(dom, law);
+    try {
+      c.add_forces(MarkerView{x, y, off}, f1, g1);
+      ADD_FAILURE() << "no error for non-finite markers";
+    } catch (const std::domain_error& e) {
+      EXPECT_NE(std::string(e.what()).find("marker 1701 has a non-finite position"), std::string::npos) << e.what();
+    }
+    omp_set_num_threads(threads);
+  }
 }
