@@ -40,7 +40,7 @@
 // different sums rounds. The separations, the pair law and the weights run as vector
 // loops over many pairs at once (pair_terms.hpp) (the exponential is numeric::exp_portable, the same bits
 // in every lane); each marker writes only its own sums: parallel over markers (OpenMP,
-// from 2000 markers on), deterministic for any thread count.
+// from kParallelMarkers markers on), deterministic for any thread count.
 #include <cstddef>
 #include <limits>
 #include <span>
@@ -109,8 +109,10 @@ class CellContacts {
   double cutoff() const { return potential_.cutoff(); }
   const geometry::Domain& domain() const { return domain_; }
   // Below this many markers a parallel region costs more than it saves (a doublet of
-  // 2 × 100 markers: ~10 µs of work per call), and add_forces runs on one thread.
-  static constexpr std::size_t kParallelMarkers = 2000;
+  // 2 × 184 markers stays on one thread), and add_forces runs on one thread. Eight cells
+  // (1 472 markers) already gain on two threads (docs/performance.md, "Threads from 512
+  // markers").
+  static constexpr std::size_t kParallelMarkers = 512;
   static bool threads_forces(std::size_t markers) { return markers >= kParallelMarkers; }
   // The pair lists (pair_lists.hpp): their skin, the bins per axis of the cell list that
   // builds them, how many times they were built (tests, the benchmark).

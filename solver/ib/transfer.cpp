@@ -13,6 +13,10 @@ namespace erythro::ib {
 
 namespace {
 
+// Markers from which the per-marker loops run on the threads (each marker its own result, so
+// the bits do not depend on it): below it a parallel region costs more than it saves.
+constexpr long kParallelMarkers = 512;
+
 void check_finite(std::span<const double> X, std::span<const double> Y) {
   for (std::size_t m = 0; m < X.size(); ++m) {
     if (!std::isfinite(X[m]) || !std::isfinite(Y[m])) {
@@ -48,7 +52,7 @@ void interpolate_impl(const geometry::Domain& d, long M, const Weights& weights,
                       std::span<const double> uy, std::span<double> Ux, std::span<double> Uy) {
   constexpr int W = K::width;
   const int nx = d.grid.nx, ny = d.grid.ny;
-#pragma omp parallel for schedule(static) if (M >= 2048)
+#pragma omp parallel for schedule(static) if (M >= kParallelMarkers)
   for (long m = 0; m < M; ++m) {
     int i0, j0;
     double wx[W], wy[W];
@@ -102,7 +106,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     wx_.resize(M * W);
     wy_.resize(M * W);
     const long markers = static_cast<long>(M);  // each marker its own: any thread count, the same bits
-#pragma omp parallel for schedule(static) if (markers >= 2048)
+#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers)
     for (long q = 0; q < markers; ++q) {
       const std::size_t m = static_cast<std::size_t>(q);
       weights_1d<K>(X[m], i0_[m], &wx_[m * W]);
@@ -191,7 +195,7 @@ void Transfer::interpolate(std::span<const double> X, std::span<const double> Y,
 void advance_markers(std::span<double> X, std::span<double> Y, std::span<const double> Ux,
                      std::span<const double> Uy, double dt) {
   const long markers = static_cast<long>(X.size());  // each marker its own: any thread count, the same bits
-#pragma omp parallel for schedule(static) if (markers >= 2048)
+#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers)
   for (long q = 0; q < markers; ++q) {
     const std::size_t m = static_cast<std::size_t>(q);
     X[m] += Ux[m] * dt;
