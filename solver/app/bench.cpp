@@ -359,6 +359,104 @@ int run_coupled_only(const BenchOptions& o) {
   return record.passed() ? exit_code::ok : exit_code::runtime_failure;
 }
 
+// ---------------------------------------------------------------- the fluid step's inputs
+
+// What each input of the coupled step costs the fluid step (issue 18's "grid overhead",
+// docs/performance.md): the benchmark lattice (periodic BGK) with a force field, a τ field
+// that varies along every row (so every node takes its own rates), both, and both with the
+// velocity written by the step (the dense immersed cells' set-up), each timed like the
+// plain step, in that order per grid and thread count.
+struct InputVariant {
+  const char* name;
+  bool force, tau, velocity;
+};
+constexpr InputVariant kInputVariants[] = {{"plain", false, false, false},
+                                           {"force field", true, false, false},
+                                           {"tau field", false, true, false},
+                                           {"force and tau fields", true, true, false},
+                                           {"force, tau, velocity written", true, true, true}};
+
+StepResult measure_inputs(const StepConfig& c, const InputVariant& v, int repeats, double sample_seconds) {
+  const auto start = Clock::now();
+  omp_set_num_threads(c.threads);
+  fluid::FluidLattice lat = shear_wave_lattice(c);
+  const Grid g = lat.grid();
+  const double k = 2.0 * std::numbers::pi / c.n;
+  if (v.force) {  // zero mean along x: no net acceleration of the periodic box
+    lat.enable_force_field();
+    const std::span<double> fx = lat.force_x(), fy = lat.force_y();
+    for (int y = 0; y < c.n; ++y)
+      for (int x = 0; x < c.n; ++x) {
+        fx[g.index(x, y)] = 1e-7 * std::sin(k * (x + 0.5));
+        fy[g.index(x, y)] = 1e-7 * std::cos(k * (x + 0.5));
+      }
+  }
+  if (v.tau) {
+    lat.enable_tau_field();
+    const std::span<double> tau = lat.tau_field();
+    for (int y = 0; y < c.n; ++y)
+      for (int x = 0; x < c.n; ++x) tau[g.index(x, y)] = kTau + 0.1 * std::sin(k * (x + y + 0.5));
+    lat.refresh_tau_rows();
+  }
+  std::vector<double> ux(v.velocity ? g.size() : 0), uy(ux.size());
+  const auto step = [&] {
+    if (v.velocity) lat.write_velocity_with_next_step(ux, uy);
+    lat.step();
+  };
+  StepResult r = time_steps(step, g.size(), repeats, sample_seconds);
+  if (!lat.check_health(0.3).healthy) throw std::runtime_error("bench: the benchmark flow diverged");
+  r.wall_time_s = seconds_since(start);
+  return r;
+}
+
+int run_fluid_inputs(const BenchOptions& o) {
+  const auto start = Clock::now();
+  const std::string load_start = load_average();
+  io::ResultRecord record("benchmark.fluid_inputs", "benchmark");
+  record.set_requirement(
+      "Informative: measure what a force field, a tau field and the velocity written by the step each add to the "
+      "fused stream-collide step, beside the plain step of the same grid.");
+  record.set_reference("none: a measurement of this code on this machine (docs/performance.md)");
+  record.set_parameter("cpu", cpu_model());
+  record.set_parameter("load_average_start", load_start);
+  record.set_parameter("tau", kTau);
+  std::printf("the fluid step's inputs (periodic BGK, tau %.2f; time / plain: the step's time over the plain step's)\n",
+              kTau);
+  std::printf("%5s %3s %-30s %7s %15s %12s\n", "grid", "thr", "inputs", "MLUPS", "min-max", "time / plain");
+  for (int n : o.sizes) {
+    for (int threads : o.threads) {
+      const StepConfig c{n, fluid::CollisionModel::bgk, false, threads};
+      double plain = 0.0;
+      for (const InputVariant& v : kInputVariants) {
+        const StepResult r = measure_inputs(c, v, o.repeats, o.sample_seconds);
+        if (!v.force && !v.tau) plain = r.mlups.median;
+        const double ratio = plain / r.mlups.median;
+        std::printf("%5d %3d %-30s %7.1f %7.1f-%-7.1f %12.3f\n", n, threads, v.name, r.mlups.median, r.mlups.min,
+                    r.mlups.max, ratio);
+        std::fflush(stdout);
+        record.add_run({{"kind", std::string("fluid step inputs")},
+                        {"inputs", std::string(v.name)},
+                        {"grid_n", static_cast<double>(n)},
+                        {"threads", static_cast<double>(threads)},
+                        {"samples", static_cast<double>(r.samples)},
+                        {"steps_per_sample", static_cast<double>(r.steps_per_sample)},
+                        {"mlups_median", r.mlups.median},
+                        {"mlups_min", r.mlups.min},
+                        {"mlups_max", r.mlups.max},
+                        {"time_over_plain", ratio},
+                        {"wall_time_s", r.wall_time_s}});
+      }
+    }
+  }
+  const std::string load_end = load_average();
+  record.set_parameter("load_average_end", load_end);
+  record.set_wall_time(seconds_since(start));
+  std::printf("load average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
+  const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
+  std::printf("record: %s\n", path.c_str());
+  return exit_code::ok;
+}
+
 int run_bench(BenchOptions o) {
   o.coupled.threads = o.threads;
   if (o.quick) {
@@ -370,6 +468,7 @@ int run_bench(BenchOptions o) {
     o.coupled.pairs = 1;
   }
   if (o.coupled_only) return run_coupled_only(o);
+  if (o.fluid_inputs) return run_fluid_inputs(o);
   const auto start_all = Clock::now();
   const std::string load_start = load_average();
   io::ResultRecord record("benchmark.fluid", "benchmark");
@@ -552,6 +651,9 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
   cmd->add_flag("--quick", options.quick, "Smoke run: 256^2 and 1024^2, 3 short samples; 2 and 8 cells, one pair");
   cmd->add_flag("--coupled-only", options.coupled_only,
                 "Only the coupled step (cells in a shear box), into $ERYTHRO_RESULTS_DIR/benchmark.coupled.h5");
+  cmd->add_flag("--fluid-inputs", options.fluid_inputs,
+                "Only what a force field, a tau field and the velocity output add to the fluid step, into "
+                "$ERYTHRO_RESULTS_DIR/benchmark.fluid_inputs.h5");
   cmd->add_option("--cells", options.coupled.cells, "Cell counts of the coupled step (box sized for area fraction 0.3)")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--coupled-steps", options.coupled.steps, "Time steps of each coupled-step run")

@@ -23,6 +23,7 @@ struct BenchOptions {
   double sample_seconds = 0.2;  // minimum duration of one sample
   bool quick = false;           // 256² and 1024², 3 short samples: a smoke run
   bool coupled_only = false;    // only the coupled step (coupled_bench.hpp), in benchmark.coupled
+  bool fluid_inputs = false;    // only the fluid step with each input of the coupled step, in benchmark.fluid_inputs
   CoupledBenchOptions coupled;  // its threads are `threads`
 };
 
