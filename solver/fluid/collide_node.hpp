@@ -66,13 +66,13 @@ inline void collide_node(double* f, Rates r, double Fx, double Fy) {
 #pragma GCC unroll 4
     for (int k = 0; k < 4; ++k) {
       const int i = pos[k], j = opposite[i];
-      const double cu = cx[i] * ux + cy[i] * uy;
+      const double cu = dot_c(i, ux, uy);
       const double e_plus = om * (w[i] * (drho + rho * (uu_term + 4.5 * cu * cu)));
       const double e_minus = om * (w[i] * rho * 3.0 * cu);
       double fi = keep * f[i] + (e_plus + e_minus);
       double fj = keep * f[j] + (e_plus - e_minus);
       if constexpr (HasForce) {
-        const double cF = cx[i] * Fx + cy[i] * Fy;
+        const double cF = dot_c(i, Fx, Fy);
         const double s_plus = force_pref * w[i] * (9.0 * cu * cF - 3.0 * uF);
         const double s_minus = force_pref * w[i] * 3.0 * cF;
         fi += s_plus + s_minus;
@@ -101,12 +101,12 @@ inline void collide_node(double* f, Rates r, double Fx, double Fy) {
     const double trace = (pxx + pyy) / 3.0;
 #pragma GCC unroll 9
     for (int i = 0; i < Q; ++i) {
-      const double cu = cx[i] * ux + cy[i] * uy;
+      const double cu = dot_c(i, ux, uy);
       const double feq = w[i] * (drho + rho * (uu_term + 3.0 * cu + 4.5 * cu * cu));
       const double qp = cx[i] * cx[i] * pxx + cy[i] * cy[i] * pyy + 2.0 * cx[i] * cy[i] * pxy - trace;
       double fi = feq + w[i] * keep * qp;
       if constexpr (HasForce) {
-        const double cF = cx[i] * Fx + cy[i] * Fy;
+        const double cF = dot_c(i, Fx, Fy);
         fi += 0.5 * w[i] * (3.0 * (cF - uF) + 9.0 * cu * cF);
       }
       f[i] = fi;
@@ -126,14 +126,14 @@ inline void collide_node(double* f, Rates r, double Fx, double Fy) {
 #pragma GCC unroll 4
     for (int k = 0; k < 4; ++k) {
       const int i = pos[k], j = opposite[i];
-      const double cu = cx[i] * ux + cy[i] * uy;
+      const double cu = dot_c(i, ux, uy);
       const double feq_p = w[i] * (drho + rho * (uu_term + 4.5 * cu * cu));
       const double feq_m = w[i] * rho * 3.0 * cu;
       const double f_p = 0.5 * (f[i] + f[j]), f_m = 0.5 * (f[i] - f[j]);
       double dp = -op * (f_p - feq_p);
       double dm = -om * (f_m - feq_m);
       if constexpr (HasForce) {
-        const double cF = cx[i] * Fx + cy[i] * Fy;
+        const double cF = dot_c(i, Fx, Fy);
         dp += fp_pref * w[i] * (9.0 * cu * cF - 3.0 * uF);
         dm += fm_pref * w[i] * 3.0 * cF;
       }

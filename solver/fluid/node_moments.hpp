@@ -5,6 +5,7 @@
 // (KernelArgs::moments_*), so that all of them give the same bits. Internal to the fluid
 // layer.
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 
 #include "lattice/d2q9.hpp"
@@ -19,8 +20,15 @@ template <class Population>
 [[gnu::always_inline]] inline void moments_of(const Population& pop, double Fx, double Fy, double& rho, double& ux,
                                               double& uy) {
   double dr = 0.0, jx = 0.0, jy = 0.0;
+  // A term with c = 0 is left out: the sums start at +0, and a sum is −0 only when both its
+  // terms are, so jx and jy are never −0 and adding 0·f (±0) never changes them: the same bits.
+  auto add = [&]<std::size_t I>(std::integral_constant<std::size_t, I>) {
+    dr += pop(I);
+    if constexpr (d2q9::cx[I] != 0) jx += d2q9::cx[I] * pop(I);
+    if constexpr (d2q9::cy[I] != 0) jy += d2q9::cy[I] * pop(I);
+  };
   [&]<std::size_t... I>(std::index_sequence<I...>) {
-    ((dr += pop(I), jx += d2q9::cx[I] * pop(I), jy += d2q9::cy[I] * pop(I)), ...);
+    (add(std::integral_constant<std::size_t, I>{}), ...);
   }(std::make_index_sequence<d2q9::Q>{});
   const double r = 1.0 + dr;
   rho = r;

@@ -19,6 +19,19 @@ inline constexpr std::array<int, Q> cx = {0, 1, 0, -1, 0, 1, -1, -1, 1};
 inline constexpr std::array<int, Q> cy = {0, 0, 1, 0, -1, 1, 1, -1, -1};
 inline constexpr std::array<double, Q> w = {4.0 / 9,  1.0 / 9,  1.0 / 9,  1.0 / 9, 1.0 / 9,
                                             1.0 / 36, 1.0 / 36, 1.0 / 36, 1.0 / 36};
+// c_i·a for a lattice direction, with c_1·a = a_x and c_2·a = a_y written without their zero
+// term. Written out, a_x + 0·a_y costs a multiplication and an addition per node that strict
+// IEEE rules (contraction off, signed zeros kept) do not let the compiler drop. Leaving the
+// term out gives the same value always, and the same bits unless the kept component is −0
+// (−0 + 0·a_y is +0 for a_y ≥ 0): only the sign of a zero can differ. The other directions
+// are computed as written (for c_3, −a_x + 0·a_y is +0 where −a_x alone is −0 at a_x = +0).
+// With i known at compile time (an unrolled loop) the branches fold away.
+inline constexpr double dot_c(int i, double ax, double ay) {
+  if (cx[i] == 1 && cy[i] == 0) return ax;
+  if (cx[i] == 0 && cy[i] == 1) return ay;
+  return cx[i] * ax + cy[i] * ay;
+}
+
 // opposite[i]: the direction with c = -c_i (bounce-back partner).
 inline constexpr std::array<int, Q> opposite = {0, 3, 4, 1, 2, 7, 8, 5, 6};
 

@@ -1,6 +1,12 @@
 // Unit checks of the D2Q9 velocity set and equilibrium (docs/model.md §1).
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
 #include "lattice/d2q9.hpp"
 
 using namespace erythro::d2q9;
@@ -45,4 +51,23 @@ TEST(D2Q9, EquilibriumMomentsAreExact) {
   EXPECT_NEAR(my, rho * uy, 1e-15);
   EXPECT_NEAR(pxx, rho * cs2 + rho * ux * ux, 1e-15);  // Π^eq = ρ c_s² I + ρ u u
   EXPECT_NEAR(pxy, rho * ux * uy, 1e-15);
+}
+
+TEST(D2Q9, DotWithADirectionEqualsTheWrittenOutProduct) {
+  // dot_c writes c_1·a and c_2·a without their zero term: the same value as cx·a_x + cy·a_y
+  // for every a, and the same bits unless the kept component is −0 (then only the sign of the
+  // zero result may differ); every other direction exactly as written.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<double> values{0.0, -0.0, 1.0, -1.0, 1e-300, -1e-300, 0.1, -0.1};
+  for (int k = 0; k < 1000; ++k) values.push_back(u(rng) * std::pow(10.0, static_cast<int>(rng() % 30) - 15));
+  auto negative_zero = [](double v) { return v == 0.0 && std::signbit(v); };
+  for (int i = 0; i < Q; ++i)
+    for (const double ax : values)
+      for (const double ay : values) {
+        const double written = cx[i] * ax + cy[i] * ay, fast = dot_c(i, ax, ay);
+        ASSERT_EQ(fast, written) << i << " " << ax << " " << ay;
+        if ((i == 1 && negative_zero(ax)) || (i == 2 && negative_zero(ay))) continue;
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(fast), std::bit_cast<std::uint64_t>(written)) << i << " " << ax << " " << ay;
+      }
 }
