@@ -117,6 +117,22 @@ struct Engine {
     rmin[m] = acc.rmin;
   }
 
+  // fn(gap, sign, axis) for each wall of a non-periodic axis within the range d of marker m,
+  // in one fixed order: the x walls before the y walls, the wall at 0 (s = q, ∂s/∂q = 1)
+  // before the one at L (s = L − q, ∂s/∂q = −1).
+  template <class Fn>
+  void for_walls_in_range(std::size_t m, double d, Fn&& fn) const {
+    const double q[2] = {v.x[m], v.y[m]}, L[2] = {double(domain.grid.nx), double(domain.grid.ny)};
+    const bool walls[2] = {!domain.periodic_x, !domain.periodic_y};
+    for (int a = 0; a < 2; ++a) {
+      if (!walls[a]) continue;
+      for (const double sign : {1.0, -1.0}) {
+        const double gap = sign > 0 ? q[a] : L[a] - q[a];
+        if (gap < d) fn(gap, sign, a);
+      }
+    }
+  }
+
   // The walls' part (eq 4.13): W_m = Σ_walls W(s) and the normal force −W'(s) ℓ_m ∂s/∂X_m,
   // for every marker within the range of a wall of a non-periodic axis (walls at 0 and n).
   void add_walls() {
@@ -124,7 +140,7 @@ struct Engine {
     if (!rep || (domain.periodic_x && domain.periodic_y)) return;
     const std::size_t N = v.x.size();
     W.resize(N);
-    const double Lx = domain.grid.nx, Ly = domain.grid.ny, d = rep->range;
+    const double d = rep->range;
     // Marker by marker in parallel (each marker its own W_m and force); the statistics are a
     // minimum, an integer sum and the first offending index: the same for any thread count.
     std::size_t near = 0, first_beyond = SIZE_MAX;
@@ -136,44 +152,31 @@ struct Engine {
       const std::size_t m = static_cast<std::size_t>(i);
       W[m] = 0.0;
       bool touched = false;
-      // One axis: walls at 0 (s = q, ∂s/∂q = 1) and at L (s = L − q, ∂s/∂q = −1).
-      auto side = [&](double q, double L, double& force) {
-        for (const double sign : {1.0, -1.0}) {
-          const double gap = sign > 0 ? q : L - q;
-          if (!(gap < d)) continue;
-          if (!(gap > 0.0)) {
-            first_beyond = std::min(first_beyond, m);
-            continue;
-          }
-          double w = 0.0, dw = 0.0;
-          wall_evaluate(*rep, gap, w, dw);
-          W[m] += w;
-          closest = std::min(closest, gap);
-          force -= sign * dw * ell[m];
-          touched = true;
+      for_walls_in_range(m, d, [&](double gap, double sign, int axis) {
+        if (!(gap > 0.0)) {
+          first_beyond = std::min(first_beyond, m);
+          return;
         }
-      };
-      if (!domain.periodic_x) side(v.x[m], Lx, px[m]);
-      if (!domain.periodic_y) side(v.y[m], Ly, py[m]);
+        double w = 0.0, dw = 0.0;
+        wall_evaluate(*rep, gap, w, dw);
+        W[m] += w;
+        closest = std::min(closest, gap);
+        (axis == 0 ? px[m] : py[m]) -= sign * dw * ell[m];
+        touched = true;
+      });
       near += touched ? 1 : 0;
     }
     wall_markers = near;
     min_wall_gap = closest;
-    if (first_beyond != SIZE_MAX) {  // its first gap ≤ 0, in the order the loop above visits them
+    if (first_beyond != SIZE_MAX) {  // reported with its first gap ≤ 0, in the order above
       beyond_wall = first_beyond;
-      const double q[2] = {v.x[first_beyond], v.y[first_beyond]}, L[2] = {Lx, Ly};
-      const bool wall_axis[2] = {!domain.periodic_x, !domain.periodic_y};
       bool found = false;
-      for (int a = 0; a < 2 && !found; ++a) {
-        if (!wall_axis[a]) continue;
-        for (const double g : {q[a], L[a] - q[a]}) {
-          if (g < d && !(g > 0.0)) {
-            beyond_wall_gap = g;
-            found = true;
-            break;
-          }
+      for_walls_in_range(first_beyond, d, [&](double gap, double, int) {
+        if (!found && !(gap > 0.0)) {
+          beyond_wall_gap = gap;
+          found = true;
         }
-      }
+      });
     }
   }
 

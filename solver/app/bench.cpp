@@ -336,20 +336,20 @@ struct Bandwidth {
 };
 
 
-// The coupled step alone (--coupled-only), in a record of its own so that it does not
-// replace the fluid step's.
-int run_coupled_only(const BenchOptions& o) {
+// A section of the bench run alone, in a record of its own (so that it does not replace the
+// fluid step's): the record's requirement, the machine's state before and after, `body`
+// measuring into it, the record written where --out or $ERYTHRO_RESULTS_DIR says.
+int run_alone(const BenchOptions& o, const char* name, const std::string& requirement,
+              const std::function<void(io::ResultRecord&)>& body) {
   const auto start = Clock::now();
   const std::string load_start = load_average();
-  io::ResultRecord record("benchmark.coupled", "benchmark");
-  record.set_requirement(
-      "Informative: measure the cost of the immersed cells per cell and time step, and the stages of the coupled "
-      "step, beside the fluid step of the same grid without cells.");
+  io::ResultRecord record(name, "benchmark");
+  record.set_requirement(requirement);
   record.set_reference("none: a measurement of this code on this machine (docs/performance.md)");
   record.set_parameter("cpu", cpu_model());
   record.set_parameter("load_average_start", load_start);
   record.set_parameter("omp_wait_policy", env_or("OMP_WAIT_POLICY", "default"));
-  run_coupled_bench(o.coupled, record);
+  body(record);
   const std::string load_end = load_average();
   record.set_parameter("load_average_end", load_end);
   record.set_wall_time(seconds_since(start));
@@ -357,6 +357,14 @@ int run_coupled_only(const BenchOptions& o) {
   const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
   std::printf("record: %s\n", path.c_str());
   return record.passed() ? exit_code::ok : exit_code::runtime_failure;
+}
+
+// The coupled step alone (--coupled-only).
+int run_coupled_only(const BenchOptions& o) {
+  return run_alone(o, "benchmark.coupled",
+                   "Informative: measure the cost of the immersed cells per cell and time step, and the stages of the "
+                   "coupled step, beside the fluid step of the same grid without cells.",
+                   [&](io::ResultRecord& record) { run_coupled_bench(o.coupled, record); });
 }
 
 // ---------------------------------------------------------------- the fluid step's inputs
@@ -368,13 +376,14 @@ int run_coupled_only(const BenchOptions& o) {
 // plain step, in that order per grid and thread count.
 struct InputVariant {
   const char* name;
+  const char* key;  // in metric names
   bool force, tau, velocity;
 };
-constexpr InputVariant kInputVariants[] = {{"plain", false, false, false},
-                                           {"force field", true, false, false},
-                                           {"tau field", false, true, false},
-                                           {"force and tau fields", true, true, false},
-                                           {"force, tau, velocity written", true, true, true}};
+constexpr InputVariant kInputVariants[] = {{"plain", "plain", false, false, false},
+                                           {"force field", "force", true, false, false},
+                                           {"tau field", "tau", false, true, false},
+                                           {"force and tau fields", "force_tau", true, true, false},
+                                           {"force, tau, velocity written", "force_tau_velocity", true, true, true}};
 
 StepResult measure_inputs(const StepConfig& c, const InputVariant& v, int repeats, double sample_seconds) {
   const auto start = Clock::now();
@@ -409,16 +418,8 @@ StepResult measure_inputs(const StepConfig& c, const InputVariant& v, int repeat
   return r;
 }
 
-int run_fluid_inputs(const BenchOptions& o) {
-  const auto start = Clock::now();
-  const std::string load_start = load_average();
-  io::ResultRecord record("benchmark.fluid_inputs", "benchmark");
-  record.set_requirement(
-      "Informative: measure what a force field, a tau field and the velocity written by the step each add to the "
-      "fused stream-collide step, beside the plain step of the same grid.");
-  record.set_reference("none: a measurement of this code on this machine (docs/performance.md)");
-  record.set_parameter("cpu", cpu_model());
-  record.set_parameter("load_average_start", load_start);
+// Every grid and thread count with each input of kInputVariants, into the record.
+void measure_fluid_inputs(const BenchOptions& o, io::ResultRecord& record) {
   record.set_parameter("tau", kTau);
   std::printf("the fluid step's inputs (periodic BGK, tau %.2f; time / plain: the step's time over the plain step's)\n",
               kTau);
@@ -445,16 +446,21 @@ int run_fluid_inputs(const BenchOptions& o) {
                         {"mlups_max", r.mlups.max},
                         {"time_over_plain", ratio},
                         {"wall_time_s", r.wall_time_s}});
+        record.add_metric(informative("time_over_plain_" + std::string(v.key) + "_" + std::to_string(n) + "_t" +
+                                          std::to_string(threads),
+                                      std::string("time of the fluid step with ") + v.name + " / the plain step's", "",
+                                      ratio));
       }
     }
   }
-  const std::string load_end = load_average();
-  record.set_parameter("load_average_end", load_end);
-  record.set_wall_time(seconds_since(start));
-  std::printf("load average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
-  const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
-  std::printf("record: %s\n", path.c_str());
-  return exit_code::ok;
+}
+
+// The fluid step with each input of the coupled step (--fluid-inputs).
+int run_fluid_inputs(const BenchOptions& o) {
+  return run_alone(o, "benchmark.fluid_inputs",
+                   "Informative: measure what a force field, a tau field and the velocity written by the step each "
+                   "add to the fused stream-collide step, beside the plain step of the same grid.",
+                   [&](io::ResultRecord& record) { measure_fluid_inputs(o, record); });
 }
 
 int run_bench(BenchOptions o) {

@@ -13,6 +13,7 @@
 #include "aggregation/morse.hpp"
 #include "aggregation/cell_contacts.hpp"
 #include "aggregation/morse_units.hpp"
+#include "tests/aggregation/ring_grid.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "geometry/shapes.hpp"
 #include "membrane/immersed_cells.hpp"
@@ -319,18 +320,10 @@ TEST(CellContacts, PairListsSameOnAnyThreadCount) {
   // 3 000 markers (above kParallelMarkers): lists built and summed on 1 and 2 threads agree.
   const geometry::Domain dom{Grid{200, 200}, true, true};
   const MorseParameters p{0.3, 2.5, 0.8, 6.0};
-  std::vector<double> x, y;
-  std::vector<std::size_t> off{0};
-  for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 10; ++j)
-      for (int k = 0; k < 30; ++k) {
-        const double a = 2.0 * std::numbers::pi * k / 30.0;
-        x.push_back(10.0 + 19.0 * i + 0.3 * j + 9.1 * std::cos(a));
-        y.push_back(10.0 + 19.5 * j + 0.2 * i + 9.3 * std::sin(a));
-        if (k == 29) off.push_back(x.size());
-      }
+  const test_support::RingGrid rings(10.0, 19.5);
+  const std::vector<double>& x = rings.x;
   ASSERT_GE(x.size(), CellContacts::kParallelMarkers);
-  const MarkerView v{x, y, off};
+  const MarkerView v = rings.view();
   std::vector<double> f1(x.size(), 0.0), g1(x.size(), 0.0), f2(x.size(), 0.0), g2(x.size(), 0.0);
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);

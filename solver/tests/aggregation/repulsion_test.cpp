@@ -14,6 +14,7 @@
 
 #include "aggregation/cell_contacts.hpp"
 #include "aggregation/repulsion.hpp"
+#include "tests/aggregation/ring_grid.hpp"
 
 using namespace erythro;
 using namespace erythro::aggregation;
@@ -219,21 +220,14 @@ TEST(CellContacts, RepulsionPushesApartAndAMarkerOnAWallIsReported) {
 
 TEST(CellContacts, WallsAndStatisticsSameOnAnyThreadCount) {
   // 3 000 markers (above kParallelMarkers, so the per-marker passes run in parallel) in a
-  // channel, the lowest and highest rings within the walls' range: forces, energy and every
+  // channel, the lowest rings within the bottom wall's range: forces, energy and every
   // statistic (closest pair, pairs, closest wall, markers near a wall) equal on 1 and 2
   // threads; a marker beyond a wall and a non-finite one are reported by their first index.
   const geometry::Domain dom{Grid{200, 204}, true, false};
   const ContactLaw law{kMorse, kRep};
-  std::vector<double> x, y;
-  std::vector<std::size_t> off{0};
-  for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 10; ++j)
-      for (int k = 0; k < 30; ++k) {
-        const double a = 2.0 * std::numbers::pi * k / 30.0;
-        x.push_back(10.0 + 19.0 * i + 0.3 * j + 9.1 * std::cos(a));
-        y.push_back(10.5 + 20.0 * j + 0.2 * i + 9.3 * std::sin(a));  // the lowest rings come within 1.2 of the wall
-        if (k == 29) off.push_back(x.size());
-      }
+  test_support::RingGrid rings(10.5, 20.0);  // the lowest rings come within 1.2 of the wall
+  std::vector<double>&x = rings.x, &y = rings.y;
+  const std::vector<std::size_t>& off = rings.off;
   ASSERT_GE(x.size(), CellContacts::kParallelMarkers);
   const std::size_t N = x.size();
   const int threads = omp_get_max_threads();
@@ -260,31 +254,25 @@ TEST(CellContacts, WallsAndStatisticsSameOnAnyThreadCount) {
     ASSERT_EQ(f1[m], f2[m]) << m;
     ASSERT_EQ(g1[m], g2[m]) << m;
   }
+  // The error names the first offending marker, on one thread and on two.
+  auto expect_error_naming = [&](const std::string& text) {
+    for (const int t : {1, 2}) {
+      omp_set_num_threads(t);
+      CellContacts c(dom, law);
+      try {
+        c.add_forces(MarkerView{x, y, off}, f1, g1);
+        ADD_FAILURE() << "no error on " << t << " thread(s); expected one naming: " << text;
+      } catch (const std::domain_error& e) {
+        EXPECT_NE(std::string(e.what()).find(text), std::string::npos) << e.what();
+      }
+      omp_set_num_threads(threads);
+    }
+  };
   // Markers 2 990 and 1 215 beyond the walls (top, then bottom): the lower index is named.
   y[2990] = 204.3;
   y[1215] = -0.25;
-  for (const int t : {1, 2}) {
-    omp_set_num_threads(t);
-    CellContacts c(dom, law);
-    try {
-      c.add_forces(MarkerView{x, y, off}, f1, g1);
-      ADD_FAILURE() << "no error for markers beyond the walls";
-    } catch (const std::domain_error& e) {
-      EXPECT_NE(std::string(e.what()).find("marker 1215 (cell 40) is 0.25"), std::string::npos) << e.what();
-    }
-    omp_set_num_threads(threads);
-  }
+  expect_error_naming("marker 1215 (cell 40) is 0.25");
   y[2990] = NAN;
   x[1701] = INFINITY;
-  for (const int t : {1, 2}) {
-    omp_set_num_threads(t);
-    CellContacts c(dom, law);
-    try {
-      c.add_forces(MarkerView{x, y, off}, f1, g1);
-      ADD_FAILURE() << "no error for non-finite markers";
-    } catch (const std::domain_error& e) {
-      EXPECT_NE(std::string(e.what()).find("marker 1701 has a non-finite position"), std::string::npos) << e.what();
-    }
-    omp_set_num_threads(threads);
-  }
+  expect_error_naming("marker 1701 has a non-finite position");
 }
