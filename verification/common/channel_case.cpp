@@ -97,6 +97,34 @@ SeedEnsemble combine_seeds(const std::vector<WindowEstimate>& seeds, double t975
   return out;
 }
 
+OneWayAnova one_way_anova(const std::vector<std::vector<double>>& groups) {
+  std::size_t total = 0;
+  double grand = 0.0;
+  for (const auto& g : groups)
+    for (double y : g) {
+      if (!std::isfinite(y)) throw std::invalid_argument("one_way_anova: a value is not finite");
+      grand += y;
+      ++total;
+    }
+  if (groups.size() < 2 || total <= groups.size())
+    throw std::invalid_argument("one_way_anova: needs two groups and more values than groups");
+  grand /= static_cast<double>(total);
+  double between = 0.0, within = 0.0;
+  for (const auto& g : groups) {
+    if (g.empty()) throw std::invalid_argument("one_way_anova: an empty group");
+    double m = 0.0;
+    for (double y : g) m += y;
+    m /= static_cast<double>(g.size());
+    between += static_cast<double>(g.size()) * (m - grand) * (m - grand);
+    for (double y : g) within += (y - m) * (y - m);
+  }
+  OneWayAnova out;
+  out.df_between = static_cast<int>(groups.size()) - 1;
+  out.df_within = static_cast<int>(total - groups.size());
+  out.F = (between / out.df_between) / (within / out.df_within);
+  return out;
+}
+
 void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<std::string, io::Value> keys,
                      double from, double to, int blocks, const std::string& label) {
   auto window_mean = [&](const std::vector<double>& y) {

@@ -70,6 +70,19 @@ struct SeedEnsemble {
 };
 SeedEnsemble combine_seeds(const std::vector<WindowEstimate>& seeds, double t975);
 
+// One-way analysis of variance of k groups (a seed's block means each): the ratio of the
+// between-group to the within-group mean square,
+//   F = [Σ_s n_s (m_s − m̄)² / (k − 1)] / [Σ_s Σ_j (y_sj − m_s)² / (N − k)],
+// m_s the group means, m̄ the mean of all N values. Unlike χ² it does not take each group's
+// standard error as exact: the within-group scatter is estimated from all groups together, and F
+// with (k − 1, N − k) degrees of freedom allows for that. Needs k ≥ 2 and N > k; throws
+// std::invalid_argument otherwise, and when a value is not finite.
+struct OneWayAnova {
+  double F = 0.0;
+  int df_between = 0, df_within = 0;
+};
+OneWayAnova one_way_anova(const std::vector<std::vector<double>>& groups);
+
 // One channel run as a row of a case's record (with its scene text): the case's own columns
 // `keys` (seed, spacing, rate …), then steps, strain reached, the means over the settled window
 // [from, to) of η_rel, δ* and H_d (NaN for a run the monitor stopped), the largest edge strain and

@@ -35,3 +35,18 @@ TEST(ChannelCase, CombineSeedsByHand) {
   EXPECT_NEAR(e.chi2, chi2, 1e-14);
   EXPECT_THROW(vv::combine_seeds({{1.0, 1.0}}, 12.71), std::invalid_argument);
 }
+
+TEST(ChannelCase, OneWayAnovaByHand) {
+  // Groups {1, 2, 3}, {2, 3, 4}, {5, 6, 7}: means 2, 3, 6, grand mean 11/3; between
+  // 3[(2 − 11/3)² + (3 − 11/3)² + (6 − 11/3)²] = 26 over 2; within 3 × 2 = 6 over 6: F = 13
+  // (scipy.stats.f_oneway gives 13.0 with 2 and 6 degrees of freedom).
+  const vv::OneWayAnova a = vv::one_way_anova({{1.0, 2.0, 3.0}, {2.0, 3.0, 4.0}, {5.0, 6.0, 7.0}});
+  EXPECT_NEAR(a.F, 13.0, 1e-13);
+  EXPECT_EQ(a.df_between, 2);
+  EXPECT_EQ(a.df_within, 6);
+  // Unequal sizes {0, 2}, {4}: grand mean 2, between 2·1² + 1·2² = 6 over 1, within 2 over 1: F = 3.
+  EXPECT_NEAR(vv::one_way_anova({{0.0, 2.0}, {4.0}}).F, 3.0, 1e-14);
+  EXPECT_THROW(vv::one_way_anova({{1.0, 2.0}}), std::invalid_argument);           // one group
+  EXPECT_THROW(vv::one_way_anova({{1.0}, {2.0}}), std::invalid_argument);         // no within-group scatter
+  EXPECT_THROW(vv::one_way_anova({{1.0, std::nan("")}, {2.0, 3.0}}), std::invalid_argument);
+}

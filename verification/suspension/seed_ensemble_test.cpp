@@ -5,17 +5,22 @@
 //
 // Requirement: the user's channel scene (scenes/rbc_channel.toml: case I RBCs at 2D haematocrit
 // 0.3, [time_mapping] Re = 0.1), made smaller (a 20 µm channel, or the scene's own 30 µm one,
-// 30 µm long, h = 0.4 µm) and run
-// with four seeds for 100 strain units at the wall shear rate, gives time means over strain 50–100
-// of the relative apparent viscosity, the normalised cell-free layer and the discharge
-// haematocrit that agree between the seeds within their statistical error: the homogeneity
-// statistic χ² = Σ_s (m_s − m̄)²/se_s² (m_s the seed's mean, se_s its standard error from five
-// block means of ten strain units, m̄ the inverse-variance weighted mean) below the 99 %
-// quantile of χ² with N − 1 degrees of freedom. The ensemble mean with its 95 % confidence
-// interval (Student's t over the seeds) is reported for each.
+// 30 µm long, h = 0.4 µm) and run with four seeds for 400 strain units at the wall shear rate,
+// gives time means over strain 200–400 of the relative apparent viscosity, the normalised
+// cell-free layer and the discharge haematocrit that agree between the seeds within their
+// statistical error: a one-way analysis of variance of the seeds' block means (four blocks of 50
+// strain units each) gives F below the 99 % quantile of F with 3 and 12 degrees of freedom. The
+// ensemble mean with its 95 % confidence interval (Student's t over the seeds) is reported for
+// each, and the χ² homogeneity statistic beside F (informative).
 // Reference: the statistics of a stationary random process (the seeds are independent samples
-// of the same suspension); χ² and t quantiles from the standard tables.
-// docs/verification-suspension.md §8.
+// of the same suspension); F and t quantiles from the standard tables.
+//
+// Why this design (docs/verification-suspension.md §8, "Longer runs"): runs of 400 strain units
+// by hand with seeds 1–4 showed the placement's arrangement decaying over hundreds of strain units
+// (100 strain units, window 50–100, could not pass), and block means correlated over tens of
+// strain units (hence blocks of 50). The χ² test takes each seed's standard error, estimated from
+// four blocks, as exact and so overstates disagreement; F does not. Because window, blocks and
+// test were chosen after seeing seeds 1–4, the case runs seeds 5–8, which nobody had seen.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -48,15 +53,15 @@ struct Channel {
 constexpr Channel kNarrow{"verification.channel_seed_ensemble", 20.0};
 constexpr Channel kWide{"verification.channel_seed_ensemble_30um", 30.0};
 constexpr double kWallShearRate = 400.0;  // 1/s: F = 2μγ̇_w/H
-// η_rel still falls between strain 10 and 20 in this channel (2.10 → 1.86, seed 1, measured), and
-// in the 50 µm channel of validation.channel_flow_rate the cell-free layer still changes at strain
-// 20–40: 100 strain units, the window 50–100.
-constexpr double kStrain = 100.0, kSettled = 50.0;
-constexpr int kBlocks = 5;  // block means of ten strain units over the settled window
-constexpr std::array<long, 4> kSeeds{1, 2, 3, 4};
-// Quantiles for 3 degrees of freedom (four seeds): χ²_0.99 and Student's t_0.975.
-constexpr double kChi2_99_3 = 11.345, kT975_3 = 3.182;
-static_assert(kSeeds.size() == 4, "the quantiles above are those of three degrees of freedom");
+// The arrangement the placement starts from decays over hundreds of strain units (seeds 1–4 by
+// hand: η_rel's spread over the seeds ±7 % over strain 50–100, ±5 % over 200–400): 400 strain
+// units, the window 200–400.
+constexpr double kStrain = 400.0, kSettled = 200.0;
+constexpr int kBlocks = 4;  // block means of 50 strain units (the lateral motion's correlation)
+constexpr std::array<long, 4> kSeeds{5, 6, 7, 8};  // not 1–4: those chose the design (above)
+// Quantiles: F_0.99 with 3 and 4 × (4 − 1) = 12 degrees of freedom, Student's t_0.975 with 3.
+constexpr double kF99_3_12 = 5.953, kT975_3 = 3.182;
+static_assert(kSeeds.size() == 4 && kBlocks == 4, "the quantiles above are those of four seeds of four blocks");
 constexpr double kSampleStrain = 0.05;
 
 struct SeedRun : vv::ChannelSeries {
@@ -79,7 +84,6 @@ SeedRun run_seed(const Channel& channel, long seed) {
                                                           .strain = kStrain,
                                                           .sample_strain = kSampleStrain},
                                                          channel.case_name, label);
-  if (!out.completed) throw std::runtime_error(std::string(label) + ": " + out.diagnosis);
   out.seed = seed;
   return out;
 }
@@ -94,21 +98,48 @@ void seed_ensemble(const Channel& channel) {
   std::snprintf(height, sizeof height, "%g", channel.height_um);
   record.set_requirement(
       "The channel scene (case I RBCs, 2D haematocrit 0.3, time mapping Re = 0.1) in a " + std::string(height) +
-      " um channel run with four seeds for 100 strain units at the wall shear rate: the time means over strain 50-100 "
-      "of the relative apparent viscosity, the normalised cell-free layer and the discharge haematocrit agree between "
-      "the seeds within their statistical error (chi^2 homogeneity over the seeds below its 99 % quantile, 11.345 for "
-      "3 degrees of freedom; each seed's standard error from five block means of ten strain units); ensemble means "
-      "with 95 % confidence intervals reported; every cell's area within 1 %.");
-  record.set_reference("Stationary random process: the seeds are independent samples of one suspension; chi^2 and "
-                       "Student's t quantiles from the standard tables.");
+      " um channel run with four seeds (5-8) for 400 strain units at the wall shear rate: the time means over strain "
+      "200-400 of the relative apparent viscosity, the normalised cell-free layer and the discharge haematocrit agree "
+      "between the seeds within their statistical error (one-way analysis of variance of the seeds' block means, four "
+      "blocks of 50 strain units each: F below its 99 % quantile, 5.953 for 3 and 12 degrees of freedom); ensemble "
+      "means with 95 % confidence intervals and the chi^2 homogeneity statistic reported; every cell's area within "
+      "1 %.");
+  record.set_reference("Stationary random process: the seeds are independent samples of one suspension; F, chi^2 "
+                       "and Student's t quantiles from the standard tables.");
   record.set_parameter("scene", "scenes/rbc_channel.toml with domain 30 x " + std::string(height) +
                                     " um, h = 0.4 um (69 markers per cell), min_gap 0.4 um, F = 2 mu gamma_w / H "
-                                    "(wall shear rate 400 1/s), 250 ms, seeds 1-4");
+                                    "(wall shear rate 400 1/s), 1 s (400 strain units), seeds 5-8 (1-4 chose the window and the test)");
   std::vector<SeedRun> runs(kSeeds.size());
   std::vector<std::function<void()>> jobs;
   for (std::size_t i = 0; i < kSeeds.size(); ++i)
     jobs.push_back([&, i] { runs[i] = run_seed(channel, kSeeds[i]); });
   vv::run_concurrently(jobs);
+
+  // A run the health monitor stopped fails the case with its diagnosis, and leaves no window to
+  // compare: the record then holds how far each seed got.
+  bool all_completed = true;
+  for (const SeedRun& r : runs) {
+    all_completed = all_completed && r.completed;
+    record.add_metric({"completed_seed" + std::to_string(r.seed), "1 when the run reached its 400 strain units, 0 "
+                       "when the health monitor stopped it", "", r.completed ? 1.0 : 0.0, 1.0, 0.0,
+                       io::Comparison::at_least, r.completed ? "the statistics need the whole window"
+                                                             : "stopped: " + r.diagnosis});
+  }
+  if (!all_completed) {
+    for (const SeedRun& r : runs)
+      record.add_run({{"seed", static_cast<double>(r.seed)},
+                      {"cells", static_cast<double>(r.cells)},
+                      {"steps", static_cast<double>(r.steps)},
+                      {"strain_reached", r.strain.empty() ? 0.0 : r.strain.back()},
+                      {"max_edge_strain", r.max_edge_strain},
+                      {"max_area_change", r.max_area_change},
+                      {"wall_time_s", r.wall_s}},
+                     r.scene_text);
+    record.set_wall_time(total.seconds());
+    record.write_to_results_dir();
+    for (const auto& m : record.metrics()) EXPECT_TRUE(m.passed()) << m.name << ": " << m.tolerance_reason;
+    return;
+  }
 
   struct Quantity {
     const char* name;
@@ -120,9 +151,12 @@ void seed_ensemble(const Channel& channel) {
       {"cell_free_layer_normalised", "normalised cell-free layer (eq 12.2)", &SeedRun::cfl},
       {"discharge_haematocrit", "discharge haematocrit (eq 12.3)", &SeedRun::hd}};
   std::vector<std::vector<Estimate>> per_seed(quantities.size());
+  std::vector<std::vector<std::vector<double>>> blocks(quantities.size());  // [quantity][seed][block]
   for (std::size_t q = 0; q < quantities.size(); ++q)
-    for (const SeedRun& r : runs)
+    for (const SeedRun& r : runs) {
       per_seed[q].push_back(vv::block_estimate(r.strain, r.*quantities[q].series, kSettled, kStrain, kBlocks));
+      blocks[q].push_back(vv::block_means(r.strain, r.*quantities[q].series, kSettled, kStrain, kBlocks));
+    }
   for (std::size_t i = 0; i < runs.size(); ++i) {
     const SeedRun& r = runs[i];
     record.add_run({{"seed", static_cast<double>(r.seed)},
@@ -142,11 +176,18 @@ void seed_ensemble(const Channel& channel) {
   }
   for (std::size_t q = 0; q < quantities.size(); ++q) {
     const vv::SeedEnsemble e = vv::combine_seeds(per_seed[q], kT975_3);
+    const vv::OneWayAnova anova = vv::one_way_anova(blocks[q]);
     const std::string n = quantities[q].name;
-    record.add_metric({n + "_seed_homogeneity", std::string("chi^2 of the seeds' means of the ") + quantities[q].what +
-                       " about their weighted mean", "", e.chi2, kChi2_99_3, 0.0, io::Comparison::at_most,
-                       "the seeds differ no more than their statistical errors allow (99 % quantile, 3 degrees of "
-                       "freedom): the result does not depend on the seed"});
+    record.add_metric({n + "_seed_homogeneity", std::string("F of a one-way analysis of variance of the seeds' block "
+                       "means of the ") + quantities[q].what + " (3 and 12 degrees of freedom)", "", anova.F, kF99_3_12,
+                       0.0, io::Comparison::at_most,
+                       "the seeds differ no more than the scatter of their own block means allows (99 % quantile of "
+                       "F(3, 12)): the result does not depend on the seed"});
+    record.add_metric({n + "_chi2", std::string("chi^2 of the seeds' means of the ") + quantities[q].what +
+                       " about their weighted mean", "", e.chi2, -std::numeric_limits<double>::infinity(), 0.0,
+                       io::Comparison::at_least,
+                       "informative: takes each seed's standard error, estimated from four blocks, as exact, so it "
+                       "overstates disagreement (for comparison: the 99 % quantile of chi^2(3) is 11.345)"});
     record.add_metric({n + "_ensemble_mean", std::string("mean over the four seeds of the ") + quantities[q].what, "",
                        e.mean, -std::numeric_limits<double>::infinity(), 0.0, io::Comparison::at_least,
                        "informative: the 95 % confidence half-width is the next metric"});
@@ -155,7 +196,7 @@ void seed_ensemble(const Channel& channel) {
                        io::Comparison::at_least, "informative"});
     std::printf("%-28s", n.c_str());
     for (const Estimate& x : per_seed[q]) std::printf(" %.4f+-%.4f", x.mean, x.se);
-    std::printf("  ensemble %.4f +- %.4f (95 %%), chi2 %.2f\n", e.mean, e.ci95, e.chi2);
+    std::printf("  ensemble %.4f +- %.4f (95 %%), F %.2f, chi2 %.2f\n", e.mean, e.ci95, anova.F, e.chi2);
   }
   for (const SeedRun& r : runs) std::printf("seed %ld: %ld cells, %ld steps, %.1f s\n", r.seed, r.cells, r.steps, r.wall_s);
   record.set_wall_time(total.seconds());
