@@ -15,6 +15,8 @@
 //   corr=1          mean P from the source-offset-corrected C (transport eq T7)
 //   interface=series|node_tensor|face_tensor   diffusivity at the membrane (deoxy::InterfaceRule;
 //                   transport eqs T9–T11; the tensor rules need trt=)
+//   geom=axi        the cell of revolution on the axisymmetric lattice (with ref=3d)
+//   kin=local       local Hb kinetics (a saturation per heme node, eq H4)
 //   markers=N       polygon resolution of the cell
 //   coupling=explicit|implicit|outflow   (deoxy::Coupling)
 #include <cstdio>
@@ -44,6 +46,8 @@ bool apply(deoxy::Setup& s, const std::string& kv) {
     s.interface = v == "node_tensor"   ? deoxy::InterfaceRule::node_tensor
                   : v == "face_tensor" ? deoxy::InterfaceRule::face_tensor
                                        : deoxy::InterfaceRule::series;
+  else if (k == "geom") s.geometry = v == "axi" ? deoxy::Geometry::axisymmetric : deoxy::Geometry::planar;
+  else if (k == "kin") s.kinetics = v == "local" ? deoxy::Kinetics::local : deoxy::Kinetics::cell_mean;
   else if (k == "markers") s.markers = std::atoi(v.c_str());
   else if (k == "coupling")
     s.coupling = v == "explicit" ? deoxy::Coupling::explicit_lagged
