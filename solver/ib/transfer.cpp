@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
 
+#include "common/portable_sincos.hpp"
 #include "geometry/grid_polygon.hpp"
 
 namespace erythro::ib {
@@ -32,14 +32,14 @@ inline void weights_1d(double X, int& i0, double* w) {
   i0 = support_start(X, K::width);
   if constexpr (std::is_same_v<K, Cosine4>) {
     // φ(r) = ¼[1 + cos(πr/2)] (kernel.hpp) at r_b = r₀ − b, r₀ = X − (i0 + ½) ∈ [1, 2):
-    // cos(θ − bπ/2) with θ = πr₀/2 is cos θ, sin θ, −cos θ, −sin θ for b = 0…3, so one
-    // sine and one cosine give the four weights (instead of four cosines).
-    const double theta = 0.5 * std::numbers::pi * (X - (i0 + 0.5));
-    const double c = std::cos(theta), s = std::sin(theta);
-    w[0] = 0.25 * (1.0 + c);
-    w[1] = 0.25 * (1.0 + s);
-    w[2] = 0.25 * (1.0 - c);
-    w[3] = 0.25 * (1.0 - s);
+    // with x = r₀ − 1 ∈ [0, 1) the four weights need only sin(πx/2) and cos(πx/2) (model.md
+    // eq 2.4a), computed inline (common/portable_sincos.hpp) instead of by the C library.
+    double s, c;
+    numeric::sin_cos_half_pi(X - (i0 + 1.5), s, c);
+    w[0] = 0.25 * (1.0 - s);
+    w[1] = 0.25 * (1.0 + c);
+    w[2] = 0.25 * (1.0 + s);
+    w[3] = 0.25 * (1.0 - c);
   } else {
     for (int b = 0; b < K::width; ++b) w[b] = K::phi(X - (i0 + b + 0.5));
   }
