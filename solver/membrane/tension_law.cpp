@@ -25,9 +25,9 @@ bool parse_tension_law(std::string_view name, TensionLawType& out) {
 
 double TensionLaw::tension(double l) const {
   switch (type) {
-    case TensionLawType::neo_hookean: return modulus * (l * std::sqrt(l) - 1.0 / (l * std::sqrt(l)));
-    case TensionLawType::skalak: return modulus * (1.0 + skalak_c) * l * (l * l - 1.0);
-    case TensionLawType::hookean: return modulus * (l - 1.0);
+    case TensionLawType::neo_hookean: return tension_of<TensionLawType::neo_hookean>(*this, l);
+    case TensionLawType::skalak: return tension_of<TensionLawType::skalak>(*this, l);
+    case TensionLawType::hookean: return tension_of<TensionLawType::hookean>(*this, l);
   }
   return 0.0;
 }

@@ -14,6 +14,7 @@
 //                T = E_s(1 + C) λ(λ² − 1).
 //  hookean     : linear spring, T = E_s(λ − 1), W = E_s(λ − 1)²/2.
 // Small-strain stiffness dT/dλ at λ = 1: 3E_s, 2E_s(1 + C), E_s respectively.
+#include <cmath>
 #include <string_view>
 
 namespace erythro::membrane {
@@ -28,9 +29,18 @@ struct TensionLaw {
   double modulus = 0.0;   // E_s (lattice units: force per unit depth)
   double skalak_c = 1.0;  // Skalak's area-dilation parameter C (skalak only)
 
-  double tension(double lambda) const;    // T(λ)
+  double tension(double lambda) const;    // T(λ): tension_of<type>
   double energy(double lambda) const;     // W(λ), energy per unit rest length
   double stiffness(double lambda) const;  // dT/dλ
 };
+
+// T(λ) of one law fixed at compile time (the membrane's edge loop takes it per law, so it has no
+// branch per edge; TensionLaw::tension dispatches to it).
+template <TensionLawType kLaw>
+inline double tension_of(const TensionLaw& law, double l) {
+  if constexpr (kLaw == TensionLawType::neo_hookean) return law.modulus * (l * std::sqrt(l) - 1.0 / (l * std::sqrt(l)));
+  else if constexpr (kLaw == TensionLawType::skalak) return law.modulus * (1.0 + law.skalak_c) * l * (l * l - 1.0);
+  else return law.modulus * (l - 1.0);
+}
 
 }  // namespace erythro::membrane
