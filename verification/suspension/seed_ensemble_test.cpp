@@ -108,9 +108,11 @@ void seed_ensemble(const Channel& channel) {
   io::ResultRecord record(channel.case_name, "suspension");
   char height[16];
   std::snprintf(height, sizeof height, "%g", channel.height_um);
+  std::string seeds;  // "5, 6, 7, 8"
+  for (long s : channel.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
   record.set_requirement(
       "The channel scene (case I RBCs, 2D haematocrit 0.3, time mapping Re = 0.1) in a " + std::string(height) +
-      " um channel run with four seeds (5-8) for 400 strain units at the wall shear rate: the time means over strain "
+      " um channel run with four seeds (" + seeds + ") for 400 strain units at the wall shear rate: the time means over strain "
       "200-400 of the relative apparent viscosity, the normalised cell-free layer and the discharge haematocrit agree "
       "between the seeds within their statistical error (one-way analysis of variance of the seeds' block means, four "
       "blocks of 50 strain units each: F below its 99 % quantile, 5.953 for 3 and 12 degrees of freedom); ensemble "
@@ -120,7 +122,8 @@ void seed_ensemble(const Channel& channel) {
                        "and Student's t quantiles from the standard tables.");
   record.set_parameter("scene", "scenes/rbc_channel.toml with domain 30 x " + std::string(height) +
                                     " um, h = 0.4 um (69 markers per cell), min_gap 0.4 um, F = 2 mu gamma_w / H "
-                                    "(wall shear rate 400 1/s), 1 s (400 strain units), seeds 5-8 (1-4 chose the window and the test)");
+                                    "(wall shear rate 400 1/s), 1 s (400 strain units), seeds " + seeds +
+                                    " (1-4 chose the window and the test)");
   std::vector<SeedRun> runs(channel.seeds.size());
   std::vector<std::function<void()>> jobs;
   for (std::size_t i = 0; i < channel.seeds.size(); ++i)
