@@ -112,12 +112,12 @@ void seed_ensemble(const Channel& channel) {
   for (long s : channel.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
   record.set_requirement(
       "The channel scene (case I RBCs, 2D haematocrit 0.3, time mapping Re = 0.1) in a " + std::string(height) +
-      " um channel run with four seeds (" + seeds + ") for 400 strain units at the wall shear rate: the time means over strain "
-      "200-400 of the relative apparent viscosity, the normalised cell-free layer and the discharge haematocrit agree "
-      "between the seeds within their statistical error (one-way analysis of variance of the seeds' block means, four "
-      "blocks of 50 strain units each: F below its 99 % quantile, 5.953 for 3 and 12 degrees of freedom); ensemble "
-      "means with 95 % confidence intervals and the chi^2 homogeneity statistic reported; every cell's area within "
-      "1 %.");
+      " um channel run with four seeds (" + seeds + ") for 400 strain units at the wall shear rate: the time means "
+      "over strain 200-400 of the relative apparent viscosity, the normalised cell-free layer and the discharge "
+      "haematocrit agree between the seeds within their statistical error (one-way analysis of variance of the seeds' "
+      "block means, four blocks of 50 strain units each: F below its 99 % quantile, 5.953 for 3 and 12 degrees of "
+      "freedom); ensemble means with 95 % confidence intervals and the chi^2 homogeneity statistic reported; every "
+      "cell's area within 1 %.");
   record.set_reference("Stationary random process: the seeds are independent samples of one suspension; F, chi^2 "
                        "and Student's t quantiles from the standard tables.");
   record.set_parameter("scene", "scenes/rbc_channel.toml with domain 30 x " + std::string(height) +
@@ -130,29 +130,28 @@ void seed_ensemble(const Channel& channel) {
     jobs.push_back([&, i] { runs[i] = run_seed(channel, channel.seeds[i]); });
   vv::run_concurrently(jobs);
 
-  // A run the health monitor stopped fails the case with its diagnosis, and leaves no window to
-  // compare: the record then holds how far each seed got.
+  // The record written and its metrics asserted, whichever way the case ends.
+  auto finish = [&] {
+    record.set_wall_time(total.seconds());
+    record.write_to_results_dir();
+    for (const auto& m : record.metrics())
+      EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << ": " << m.tolerance_reason;
+  };
+  // A run the health monitor stopped, or whose scene could not be set up, fails the case with
+  // its reason and leaves no window to compare: the record then holds how far each seed got.
   bool all_completed = true;
   for (const SeedRun& r : runs) {
     all_completed = all_completed && r.completed;
     record.add_metric({"completed_seed" + std::to_string(r.seed), "1 when the run reached its 400 strain units, 0 "
-                       "when the health monitor stopped it", "", r.completed ? 1.0 : 0.0, 1.0, 0.0,
-                       io::Comparison::at_least, r.completed ? "the statistics need the whole window"
-                                                             : "stopped: " + r.diagnosis});
+                       "when the health monitor stopped it or its scene could not be set up", "",
+                       r.completed ? 1.0 : 0.0, 1.0, 0.0, io::Comparison::at_least,
+                       r.completed ? "the statistics need the whole window" : "stopped: " + r.diagnosis});
   }
   if (!all_completed) {
     for (const SeedRun& r : runs)
-      record.add_run({{"seed", static_cast<double>(r.seed)},
-                      {"cells", static_cast<double>(r.cells)},
-                      {"steps", static_cast<double>(r.steps)},
-                      {"strain_reached", r.strain.empty() ? 0.0 : r.strain.back()},
-                      {"max_edge_strain", r.max_edge_strain},
-                      {"max_area_change", r.max_area_change},
-                      {"wall_time_s", r.wall_s}},
-                     r.scene_text);
-    record.set_wall_time(total.seconds());
-    record.write_to_results_dir();
-    for (const auto& m : record.metrics()) EXPECT_TRUE(m.passed()) << m.name << ": " << m.tolerance_reason;
+      vv::add_channel_run(record, r, {{"seed", static_cast<double>(r.seed)}}, kSettled, kStrain, kBlocks,
+                          "seed " + std::to_string(r.seed));
+    finish();
     return;
   }
 
@@ -213,10 +212,9 @@ void seed_ensemble(const Channel& channel) {
     for (const Estimate& x : per_seed[q]) std::printf(" %.4f+-%.4f", x.mean, x.se);
     std::printf("  ensemble %.4f +- %.4f (95 %%), F %.2f, chi2 %.2f\n", e.mean, e.ci95, anova.F, e.chi2);
   }
-  for (const SeedRun& r : runs) std::printf("seed %ld: %ld cells, %ld steps, %.1f s\n", r.seed, r.cells, r.steps, r.wall_s);
-  record.set_wall_time(total.seconds());
-  record.write_to_results_dir();
-  for (const auto& m : record.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;
+  for (const SeedRun& r : runs)
+    std::printf("seed %ld: %ld cells, %ld steps, %.1f s\n", r.seed, r.cells, r.steps, r.wall_s);
+  finish();
 }
 
 }  // namespace
