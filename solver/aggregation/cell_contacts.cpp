@@ -83,16 +83,14 @@ struct Engine {
     for (long q = 0; q < n_cells; ++q) {
       const std::size_t c = static_cast<std::size_t>(q);
       const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
-      for (std::size_t k = o; k < e; ++k) {
-        const std::size_t next = k + 1 < e ? k + 1 : o;
-        finite = finite && std::isfinite(v.x[k]) && std::isfinite(v.y[k]);
-        cell_of[k] = c;
-        edge[k] = numeric::hypot_portable(v.x[next] - v.x[k], v.y[next] - v.y[k]);  // L_k: edge k → k+1
-        S[k] = px[k] = py[k] = 0.0;
-        count[k] = 0;
-        rmin[k] = std::numeric_limits<double>::infinity();
-      }
-      for (std::size_t k = o; k < e; ++k) ell[k] = 0.5 * (edge[k > o ? k - 1 : e - 1] + edge[k]);
+      for (std::size_t k = o; k < e; ++k) finite = finite & std::isfinite(v.x[k]) & std::isfinite(v.y[k]);
+      std::fill(cell_of.begin() + o, cell_of.begin() + e, c);
+      numeric::closed_polygon_lengths(&v.x[o], &v.y[o], e - o, &edge[o]);  // L_k: edge k → k+1
+      for (auto* a : {&S, &px, &py}) std::fill(a->begin() + o, a->begin() + e, 0.0);
+      std::fill(count.begin() + o, count.begin() + e, 0);
+      std::fill(rmin.begin() + o, rmin.begin() + e, std::numeric_limits<double>::infinity());
+      ell[o] = 0.5 * (edge[e - 1] + edge[o]);
+      for (std::size_t k = o + 1; k < e; ++k) ell[k] = 0.5 * (edge[k - 1] + edge[k]);
     }
     if (!finite) report_non_finite(v);
   }
@@ -202,34 +200,96 @@ struct Engine {
   // ∂E/∂ℓ_m: S_m, plus W_m with walls.
   double length_derivative(std::size_t m) const { return W.empty() ? S[m] : S[m] + W[m]; }
 
-  // F_m = pair part + edge part (T_e = (S_e + S_{e+1})/2 along edge e), added to fx, fy.
-  ContactStats finish(std::span<double> fx, std::span<double> fy, std::vector<double>* magnitude) const {
+  // F_m = pair part + edge part (T_e = (S_e + S_{e+1})/2 along edge e), added to fx, fy; |F_m|
+  // into mag. Markers o … e − 1 of one cell, the same arithmetic for each (contact_force):
+  // the inner markers in a straight loop that vectorises, the two ends with the wrap.
+  template <bool kWalls>
+  void finish_cell(std::size_t o, std::size_t e, double* __restrict fx, double* __restrict fy,
+                   double* __restrict mag) const {
+    const double* x = v.x.data();
+    const double* y = v.y.data();
+    const double* w = kWalls ? W.data() : nullptr;
+    int outside = 0;
+    auto at = [&](std::size_t m, std::size_t prev, std::size_t next) {
+      double gx, gy;
+      contact_force<kWalls>(x, y, edge.data(), S.data(), w, px.data(), py.data(), m, prev, next, gx, gy);
+      fx[m] += gx;
+      fy[m] += gy;
+      mag[m] = magnitude_fast(gx, gy, outside);
+    };
+    at(o, e - 1, o + 1);
+    {
+      const double* __restrict L = edge.data();
+      const double* __restrict s = S.data();
+      const double* __restrict ax = px.data();
+      const double* __restrict ay = py.data();
+      const std::size_t last = e - 1;  // cells have ≥ 3 markers
+#pragma omp simd reduction(| : outside)
+      for (std::size_t m = o + 1; m < last; ++m) {
+        double gx, gy;
+        contact_force<kWalls>(x, y, L, s, w, ax, ay, m, m - 1, m + 1, gx, gy);
+        fx[m] += gx;
+        fy[m] += gy;
+        mag[m] = magnitude_fast(gx, gy, outside);
+      }
+    }
+    at(e - 1, e - 2, o);
+    if (outside != 0)  // hypot_portable's bits for every marker of the cell (portable_hypot.hpp)
+      for (std::size_t m = o; m < e; ++m) {
+        double gx, gy;
+        const std::size_t next = m + 1 < e ? m + 1 : o, prev = m > o ? m - 1 : e - 1;
+        contact_force<kWalls>(x, y, edge.data(), S.data(), w, px.data(), py.data(), m, prev, next, gx, gy);
+        mag[m] = numeric::hypot_portable(gx, gy);
+      }
+  }
+
+  // Marker m's force between its edges prev → m and m → next: the pair part (ax, ay) and the
+  // tensions T = (∂E/∂ℓ at both ends)/2 along the two unit edge vectors (eq 4.4).
+  template <bool kWalls>
+  static void contact_force(const double* __restrict x, const double* __restrict y, const double* __restrict L,
+                            const double* __restrict s, const double* __restrict w, const double* __restrict ax,
+                            const double* __restrict ay, std::size_t m, std::size_t prev, std::size_t next,
+                            double& gx, double& gy) {
+    const double dm = kWalls ? s[m] + w[m] : s[m];  // ∂E/∂ℓ: S, plus W with walls
+    const double dn = kWalls ? s[next] + w[next] : s[next];
+    const double dp = kWalls ? s[prev] + w[prev] : s[prev];
+    const double Tm = 0.5 * (dm + dn);  // edge m: m → next
+    const double Tp = 0.5 * (dp + dm);  // edge prev: prev → m
+    const double um_x = (x[next] - x[m]) / L[m], um_y = (y[next] - y[m]) / L[m];
+    const double up_x = (x[m] - x[prev]) / L[prev], up_y = (y[m] - y[prev]) / L[prev];
+    gx = ax[m] + Tm * um_x - Tp * up_x;
+    gy = ay[m] + Tm * um_y - Tp * up_y;
+  }
+
+  // |(gx, gy)| by hypot's fast path; `outside` set when it lies beyond the path's range.
+  static double magnitude_fast(double gx, double gy, int& outside) {
+    const double a = std::fabs(gx) < std::fabs(gy) ? std::fabs(gy) : std::fabs(gx);
+    const double b = std::fabs(gx) < std::fabs(gy) ? std::fabs(gx) : std::fabs(gy);
+    outside |= numeric::hypot_fast_range(a, b) ? 0 : 1;
+    return numeric::hypot_fast(a, b);
+  }
+
+  ContactStats finish(std::span<double> fx, std::span<double> fy, std::vector<double>& magnitude) const {
     check_coincident();
     const std::size_t N = S.size();
     if (fx.size() != N || fy.size() != N) throw std::invalid_argument("cell contacts: force arrays differ in size");
-    if (magnitude) magnitude->resize(N);
-    const long long n_ll = static_cast<long long>(N);
-    // The closest pair and the pair count ride along: a minimum and an integer sum are exact
-    // in any order, so any thread count gives the same statistics.
+    magnitude.resize(N);
+    double* mag = magnitude.data();
+    // Cell by cell (each cell its own markers). The closest pair and the pair count ride
+    // along: a minimum and an integer sum are exact in any order, so any thread count gives
+    // the same statistics.
     double closest = std::numeric_limits<double>::infinity();
     std::size_t pairs2 = 0;
+    const long n_cells = static_cast<long>(v.offsets.size()) - 1;
 #pragma omp parallel for schedule(static) if (N >= kParallelMarkers) reduction(min : closest) reduction(+ : pairs2)
-    for (long long i = 0; i < n_ll; ++i) {
-      const std::size_t m = static_cast<std::size_t>(i);
-      const std::size_t c = cell_of[m], o = v.offsets[c], e = v.offsets[c + 1];
-      const std::size_t next = m + 1 < e ? m + 1 : o;
-      const std::size_t prev = m > o ? m - 1 : e - 1;
-      const double Tm = 0.5 * (length_derivative(m) + length_derivative(next));     // edge m: m → next
-      const double Tp = 0.5 * (length_derivative(prev) + length_derivative(m));     // edge prev: prev → m
-      const double um_x = (v.x[next] - v.x[m]) / edge[m], um_y = (v.y[next] - v.y[m]) / edge[m];
-      const double up_x = (v.x[m] - v.x[prev]) / edge[prev], up_y = (v.y[m] - v.y[prev]) / edge[prev];
-      const double gx = px[m] + Tm * um_x - Tp * up_x;
-      const double gy = py[m] + Tm * um_y - Tp * up_y;
-      fx[m] += gx;
-      fy[m] += gy;
-      if (magnitude) (*magnitude)[m] = numeric::hypot_portable(gx, gy);
-      closest = std::min(closest, rmin[m]);
-      pairs2 += count[m];
+    for (long q = 0; q < n_cells; ++q) {
+      const std::size_t o = v.offsets[static_cast<std::size_t>(q)], e = v.offsets[static_cast<std::size_t>(q) + 1];
+      if (W.empty()) finish_cell<false>(o, e, fx.data(), fy.data(), mag);
+      else finish_cell<true>(o, e, fx.data(), fy.data(), mag);
+      for (std::size_t m = o; m < e; ++m) {
+        closest = std::min(closest, rmin[m]);
+        pairs2 += count[m];
+      }
     }
     ContactStats st;
     st.wall_markers = wall_markers;
@@ -237,7 +297,7 @@ struct Engine {
     st.min_pair_distance = std::min(st.min_pair_distance, closest);
     st.pairs = pairs2 / 2;
     st.energy = energy();
-    if (magnitude) st.max_force = magnitude->empty() ? 0.0 : *std::max_element(magnitude->begin(), magnitude->end());
+    st.max_force = magnitude.empty() ? 0.0 : *std::max_element(magnitude.begin(), magnitude.end());
     return st;
   }
 };
@@ -368,7 +428,7 @@ ContactStats CellContacts::add_forces(const MarkerView& markers, std::span<doubl
   Engine eng(domain_, potential_, markers, work_);
   pair_sums_all(eng);
   eng.add_walls();
-  return eng.finish(fx, fy, &magnitude_);
+  return eng.finish(fx, fy, magnitude_);
 }
 
 double CellContacts::energy(const MarkerView& markers) const {
@@ -418,7 +478,7 @@ ContactStats add_forces_brute_force(const geometry::Domain& domain, const Contac
   run_brute_force(eng);
   eng.add_walls();
   std::vector<double> mag;
-  return eng.finish(fx, fy, &mag);
+  return eng.finish(fx, fy, mag);
 }
 
 double energy_brute_force(const geometry::Domain& domain, const ContactLaw& law, const MarkerView& markers) {

@@ -9,11 +9,13 @@
 // for every argument in the common range (unit test PortableHypot.*): switching the hot
 // loops from std::hypot to this changed no result.
 //
-// Common range (the fast path): max(|x|, |y|) ≤ 2^511, min(|x|, |y|) ≥ 2^−459 and the
-// smaller above 2^−54 times the larger. Outside it (a zero component, a ratio beyond 2^54,
-// huge, tiny, infinite or NaN arguments) the result is std::hypot's: the sum |x| + |y| when
-// one term is negligible, else the library call.
+// Common range (the kernel's): max(|x|, |y|) ≤ 2^511, min(|x|, |y|) ≥ 2^−459 and the
+// smaller above 2^−54 times the larger. The fast path adds a zero component (the result is the
+// other's magnitude, exactly). Outside it (a ratio beyond 2^54, huge, tiny, infinite or NaN
+// arguments) the result is std::hypot's: the sum |x| + |y| when one term is negligible, else
+// the library call.
 #include <cmath>
+#include <cstddef>
 
 namespace erythro::numeric {
 
@@ -41,12 +43,35 @@ inline bool hypot_common_range(double a, double b) {
   return (a <= kLarge) & (b >= kTiny) & (b > a * kEps);
 }
 
+// The fast path: the common range, or b = 0, whose result is a exactly (std::hypot(x, ±0) is
+// |x|, C Annex F): a horizontal or vertical edge, or a zero force, stays on it.
+inline bool hypot_fast_range(double a, double b) { return hypot_common_range(a, b) | (b == 0.0); }
+inline double hypot_fast(double a, double b) { return b == 0.0 ? a : hypot_kernel(a, b); }
+
 inline double hypot_portable(double x, double y) {
   const double ax = std::fabs(x), ay = std::fabs(y);
   const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
-  if (hypot_common_range(a, b)) [[likely]]
-    return hypot_kernel(a, b);
+  if (hypot_fast_range(a, b)) [[likely]]
+    return hypot_fast(a, b);
   return std::hypot(x, y);
+}
+
+// The edge lengths of a closed polygon of n ≥ 1 vertices: len[k] = |X_{k+1} − X_k| for k < n − 1
+// and len[n − 1] = |X_0 − X_{n−1}|, each hypot_portable's bits. The open edges go through the
+// branch-free fast path in a loop that vectorises; should one of them lie outside its range
+// (coincident vertices, say), they are all done again with hypot_portable itself.
+inline void closed_polygon_lengths(const double* __restrict x, const double* __restrict y, std::size_t n,
+                                   double* __restrict len) {
+  int outside = 0;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const double ax = std::fabs(x[k + 1] - x[k]), ay = std::fabs(y[k + 1] - y[k]);
+    const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
+    outside |= hypot_fast_range(a, b) ? 0 : 1;
+    len[k] = hypot_fast(a, b);
+  }
+  if (outside != 0)
+    for (std::size_t k = 0; k + 1 < n; ++k) len[k] = hypot_portable(x[k + 1] - x[k], y[k + 1] - y[k]);
+  len[n - 1] = hypot_portable(x[0] - x[n - 1], y[0] - y[n - 1]);
 }
 
 }  // namespace erythro::numeric

@@ -88,8 +88,13 @@ inline int width(KernelType type) {
 // First node index of the support of a kernel of the given width around a marker
 // at coordinate X (nodes sit at i + ½): the width nodes i0 … i0 + width − 1 are the
 // only ones with |X − (i + ½)| < width/2. i0 = ⌊X + ½ − width/2⌋.
+// The floor is written as a truncation and a correction (t − [x < t], equal to ⌊x⌋ for every
+// x in int's range): std::floor keeps GCC from vectorising a loop over markers unless
+// floating-point traps are declared off.
 inline int support_start(double X, int kernel_width) {
-  return static_cast<int>(std::floor(X + 0.5 - 0.5 * kernel_width));
+  const double x = X + 0.5 - 0.5 * kernel_width;
+  const int t = static_cast<int>(x);
+  return t - (x < t ? 1 : 0);
 }
 
 }  // namespace erythro::ib

@@ -45,6 +45,16 @@ inline void weights_1d(double X, int& i0, double* w) {
   }
 }
 
+// weights_1d for n coordinates at once (origins i0[k], weights w[k W … k W + W − 1]): a loop
+// of its own, outside the threads' region, so that the compiler vectorises it; each lane does
+// what one call does, the same bits.
+constexpr long kWeightBlock = 256;  // markers per block handed to a thread
+template <class K>
+void weights_of_block(const double* __restrict X, long n, int* __restrict i0, double* __restrict w) {
+#pragma omp simd
+  for (long k = 0; k < n; ++k) weights_1d<K>(X[k], i0[k], w + k * K::width);
+}
+
 // `weights(m, i0, wx, j0, wy)` gives marker m's support origin and 1D weights: computed
 // from (X, Y), or the ones spread() computed for the same positions.
 template <class K, class Weights>
@@ -63,13 +73,22 @@ void interpolate_impl(const geometry::Domain& d, long M, const Weights& weights,
       if (d.periodic_y) j = geometry::wrap_periodic(j, ny);
       else if (j < 0 || j >= ny) continue;  // beyond a wall: no node (geometry/domain.hpp)
       double rx = 0.0, ry = 0.0;
-      for (int b = 0; b < W; ++b) {
-        int i = i0 + b;
-        if (d.periodic_x) i = geometry::wrap_periodic(i, nx);
-        else if (i < 0 || i >= nx) continue;
-        const std::size_t n = d.grid.index(i, j);
-        rx += ux[n] * wx[b];
-        ry += uy[n] * wx[b];
+      if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside the row: no wrap, no drop
+        const double* __restrict vx = ux.data() + d.grid.index(i0, j);
+        const double* __restrict vy = uy.data() + d.grid.index(i0, j);
+        for (int b = 0; b < W; ++b) {
+          rx += vx[b] * wx[b];
+          ry += vy[b] * wx[b];
+        }
+      } else {
+        for (int b = 0; b < W; ++b) {
+          int i = i0 + b;
+          if (d.periodic_x) i = geometry::wrap_periodic(i, nx);
+          else if (i < 0 || i >= nx) continue;
+          const std::size_t n = d.grid.index(i, j);
+          rx += ux[n] * wx[b];
+          ry += uy[n] * wx[b];
+        }
       }
       sx += rx * wy[a];
       sy += ry * wy[a];
@@ -106,11 +125,12 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     wx_.resize(M * W);
     wy_.resize(M * W);
     const long markers = static_cast<long>(M);  // each marker its own: any thread count, the same bits
+    const long blocks = (markers + kWeightBlock - 1) / kWeightBlock;
 #pragma omp parallel for schedule(static) if (markers >= kParallelMarkers)
-    for (long q = 0; q < markers; ++q) {
-      const std::size_t m = static_cast<std::size_t>(q);
-      weights_1d<K>(X[m], i0_[m], &wx_[m * W]);
-      weights_1d<K>(Y[m], j0_[m], &wy_[m * W]);
+    for (long b = 0; b < blocks; ++b) {
+      const long first = b * kWeightBlock, n = std::min(markers - first, kWeightBlock);
+      weights_of_block<K>(X.data() + first, n, i0_.data() + first, wx_.data() + first * W);
+      weights_of_block<K>(Y.data() + first, n, j0_.data() + first, wy_.data() + first * W);
     }
     weights_x_.assign(X.begin(), X.end());  // the positions these weights belong to
     weights_y_.assign(Y.begin(), Y.end());
@@ -145,6 +165,16 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
           const std::size_t m = static_cast<std::size_t>(order_[q]);
           const double gx = Fx[m] * wy_[m * W + a], gy = Fy[m] * wy_[m * W + a];
           const double* w = &wx_[m * W];
+          const int i0 = i0_[m];
+          if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside the row: no wrap, no drop
+            double* __restrict sx = rowx + i0;
+            double* __restrict sy = rowy + i0;
+            for (int c = 0; c < W; ++c) {
+              sx[c] += gx * w[c];
+              sy[c] += gy * w[c];
+            }
+            continue;
+          }
           for (int c = 0; c < W; ++c) {
             int i = i0_[m] + c;
             if (d.periodic_x) i = geometry::wrap_periodic(i, nx);

@@ -5,7 +5,10 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -14,6 +17,7 @@
 
 #include "aggregation/cell_contacts.hpp"
 #include "aggregation/repulsion.hpp"
+#include "common/portable_hypot.hpp"
 #include "tests/aggregation/ring_grid.hpp"
 
 using namespace erythro;
@@ -275,4 +279,35 @@ TEST(CellContacts, WallsAndStatisticsSameOnAnyThreadCount) {
   y[2990] = NAN;
   x[1701] = INFINITY;
   expect_error_naming("marker 1701 has a non-finite position");
+}
+
+TEST(CellContacts, ForceMagnitudesAreHypotsOfTheForcesBitForBit) {
+  // force_magnitude() is |F_m| of the contact force by hypot_portable's bits: from the fast
+  // path of a vectorised loop for a crowded channel (markers with no partner have F = 0
+  // exactly), and for a cell where one force lies beyond the kernel's common range
+  // (|F_x| < 2^-54 |F_y|, below), where the fallback runs. (There the kernel would give the
+  // same bits; only forces near 2^-459 or 2^511, which positions on a lattice cannot make,
+  // tell the two apart, so this checks the bits, not which path gave them.)
+  auto check = [](const geometry::Domain& dom, const MarkerView& v) {
+    CellContacts c(dom, ContactLaw{kMorse, kRep});
+    std::vector<double> fx(v.x.size(), 0.0), fy(v.x.size(), 0.0);
+    c.add_forces(v, fx, fy);
+    const std::span<const double> mag = c.force_magnitude();
+    for (std::size_t m = 0; m < fx.size(); ++m)
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(mag[m]), std::bit_cast<std::uint64_t>(numeric::hypot_portable(fx[m], fy[m])))
+          << m;
+    return std::make_pair(fx, fy);
+  };
+  const test_support::RingGrid rings(10.5, 20.0);
+  const auto [fx, fy] = check(geometry::Domain{Grid{200, 204}, true, false}, rings.view());
+  EXPECT_GT(std::count(fx.begin(), fx.end(), 0.0), 0);  // isolated markers: zero force
+  // Marker 1 of cell A sits between two vertical edges (their tensions add nothing along x),
+  // its partner of cell B half a unit above it but 2^-62 to the side: F_x is the pair part's
+  // tiny x component, F_y of order 100.
+  const double a = 1.0 / 1024.0, d = std::ldexp(1.0, -62);
+  const std::vector<double> x{a, a, a, a + d, 20.0, 25.0}, y{9.0, 10.0, 11.0, 10.5, 25.0, 25.0};
+  const std::vector<std::size_t> off{0, 3, 6};
+  const auto [gx, gy] = check(geometry::Domain{Grid{40, 40}, true, true}, MarkerView{x, y, off});
+  ASSERT_NE(gx[1], 0.0);
+  ASSERT_LT(std::fabs(gx[1]), std::ldexp(std::fabs(gy[1]), -54));  // the fallback ran
 }

@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
+#include <vector>
 
 #include "ib/kernel.hpp"
 #include "ib/kernel_moments.hpp"
@@ -103,4 +105,21 @@ TEST(Kernel, SupportStartCoversExactlyTheNonzeroNodes) {
       EXPECT_EQ(phi(t, X - (i0 + w + 0.5)), 0.0) << to_string(t) << " X=" << X;
     }
   }
+}
+
+// support_start's floor (a truncation and a correction, so that the weight loops vectorise) is
+// std::floor's: at integers and half-integers from both sides, negative coordinates (unwrapped
+// markers left of a periodic edge) and random ones.
+TEST(Kernel, SupportStartIsTheFloor) {
+  std::vector<double> xs;
+  for (int i = -40; i <= 40; ++i)
+    for (const double base : {double(i), i + 0.5})
+      for (const double x : {base, std::nextafter(base, -1e9), std::nextafter(base, 1e9)}) xs.push_back(x);
+  std::mt19937_64 g(7);
+  std::uniform_real_distribution<double> u(-3000.0, 3000.0);
+  for (int k = 0; k < 100000; ++k) xs.push_back(u(g));
+  for (const int w : {2, 3, 4})
+    for (const double X : xs) {
+      ASSERT_EQ(support_start(X, w), static_cast<int>(std::floor(X + 0.5 - 0.5 * w))) << "X=" << X << " w=" << w;
+    }
 }

@@ -96,3 +96,47 @@ TEST(PortableHypot, VectorLoopGivesTheScalarBits) {
     ASSERT_EQ(std::bit_cast<std::uint64_t>(vec[i]), std::bit_cast<std::uint64_t>(hypot_portable(xi, y[i]))) << i;
   }
 }
+
+// A zero component stays on the fast path: the other's magnitude, the library's bits (C Annex
+// F: hypot(x, ±0) = |x|), for every size of x, subnormal, infinite and NaN included.
+TEST(PortableHypot, ZeroComponentAsTheLibrary) {
+  const double inf = INFINITY;
+  for (const double x : {0.0, -0.0, 4.9e-324, 1e-310, 0x1p-500, 1e-100, 0.7, 3.0, 1e100, 0x1p600, 1.7e308, inf, -inf}) {
+    for (const double zero : {0.0, -0.0}) {
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(hypot_portable(x, zero)), std::bit_cast<std::uint64_t>(std::hypot(x, zero)))
+          << x;
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(hypot_portable(zero, x)), std::bit_cast<std::uint64_t>(std::hypot(zero, x)))
+          << x;
+    }
+  }
+  EXPECT_TRUE(std::isnan(hypot_portable(NAN, 0.0)));
+  EXPECT_TRUE(std::isnan(hypot_portable(0.0, NAN)));
+}
+
+// The edge lengths of a closed polygon: hypot_portable's bits for each edge, whether every
+// edge is in the fast path's range (a ring with horizontal and vertical edges among them) or
+// one is not (two coincident vertices' tiny neighbour: the whole polygon again, by the call).
+TEST(PortableHypot, ClosedPolygonLengthsAreTheCallsBits) {
+  const std::size_t n = 37;
+  std::vector<double> x(n), y(n), len(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = 2.0 * 3.141592653589793 * double(k) / double(n);
+    x[k] = 10.0 + 3.0 * std::cos(t);
+    y[k] = 7.0 + 2.0 * std::sin(t);
+  }
+  y[5] = y[4];  // a horizontal edge
+  x[9] = x[8];  // a vertical one
+  auto check = [&] {
+    erythro::numeric::closed_polygon_lengths(x.data(), y.data(), n, len.data());
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t f = k + 1 == n ? 0 : k + 1;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(len[k]),
+                std::bit_cast<std::uint64_t>(hypot_portable(x[f] - x[k], y[f] - y[k])))
+          << k;
+    }
+  };
+  check();
+  x[20] = x[19] + 1e-300;  // an edge far below the kernel's range
+  y[20] = y[19] + 3e-301;
+  check();
+}
