@@ -38,6 +38,9 @@ class PairLists {
   std::span<const std::size_t> start() const { return start_; }
   std::span<const std::size_t> list() const { return list_; }
   std::span<const std::size_t> owner() const { return owner_; }
+  // upper()[m]: the first entry of marker m whose partner has a higher index (start()[m + 1]
+  // if none): the entries upper()[m] … start()[m+1] hold the pairs (m, n > m), each pair once.
+  std::span<const std::size_t> upper() const { return upper_; }
   double skin() const { return skin_; }
   int bins_x() const { return nbx_; }
   int bins_y() const { return nby_; }
@@ -47,7 +50,7 @@ class PairLists {
   geometry::Domain domain_;
   double cutoff_ = 0.0, skin_ = 0.0;
   int nbx_ = 1, nby_ = 1;
-  std::vector<std::size_t> start_, list_, owner_;
+  std::vector<std::size_t> start_, list_, owner_, upper_;
   std::vector<double> x_, y_;           // the positions they were built at
   std::vector<std::size_t> offsets_;    // the cells they were built for
   std::size_t builds_ = 0;

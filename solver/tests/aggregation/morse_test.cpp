@@ -318,6 +318,8 @@ TEST(CellContacts, PairListsFollowMovingMarkersBitForBit) {
 
 TEST(CellContacts, PairListsSameOnAnyThreadCount) {
   // 3 000 markers (above kParallelMarkers): lists built and summed on 1 and 2 threads agree.
+  // On one thread each pair is evaluated once and added to both markers (run_half_lists), on
+  // two each marker sums its own list (run_pair_lists): the two paths give the same bits.
   const geometry::Domain dom{Grid{200, 200}, true, true};
   const MorseParameters p{0.3, 2.5, 0.8, 6.0};
   const test_support::RingGrid rings(10.0, 19.5);
