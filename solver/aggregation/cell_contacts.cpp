@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "aggregation/pair_sweep.hpp"
 #include "aggregation/pair_terms.hpp"
 #include "common/portable_hypot.hpp"
 #include "membrane/immersed_cells.hpp"
@@ -51,7 +52,6 @@ struct Engine {
   double min_wall_gap = std::numeric_limits<double>::infinity();
   std::vector<std::size_t>& count;
   std::vector<PairScratch>& per_thread;
-  std::vector<std::size_t>&partner, &ends;
   std::atomic<bool> coincident{false};
   std::size_t beyond_wall = SIZE_MAX;  // the first marker on or beyond a wall (add_walls is serial)
   double beyond_wall_gap = 0.0;
@@ -69,9 +69,7 @@ struct Engine {
         rmin(ws.rmin),
         W(ws.W),
         count(ws.count),
-        per_thread(ws.per_thread),
-        partner(ws.partner),
-        ends(ws.ends) {
+        per_thread(ws.per_thread) {
     check_view(v);
     W.clear();
     const std::size_t N = v.x.size();
@@ -324,120 +322,6 @@ void pair_sums(Engine& eng, std::size_t m, std::span<const std::size_t> cand, Pa
   eng.store(m, marker_sums(s, q, k, n));
 }
 
-// The pair sums of markers first … last − 1 over their pair lists, whose entries are one
-// contiguous range of the CSR arrays: the passes of pair_sums, each over all of
-// the range's entries at once (long vector loops instead of one short loop per marker),
-// then each marker's sums over its own entries in list order. Per pair the same
-// arithmetic as pair_sums, per marker the same order: the same bits.
-void chunk_sums(Engine& eng, std::size_t first, std::size_t last, std::span<const std::size_t> start,
-                std::span<const std::size_t> list, std::span<const std::size_t> owner, PairScratch& s) {
-  const std::size_t e0 = start[first], n = start[last] - e0;
-  if (n == 0) return;  // no partner: the sums keep their zeros
-  s.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::size_t p = list[e0 + i], m = owner[e0 + i];
-    s.cx[i] = eng.v.x[p];
-    s.cy[i] = eng.v.y[p];
-    s.cl[i] = eng.ell[p];
-    s.mx[i] = eng.v.x[m];
-    s.my[i] = eng.v.y[m];
-    s.ml[i] = eng.ell[m];
-  }
-  const std::size_t k = eng.pair_terms(n, s);
-  std::size_t q = 0;
-  for (std::size_t m = first; m < last; ++m) {
-    const std::size_t end = start[m + 1] - e0;
-    if (q < k && s.hits[q] < end) eng.store(m, marker_sums(s, q, k, end));
-  }
-}
-
-// Every marker's pair sums over its pair list, chunks of markers over the threads.
-constexpr std::size_t kChunk = 64;  // markers per chunk
-void run_pair_lists(Engine& eng, std::span<const std::size_t> start, std::span<const std::size_t> list,
-                    std::span<const std::size_t> owner) {
-  const std::size_t N = eng.v.x.size();
-  const long long chunks = static_cast<long long>((N + kChunk - 1) / kChunk);
-  // Each thread its own scratch, kept in the workspace (a team of one inside a parallel region
-  // of the caller uses the first).
-  if (eng.per_thread.size() < static_cast<std::size_t>(omp_get_max_threads()))
-    eng.per_thread.resize(static_cast<std::size_t>(omp_get_max_threads()));
-#pragma omp parallel if (N >= kParallelMarkers)
-  {
-    PairScratch& s = eng.per_thread[static_cast<std::size_t>(omp_get_thread_num())];
-#pragma omp for schedule(dynamic, 4)
-    for (long long q = 0; q < chunks; ++q) {
-      const std::size_t first = static_cast<std::size_t>(q) * kChunk, last = std::min(N, first + kChunk);
-      chunk_sums(eng, first, last, start, list, owner, s);
-    }
-  }
-}
-
-// Every marker's pair sums over its pair list on one thread, each pair's terms computed once
-// and added to both of its markers: the markers in ascending order, chunk by chunk, each over
-// its partners above it (the entries from upper[m]). Marker n gets the terms of its partners
-// below it as those are swept, in ascending order, and its own sweep goes on from those sums;
-// so every marker adds its partners in ascending order, as run_pair_lists does. And each
-// pair's terms are the same bits seen from either end (Φ, Φ', r and w are symmetric in
-// (m, n); X_n − X_m = −(X_m − X_n) exactly, pair_terms.hpp): the sums are run_pair_lists's,
-// bit for bit, for half the pair evaluations.
-void run_half_lists(Engine& eng, std::span<const std::size_t> start, std::span<const std::size_t> list,
-                    std::span<const std::size_t> upper) {
-  const std::size_t N = eng.v.x.size();
-  if (eng.per_thread.empty()) eng.per_thread.resize(1);
-  PairScratch& s = eng.per_thread.front();
-  std::vector<std::size_t>&partner = eng.partner, &ends = eng.ends;
-  ends.resize(kChunk);
-  double* S = eng.S.data();
-  double* px = eng.px.data();
-  double* py = eng.py.data();
-  double* rmin = eng.rmin.data();
-  std::size_t* count = eng.count.data();
-  for (std::size_t first = 0; first < N; first += kChunk) {
-    const std::size_t last = std::min(N, first + kChunk);
-    std::size_t n = 0;
-    for (std::size_t m = first; m < last; ++m) n += start[m + 1] - upper[m];
-    if (n == 0) continue;  // no pair above these markers: their sums are complete
-    s.resize(n);
-    partner.resize(n);
-    std::size_t i = 0;
-    for (std::size_t m = first; m < last; ++m) {
-      for (std::size_t e = upper[m]; e < start[m + 1]; ++e, ++i) {
-        const std::size_t p = list[e];
-        partner[i] = p;
-        s.cx[i] = eng.v.x[p];
-        s.cy[i] = eng.v.y[p];
-        s.cl[i] = eng.ell[p];
-        s.mx[i] = eng.v.x[m];
-        s.my[i] = eng.v.y[m];
-        s.ml[i] = eng.ell[m];
-      }
-      ends[m - first] = i;
-    }
-    const std::size_t k = eng.pair_terms(n, s);
-    std::size_t q = 0;
-    for (std::size_t m = first; m < last; ++m) {
-      const std::size_t end = ends[m - first];
-      if (q >= k || s.hits[q] >= end) continue;
-      PairSums acc{S[m], px[m], py[m], rmin[m], count[m]};  // its partners below m, summed
-      for (; q < k && s.hits[q] < end; ++q) {
-        if (!s.on[q]) continue;
-        const std::size_t j = s.hits[q], p = partner[j];
-        acc.s += s.phi[q] * s.cl[j];  // marker m, as marker_sums
-        acc.fx -= s.w[q] * s.dx[j];
-        acc.fy -= s.w[q] * s.dy[j];
-        acc.rmin = std::min(acc.rmin, s.hr[q]);
-        ++acc.k;
-        S[p] += s.phi[q] * s.ml[j];  // its partner p: the same pair seen from p (X_p − X_m = −dx)
-        px[p] -= s.w[q] * (-s.dx[j]);
-        py[p] -= s.w[q] * (-s.dy[j]);
-        rmin[p] = std::min(rmin[p], s.hr[q]);
-        ++count[p];
-      }
-      eng.store(m, acc);
-    }
-  }
-}
-
 // Every marker against every marker of the other cells (ascending, its own cell left
 // out), chunks of markers over the threads: any thread count gives the same bits.
 void run_brute_force(Engine& eng) {
@@ -491,11 +375,12 @@ template <class E>
 void CellContacts::pair_sums_all(E& eng) {
   const std::size_t N = eng.v.x.size();
   if (!lists_.valid(eng.v)) lists_.build(eng.v, eng.cell_of, threads_forces(N));
-  // On one thread (few markers, one thread, or a team of one inside the caller's region) each
-  // pair once; on more, each marker's list on its own across the threads. The same bits.
-  const bool one_thread = !threads_forces(N) || omp_get_max_threads() == 1 || omp_in_parallel();
-  if (one_thread) run_half_lists(eng, lists_.start(), lists_.list(), lists_.upper());
-  else run_pair_lists(eng, lists_.start(), lists_.list(), lists_.owner());
+  // Over the threads from kParallelMarkers on, unless already inside the caller's region (a
+  // team of one there); each pair evaluated once within a thread's range (pair_sweep.hpp).
+  const int threads = threads_forces(N) && !omp_in_parallel() ? omp_get_max_threads() : 1;
+  const SweepArrays arrays{eng.v.x, eng.v.y, eng.ell, eng.S, eng.px, eng.py, eng.rmin, eng.count};
+  if (sweep_pair_lists(domain_, potential_, lists_, arrays, threads, eng.per_thread))
+    eng.coincident.store(true, std::memory_order_relaxed);
 }
 
 ContactStats CellContacts::add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy) {

@@ -65,7 +65,6 @@ struct ContactWorkspace {
   std::vector<std::size_t> cell_of, count, offsets;
   std::vector<double> edge, ell, S, px, py, rmin, W;
   std::vector<PairScratch> per_thread;
-  std::vector<std::size_t> partner, ends;  // the one-thread sweep's batch (cell_contacts.cpp)
 };
 }  // namespace detail
 

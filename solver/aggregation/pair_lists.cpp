@@ -188,15 +188,12 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
   start_.assign(N + 1, 0);
   for (std::size_t m = 0; m < N; ++m) start_[m + 1] = start_[m] + length[m];
   list_.resize(start_[N]);
-  owner_.resize(start_[N]);
   upper_.resize(N);
   for (std::size_t m = 0; m < N; ++m) {
     const std::vector<std::size_t>& src = found[static_cast<std::size_t>(thread_of[m])];
     const auto first = list_.begin() + static_cast<std::ptrdiff_t>(start_[m]);
     const auto last = list_.begin() + static_cast<std::ptrdiff_t>(start_[m + 1]);
     std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(begin[m]), length[m], first);
-    std::fill(owner_.begin() + static_cast<std::ptrdiff_t>(start_[m]),
-              owner_.begin() + static_cast<std::ptrdiff_t>(start_[m + 1]), m);
     upper_[m] = static_cast<std::size_t>(std::upper_bound(first, last, m) - list_.begin());  // ascending lists
   }
   x_.assign(v.x.begin(), v.x.end());

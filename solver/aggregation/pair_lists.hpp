@@ -33,11 +33,9 @@ class PairLists {
   // Builds them for these markers (cell_of[m]: marker m's cell); `parallel`: over the threads.
   void build(const MarkerView& v, std::span<const std::size_t> cell_of, bool parallel);
 
-  // CSR: the partners of marker m are list()[start()[m] … start()[m+1]), and owner()[e] is
-  // the marker of entry e.
+  // CSR: the partners of marker m are list()[start()[m] … start()[m+1]).
   std::span<const std::size_t> start() const { return start_; }
   std::span<const std::size_t> list() const { return list_; }
-  std::span<const std::size_t> owner() const { return owner_; }
   // upper()[m]: the first entry of marker m whose partner has a higher index (start()[m + 1]
   // if none): the entries upper()[m] … start()[m+1] hold the pairs (m, n > m), each pair once.
   std::span<const std::size_t> upper() const { return upper_; }
@@ -50,7 +48,7 @@ class PairLists {
   geometry::Domain domain_;
   double cutoff_ = 0.0, skin_ = 0.0;
   int nbx_ = 1, nby_ = 1;
-  std::vector<std::size_t> start_, list_, owner_, upper_;
+  std::vector<std::size_t> start_, list_, upper_;
   std::vector<double> x_, y_;           // the positions they were built at
   std::vector<std::size_t> offsets_;    // the cells they were built for
   std::size_t builds_ = 0;

@@ -317,28 +317,37 @@ TEST(CellContacts, PairListsFollowMovingMarkersBitForBit) {
 }
 
 TEST(CellContacts, PairListsSameOnAnyThreadCount) {
-  // 3 000 markers (above kParallelMarkers): lists built and summed on 1 and 2 threads agree.
-  // On one thread each pair is evaluated once and added to both markers (run_half_lists), on
-  // two each marker sums its own list (run_pair_lists): the two paths give the same bits.
+  // 3 000 markers (above kParallelMarkers): lists built and summed on 1, 2, 3 and 5 threads
+  // agree. Each thread sweeps its own range of markers, each pair inside it evaluated once
+  // and the pairs between ranges once from each side (pair_sweep.hpp): the ranges change
+  // with the thread count, the bits must not.
   const geometry::Domain dom{Grid{200, 200}, true, true};
   const MorseParameters p{0.3, 2.5, 0.8, 6.0};
   const test_support::RingGrid rings(10.0, 19.5);
   const std::vector<double>& x = rings.x;
   ASSERT_GE(x.size(), CellContacts::kParallelMarkers);
   const MarkerView v = rings.view();
-  std::vector<double> f1(x.size(), 0.0), g1(x.size(), 0.0), f2(x.size(), 0.0), g2(x.size(), 0.0);
   const int threads = omp_get_max_threads();
-  omp_set_num_threads(1);
-  CellContacts one(dom, p);
-  const ContactStats a = one.add_forces(v, f1, g1);
-  omp_set_num_threads(2);
-  CellContacts two(dom, p);
-  const ContactStats b = two.add_forces(v, f2, g2);
-  omp_set_num_threads(threads);
+  auto run = [&](int t, std::vector<double>& f, std::vector<double>& g) {
+    f.assign(x.size(), 0.0);
+    g.assign(x.size(), 0.0);
+    omp_set_num_threads(t);
+    CellContacts c(dom, p);
+    const ContactStats s = c.add_forces(v, f, g);
+    omp_set_num_threads(threads);
+    return s;
+  };
+  std::vector<double> f1, g1, f2, g2;
+  const ContactStats a = run(1, f1, g1);
   ASSERT_GT(a.pairs, 1000u);
-  EXPECT_EQ(a.energy, b.energy);
-  for (std::size_t m = 0; m < x.size(); ++m) {
-    ASSERT_EQ(f1[m], f2[m]) << m;
-    ASSERT_EQ(g1[m], g2[m]) << m;
+  for (const int t : {2, 3, 5}) {
+    const ContactStats b = run(t, f2, g2);
+    EXPECT_EQ(a.energy, b.energy) << t;
+    EXPECT_EQ(a.pairs, b.pairs) << t;
+    EXPECT_EQ(a.min_pair_distance, b.min_pair_distance) << t;
+    for (std::size_t m = 0; m < x.size(); ++m) {
+      ASSERT_EQ(f1[m], f2[m]) << m << " on " << t << " threads";
+      ASSERT_EQ(g1[m], g2[m]) << m << " on " << t << " threads";
+    }
   }
 }
