@@ -11,8 +11,8 @@
 // 2D haematocrit 0.3, h = 0.25 µm, 110 markers per cell, [time_mapping] Re = 0.1; no aggregation, or
 // aggregation.de_star = 5 with case I or case II membranes) in its 30 µm channel, 30 µm long, driven
 // so that plasma alone would have the wall shear rate γ̇_w = 50 and 200 1/s (the repulsion's pressure
-// 2 μ γ̇_w at each rate, as the one-seed study), seeds 1–4 each, 100 strain units, means over strain
-// 50–100:
+// 2 μ γ̇_w at each rate, as the one-seed study), seeds 1–4 each, 400 strain units, means over strain
+// 200–400 (four blocks of 50 strain units; until 2026-12-05: 100 strain units, means over 50–100):
 //  - every run completes with every cell's area within 1 % and every edge strain within 0.5;
 //  - the relative apparent viscosity falls with flow rate: the ensemble mean at 50 1/s exceeds that
 //    at 200 1/s (thesis Fig. IV-1; shear thinning by deformation and alignment, Ca 0.039 → 0.16);
@@ -21,7 +21,7 @@
 //  - each difference is reported with its 95 % half-width (the two ensembles' half-widths in
 //    quadrature) and their ratio: a ratio above 1 is a trend the four seeds resolve;
 //  - the transverse dispersion D_yy (eq 12.4) from the lateral mean-square displacement of the cells
-//    of all four seeds pooled over strain 50–100, its diffusive window and the MSD curve are reported
+//    of all four seeds pooled over strain 200–400, its diffusive window and the MSD curve are reported
 //    (informative here: validation.channel_flow_rate asserts D_yy's window and growth).
 // Reference: thesis Figs. IV-1, IV-2 (trends; the thesis's cells aggregate at De* = 5); four
 // independent seeds, Student's t_0.975 = 3.182. docs/validation-channel.md, "Seed ensembles at the
@@ -50,8 +50,11 @@ constexpr double kSizeUm = 30.0, kSpacingUm = 0.25, kMinGapUm = 0.4;  // as veri
 constexpr long kMarkers = 110;                                        // 0.70 h apart, as there
 constexpr std::array<double, 2> kWallShearRates{50.0, 200.0};         // 1/s, plasma at the same force
 constexpr std::array<long, 4> kSeeds{1, 2, 3, 4};
-constexpr double kStrain = 100.0, kSettled = 50.0, kT975_3 = 3.182;
-constexpr int kBlocks = 5;
+// 400 strain units, means over 200–400 in four blocks of 50: the design the seed ensembles need
+// (verification.channel_seed_ensemble, docs/verification-suspension.md §8: the placement's
+// arrangement decays over hundreds of strain units; block means correlate over tens).
+constexpr double kStrain = 400.0, kSettled = 200.0, kT975_3 = 3.182;
+constexpr int kBlocks = 4;
 constexpr double kEdgeLimit = 0.5, kAreaLimit = 0.01;
 constexpr double kRadiusUm = 3.91;  // the scene's cells: D_yy in units of γ̇_w a²
 
@@ -142,7 +145,7 @@ void run_ensemble(const EnsembleSpec& spec) {
                           {{"wall_shear_rate_per_s", rate}, {"seed", static_cast<double>(kSeeds[si])}}, kSettled,
                           kStrain, kBlocks, tag(rate) + " seed " + std::to_string(kSeeds[si]));
     const std::string t = tag(rate);
-    record.add_metric({"completed_seeds_" + t, "seeds (of 4) that ran their 100 strain units", "",
+    record.add_metric({"completed_seeds_" + t, "seeds (of 4) that ran their 400 strain units", "",
                        static_cast<double>(s.completed), 4.0, 0.0, io::Comparison::at_least,
                        "issue 19 item 6: at the scene's resolution no membrane tears (verification.channel_resolution)"});
     record.add_metric({"max_edge_strain_" + t, "largest edge strain |l/l0 - 1| of any cell over the runs", "",
@@ -152,7 +155,7 @@ void run_ensemble(const EnsembleSpec& spec) {
                        kAreaLimit, 0.0, io::Comparison::at_most, "issue 19 item 6: every cell's area within 1 %"});
     if (s.ensemble) {
       vv::add_ensemble_means(record, t, s.eta, s.cfl);
-      record.add_metric({"discharge_haematocrit_" + t, "ensemble mean of H_d over strain 50-100", "", s.hd.mean, lowest,
+      record.add_metric({"discharge_haematocrit_" + t, "ensemble mean of H_d over strain 200-400", "", s.hd.mean, lowest,
                          0.0, io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(s.hd.ci95)});
     }
   }
@@ -237,11 +240,12 @@ void run_ensemble(const EnsembleSpec& spec) {
 TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
   run_ensemble(
       {"validation.channel_flow_rate_ensemble", 0.0, 0.0,
-       "The user's channel scene as it is (case I RBCs, no aggregation, 2D haematocrit 0.3, h = 0.25 um, 110 markers, "
-       "time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), "
-       "seeds 1-4, 100 strain units, means over strain 50-100: every run completes with areas within 1 % and edge "
-       "strains within 0.5; the relative apparent viscosity's ensemble mean falls from 50 to 200 1/s and the normalised "
-       "cell-free layer's rises (thesis Figs. IV-1, IV-2); each difference reported against its 95 % half-width.",
+       "The user's channel scene as it is (case I RBCs, no aggregation, 2D haematocrit 0.3, h = 0.25 um, 110 "
+       "markers, time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 "
+       "mu gamma_w), seeds 1-4, 400 strain units, means over strain 200-400 (four blocks of 50): every run completes "
+       "with areas within 1 % and edge strains within 0.5; the relative apparent viscosity's ensemble mean falls "
+       "from 50 to 200 1/s and the normalised cell-free layer's rises (thesis Figs. IV-1, IV-2); each difference "
+       "reported against its 95 % half-width.",
        "Thesis Figs. IV-1 and IV-2 (trends; the thesis's cells aggregate, these do not, as Freund & Orescanin's); four "
        "independent seeds, Student's t_0.975 = 3.182, the two ensembles' 95 % half-widths in quadrature for a "
        "difference.",
@@ -252,12 +256,12 @@ TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
 TEST(ChannelFlowRateEnsemble, AggregatedFourSeedsTwoRates) {
   run_ensemble(
       {"validation.channel_flow_rate_ensemble_aggregated", 5.0, 0.0,
-       "The user's channel scene with the thesis's Morse aggregation De* = 5 (case I RBCs, 2D haematocrit 0.3, "
-       "h = 0.25 um, 110 markers, time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s "
-       "(repulsion 2 mu gamma_w), seeds 1-4, 100 strain units, means over strain 50-100: every run completes with areas "
-       "within 1 % and edge strains within 0.5; the relative apparent viscosity's ensemble mean falls from 50 to "
-       "200 1/s and the normalised cell-free layer's rises (thesis Figs. IV-1, IV-2, whose cells aggregate at De* = 5); "
-       "each difference reported against its 95 % half-width.",
+       "The user's channel scene with the thesis's Morse aggregation De* = 5 (case I RBCs, 2D haematocrit 0.3, h = "
+       "0.25 um, 110 markers, time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s "
+       "(repulsion 2 mu gamma_w), seeds 1-4, 400 strain units, means over strain 200-400 (four blocks of 50): every "
+       "run completes with areas within 1 % and edge strains within 0.5; the relative apparent viscosity's ensemble "
+       "mean falls from 50 to 200 1/s and the normalised cell-free layer's rises (thesis Figs. IV-1, IV-2, whose "
+       "cells aggregate at De* = 5); each difference reported against its 95 % half-width.",
        "Thesis Figs. IV-1 and IV-2 (trends, case I with aggregation at De* = 5: gamma = 1.3e-7 J/m^2, docs/model.md "
        "eq 4.7); four independent seeds, Student's t_0.975 = 3.182, the two ensembles' 95 % half-widths in quadrature "
        "for a difference.",
@@ -269,11 +273,12 @@ TEST(ChannelFlowRateEnsemble, AggregatedCaseIIFourSeedsTwoRates) {
   run_ensemble(
       {"validation.channel_flow_rate_ensemble_aggregated_case_ii", 5.0, 20.0e-3,
        "The user's channel scene with the thesis's case II membrane (E_S = 20e-3 dyn/cm, the scene's other membrane "
-       "values) and Morse aggregation De* = 5 (2D haematocrit 0.3, h = 0.25 um, 110 markers, time mapping Re = 0.1) in "
-       "its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), seeds 1-4, 100 strain "
-       "units, means over strain 50-100: every run completes with areas within 1 % and edge strains within 0.5; the "
-       "relative apparent viscosity's ensemble mean falls from 50 to 200 1/s and the normalised cell-free layer's rises "
-       "(thesis Figs. IV-1, IV-2); each difference reported against its 95 % half-width.",
+       "values) and Morse aggregation De* = 5 (2D haematocrit 0.3, h = 0.25 um, 110 markers, time mapping Re = 0.1) "
+       "in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), seeds 1-4, 400 "
+       "strain units, means over strain 200-400 (four blocks of 50): every run completes with areas within 1 % and "
+       "edge strains within 0.5; the relative apparent viscosity's ensemble mean falls from 50 to 200 1/s and the "
+       "normalised cell-free layer's rises (thesis Figs. IV-1, IV-2); each difference reported against its 95 % "
+       "half-width.",
        "Thesis Figs. IV-1 and IV-2 (trends, case II with aggregation at De* = 5: gamma = 1.3e-7 J/m^2, docs/model.md "
        "eq 4.7); four independent seeds, Student's t_0.975 = 3.182, the two ensembles' 95 % half-widths in quadrature "
        "for a difference.",
