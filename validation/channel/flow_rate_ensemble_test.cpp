@@ -154,7 +154,7 @@ void run_ensemble(const EnsembleSpec& spec) {
     record.add_metric({"max_area_change_" + t, "largest |A/A0 - 1| of any cell over the runs", "", s.max_area_change,
                        kAreaLimit, 0.0, io::Comparison::at_most, "issue 19 item 6: every cell's area within 1 %"});
     if (s.ensemble) {
-      vv::add_ensemble_means(record, t, s.eta, s.cfl);
+      vv::add_ensemble_means(record, t, s.eta, s.cfl, kSettled, kStrain);
       record.add_metric({"discharge_haematocrit_" + t, "ensemble mean of H_d over strain 200-400", "", s.hd.mean, lowest,
                          0.0, io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(s.hd.ci95)});
     }

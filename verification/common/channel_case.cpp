@@ -5,6 +5,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "analysis/profiles.hpp"
 #include "common/scene_case.hpp"
 #include "scene/units.hpp"
 
@@ -43,8 +44,14 @@ ChannelSeries run_channel(const ChannelRunSpec& spec, const std::string& case_na
   out.steps = r.setup.total_steps;
   out.wall_s = r.wall_time_s;
   out.scene_text = r.file.scene_text();
-  if (spec.settled_strain >= 0.0 && out.completed)
-    out.heights = io::settled_centroid_heights(r.file, label, spec.settled_strain / spec.wall_shear_rate_per_s);
+  if (spec.settled_strain >= 0.0 && out.completed) {
+    const double settled_s = spec.settled_strain / spec.wall_shear_rate_per_s;
+    out.heights = io::settled_centroid_heights(r.file, label, settled_s);
+    const std::vector<double>& time = r.file.series("time_s");
+    out.profile_y_um = r.file.profile_y_um();
+    out.velocity_profile_um_s = analysis::time_average(time, r.file.profile("velocity_x_um_s"), settled_s);
+    out.haematocrit_profile = analysis::time_average(time, r.file.profile("haematocrit"), settled_s);
+  }
   return out;
 }
 
@@ -147,14 +154,16 @@ void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<
 }
 
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
-                        const SeedEnsemble& cfl) {
+                        const SeedEnsemble& cfl, double from, double to) {
   const double lowest = -std::numeric_limits<double>::infinity();
-  record.add_metric({"relative_apparent_viscosity_" + tag, "ensemble mean of eta_rel over strain 50-100 (eq 12.1)", "",
-                     eta.mean, lowest, 0.0, io::Comparison::at_least,
-                     "informative; 95 % half-width " + std::to_string(eta.ci95)});
-  record.add_metric({"cell_free_layer_normalised_" + tag, "ensemble mean of delta* over strain 50-100 (eq 12.2)", "",
-                     cfl.mean, lowest, 0.0, io::Comparison::at_least,
-                     "informative; 95 % half-width " + std::to_string(cfl.ci95)});
+  char window[48];
+  std::snprintf(window, sizeof window, "over strain %g-%g", from, to);
+  record.add_metric({"relative_apparent_viscosity_" + tag,
+                     std::string("ensemble mean of eta_rel ") + window + " (eq 12.1)", "", eta.mean, lowest, 0.0,
+                     io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(eta.ci95)});
+  record.add_metric({"cell_free_layer_normalised_" + tag,
+                     std::string("ensemble mean of delta* ") + window + " (eq 12.2)", "", cfl.mean, lowest, 0.0,
+                     io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(cfl.ci95)});
 }
 
 }  // namespace erythro::vv

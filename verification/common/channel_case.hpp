@@ -36,6 +36,9 @@ struct ChannelSeries {
   double wall_s = 0.0;
   long steps = 0, cells = 0;
   io::CentroidHeights heights;  // with spec.settled_strain >= 0 and a completed run: y_c(t) from then on
+  // With spec.settled_strain >= 0 and a completed run: the profiles across the channel (row
+  // centres y, µm) averaged from then on: u_x (µm/s) and the haematocrit (docs/model.md §12).
+  std::vector<double> profile_y_um, velocity_profile_um_s, haematocrit_profile;
   bool completed = false;  // false: the health monitor stopped it (`diagnosis` says why)
   std::string diagnosis, scene_text;
 };
@@ -90,10 +93,10 @@ OneWayAnova one_way_anova(const std::vector<std::vector<double>>& groups);
 void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<std::string, io::Value> keys,
                      double from, double to, int blocks, const std::string& label);
 
-// The informative metrics of a seed ensemble's means over strain 50-100, suffixed `tag`:
+// The informative metrics of a seed ensemble's means over strain from-to, suffixed `tag`:
 // relative_apparent_viscosity_<tag> and cell_free_layer_normalised_<tag>, each with its 95 %
 // half-width in the reason.
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
-                        const SeedEnsemble& cfl);
+                        const SeedEnsemble& cfl, double from, double to);
 
 }  // namespace erythro::vv

@@ -196,7 +196,7 @@ TEST(ChannelResolution, FourSpacingsFourSeeds) {
     record.add_metric({"max_area_change_" + t, "largest |A/A0 - 1| of any cell over the runs", "", s.max_area_change,
                        kAreaLimit, 0.0, io::Comparison::at_most, "issue 19 item 6: every cell's area within 1 %"});
     if (s.ensemble) {
-      vv::add_ensemble_means(record, t, s.eta, s.cfl);
+      vv::add_ensemble_means(record, t, s.eta, s.cfl, kSettled, kStrain);
     }
   }
   // eta_rel: its limit and observed order over the four levels, from the seeds that complete at every level.
