@@ -198,9 +198,6 @@ struct Engine {
     return e;
   }
 
-  // ∂E/∂ℓ_m: S_m, plus W_m with walls.
-  double length_derivative(std::size_t m) const { return W.empty() ? S[m] : S[m] + W[m]; }
-
   // F_m = pair part + edge part (T_e = (S_e + S_{e+1})/2 along edge e), added to fx, fy; |F_m|
   // into mag. Markers o … e − 1 of one cell, the same arithmetic for each (contact_force):
   // the inner markers in a straight loop that vectorises, the two ends with the wrap.
