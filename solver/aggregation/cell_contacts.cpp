@@ -99,12 +99,9 @@ struct Engine {
   // Passes 1–3 of pair_terms.hpp over the n candidates of s; returns the pairs within r_c
   // (a pair at r = 0 is reported after the parallel loop: no throw inside OpenMP).
   std::size_t pair_terms(std::size_t n, PairScratch& s) {
-    pair_separations(domain, n, s);
-    const double rc = potential.cutoff();
     bool zero = false;
-    const std::size_t k = pairs_within(rc * rc, n, s, zero);
+    const std::size_t k = evaluate_pairs(domain, potential, n, s, zero);
     if (zero) coincident.store(true, std::memory_order_relaxed);
-    pair_weights(potential, k, s);
     return k;
   }
 

@@ -16,14 +16,19 @@ constexpr std::size_t kChunk = 64;  // markers whose entries are evaluated as on
 template <class From, class To>
 std::size_t gather(const SweepArrays& a, std::span<const std::size_t> list, std::size_t first, std::size_t last,
                    From from, To to, PairScratch& s) {
+  // Each marker's range once (to(m) may be a binary search), its end kept in s.ends meanwhile.
+  s.ends.resize(last - first);
   std::size_t n = 0;
-  for (std::size_t m = first; m < last; ++m) n += to(m) - from(m);
+  for (std::size_t m = first; m < last; ++m) {
+    s.ends[m - first] = to(m);
+    n += s.ends[m - first] - from(m);
+  }
   s.resize(n);
   s.partner.resize(n);
-  s.ends.resize(last - first);
   std::size_t i = 0;
   for (std::size_t m = first; m < last; ++m) {
-    for (std::size_t e = from(m); e < to(m); ++e, ++i) {
+    const std::size_t end = s.ends[m - first];
+    for (std::size_t e = from(m); e < end; ++e, ++i) {
       const std::size_t p = list[e];
       s.partner[i] = p;
       s.cx[i] = a.x[p];
@@ -36,16 +41,6 @@ std::size_t gather(const SweepArrays& a, std::span<const std::size_t> list, std:
     s.ends[m - first] = i;
   }
   return n;
-}
-
-// Passes 1–3 of pair_terms.hpp over the n entries of s; returns the pairs within the cut-off.
-std::size_t evaluate(const geometry::Domain& d, const ContactPotential& potential, std::size_t n, PairScratch& s,
-                     bool& coincident) {
-  pair_separations(d, n, s);
-  const double rc = potential.cutoff();
-  const std::size_t k = pairs_within(rc * rc, n, s, coincident);
-  pair_weights(potential, k, s);
-  return k;
 }
 
 void store(const SweepArrays& a, std::size_t m, const PairSums& acc) {
@@ -71,7 +66,7 @@ void below_range(const geometry::Domain& d, const ContactPotential& potential, c
     const std::size_t last = std::min(hi, first + kChunk);
     const std::size_t n = gather(a, list, first, last, from, to, s);
     if (n == 0) continue;
-    const std::size_t k = evaluate(d, potential, n, s, coincident);
+    const std::size_t k = evaluate_pairs(d, potential, n, s, coincident);
     std::size_t q = 0;
     for (std::size_t m = first; m < last; ++m) {
       const std::size_t end = s.ends[m - first];
@@ -92,7 +87,7 @@ void sweep_range(const geometry::Domain& d, const ContactPotential& potential, c
     const std::size_t last = std::min(hi, first + kChunk);
     const std::size_t n = gather(a, list, first, last, from, to, s);
     if (n == 0) continue;  // no pair above these markers: their sums are complete
-    const std::size_t k = evaluate(d, potential, n, s, coincident);
+    const std::size_t k = evaluate_pairs(d, potential, n, s, coincident);
     std::size_t q = 0;
     for (std::size_t m = first; m < last; ++m) {
       const std::size_t end = s.ends[m - first];

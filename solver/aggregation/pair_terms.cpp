@@ -75,6 +75,15 @@ void pair_weights(const ContactPotential& potential, std::size_t k, PairScratch&
   for (std::size_t q = 0; q < k; ++q) w[q] = dphi[q] * (ml[h[q]] * cl[h[q]]) / hr[q];  // symmetric in (m, n) bit for bit
 }
 
+std::size_t evaluate_pairs(const geometry::Domain& d, const ContactPotential& potential, std::size_t n,
+                           PairScratch& s, bool& coincident) {
+  pair_separations(d, n, s);
+  const double rc = potential.cutoff();
+  const std::size_t k = pairs_within(rc * rc, n, s, coincident);
+  pair_weights(potential, k, s);
+  return k;
+}
+
 PairSums marker_sums(const PairScratch& s, std::size_t& q, std::size_t k, std::size_t end) {
   PairSums acc;  // in registers
   for (; q < k && s.hits[q] < end; ++q) {

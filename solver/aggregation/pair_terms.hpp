@@ -53,6 +53,10 @@ void pair_separations(const geometry::Domain& d, std::size_t n, PairScratch& s);
 std::size_t pairs_within(double rc2, std::size_t n, PairScratch& s, bool& coincident);
 // Pass 3 over the k pairs of s.hits: s.hr, s.phi, s.dphi, s.on and s.w.
 void pair_weights(const ContactPotential& potential, std::size_t k, PairScratch& s);
+// Passes 1–3 over the n candidates of s with the potential's cut-off; returns the pairs within
+// it (`coincident` as pairs_within).
+std::size_t evaluate_pairs(const geometry::Domain& d, const ContactPotential& potential, std::size_t n,
+                           PairScratch& s, bool& coincident);
 // One marker's sums over the pairs q … whose candidate index is below `end`, in order; q is
 // left at the next marker's first pair.
 PairSums marker_sums(const PairScratch& s, std::size_t& q, std::size_t k, std::size_t end);
