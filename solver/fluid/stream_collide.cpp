@@ -14,7 +14,10 @@
 //  - Interior nodes take a branch-free loop over x that the compiler vectorises
 //    (nine source streams, each written back in place). Not `omp simd`: GCC 12
 //    privatises the node's f[9] per SIMD lane and then cannot vectorise the loop.
-//    The outermost rows and columns take the general path with boundary handling.
+//    Rows along a wall take it too, each bounced source being the node's own opposite
+//    slot (a moving wall's term added to that slot first); only the first and last node
+//    of a row in a pull_swap step (and in a local step beside a moving side wall) take
+//    the general path with boundary handling.
 //    Each span starts its vector loop at the first cache-line aligned node (the few
 //    nodes before it go through the loop's scalar remainder).
 //    Both paths collide through the same node_update() → collide_node().
@@ -156,16 +159,40 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
       }
     }
   };
-  if (y == 0 || y == g.ny - 1 || g.nx < 3) {
+  if (g.nx < 3) {
     for (int x = 0; x < g.nx; ++x) general(x);
     return;
   }
-  general(0);
-  const int begin = 1, end = g.nx - 1;
+  // The row's run of nodes that the vector loop takes (the "full rows", docs/performance.md):
+  // every node whose nine sources are each a contiguous stream along x. A pull_swap step's
+  // first and last nodes wrap across a periodic side or bounce off a side wall, so they take
+  // the general path; a local step reads every node's own slots, so only a side with a wall
+  // term (moving) keeps its end node general.
+  const bool ends_general = Step == AaStep::pull_swap || a.boundaries.left.type == SideType::moving_wall ||
+                            a.boundaries.right.type == SideType::moving_wall;
+  const int begin = ends_general ? 1 : 0, end = ends_general ? g.nx - 1 : g.nx;
+  if (ends_general) general(0);
   double* src[Q];
   const std::size_t n0 = g.index(begin, y);
   for (int i = 0; i < Q; ++i) {
-    src[i] = Step == AaStep::pull_swap ? F + i * N + g.index(begin - cx[i], y - cy[i]) : F + opposite[i] * N + n0;
+    // Across the bottom or top (only on rows 0 and ny − 1): wrapped when periodic, else the
+    // halfway bounce-back's own opposite slot F[ī·N + n] (source_slot, stream_collide.hpp).
+    const int sy = y - cy[i];
+    const Side* crossed = sy < 0 ? &a.boundaries.bottom : sy >= g.ny ? &a.boundaries.top : nullptr;
+    const bool bounced = crossed != nullptr && crossed->type != SideType::periodic;
+    if (Step == AaStep::local || bounced) {
+      src[i] = F + opposite[i] * N + n0;
+    } else {
+      src[i] = F + i * N + g.index(begin - cx[i], (sy + g.ny) % g.ny);
+    }
+    // A moving wall's term goes into the bounced value before the loop reads it: the slot
+    // then holds F[ī·N + n] + wall_term, the general path's sum, which the collision
+    // overwrites (the slot is node n's alone in both steps).
+    if (bounced && crossed->type == SideType::moving_wall) {
+      const double term = wall_term(*crossed, i);
+      double* slot = src[i];
+      for (int k = 0; k < end - begin; ++k) slot[k] += term;
+    }
   }
   // Split off the head up to the first cache-line aligned node of s_0 (the same
   // per-node arithmetic), so the vector loop's aligned streams never straddle two lines.
@@ -177,7 +204,7 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
     for (int i = 0; i < Q; ++i) src[i] += head;
     interior_span<Model, TauField, HasForce, ForceField, Velocity>(in, src, n0 + head, len - head);
   }
-  general(g.nx - 1);
+  if (ends_general) general(g.nx - 1);
 }
 
 // Row y with the kernel variant its inputs need: τ node by node only where the row's τ
