@@ -55,6 +55,33 @@ void weights_of_block(const double* __restrict X, long n, int* __restrict i0, do
   for (long k = 0; k < n; ++k) weights_1d<K>(X[k], i0[k], w + k * K::width);
 }
 
+// One marker's interpolation (model.md eq 2.3) on a four-wide support that lies wholly inside
+// its rows, with the four rows side by side in the lanes of a vector: lane a takes
+// r_a = Σ_b v(i0 + b, j_a) w_x[b] in the order b = 0 … 3, starting from +0, as the scalar loop's
+// rx does (the same operations in the same order on the same operands: the same bits); the rows
+// are then summed one by one in the order a = 0 … 3, a row beyond a wall (present[a] false) left
+// out, as the scalar loop's `continue`. rows_x[a], rows_y[a]: the first support node of row a
+// (any valid row where the row is absent; its lane is computed and not used).
+using Lanes4 = double __attribute__((vector_size(32)));
+inline void interpolate_rows_of_four(const double* const* rows_x, const double* const* rows_y, const bool* present,
+                                     const double* wx, const double* wy, double& Ux, double& Uy) {
+  Lanes4 rx = {0.0, 0.0, 0.0, 0.0}, ry = {0.0, 0.0, 0.0, 0.0};
+  for (int b = 0; b < 4; ++b) {
+    const Lanes4 column_x = {rows_x[0][b], rows_x[1][b], rows_x[2][b], rows_x[3][b]};
+    const Lanes4 column_y = {rows_y[0][b], rows_y[1][b], rows_y[2][b], rows_y[3][b]};
+    rx = rx + column_x * wx[b];
+    ry = ry + column_y * wx[b];
+  }
+  double sx = 0.0, sy = 0.0;
+  for (int a = 0; a < 4; ++a) {
+    if (!present[a]) continue;
+    sx += rx[a] * wy[a];
+    sy += ry[a] * wy[a];
+  }
+  Ux = sx;
+  Uy = sy;
+}
+
 // `weights(m, i0, wx, j0, wy)` gives marker m's support origin and 1D weights: computed
 // from (X, Y), or the ones spread() computed for the same positions.
 template <class K, class Weights>
@@ -67,6 +94,23 @@ void interpolate_impl(const geometry::Domain& d, long M, const Weights& weights,
     int i0, j0;
     double wx[W], wy[W];
     weights(static_cast<std::size_t>(m), i0, wx, j0, wy);
+    if constexpr (W == 4) {
+      if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside its rows: the rows in vector lanes
+        const double* rows_x[W];
+        const double* rows_y[W];
+        bool present[W];
+        for (int a = 0; a < W; ++a) {
+          int j = j0 + a;
+          if (d.periodic_y) j = geometry::wrap_periodic(j, ny);
+          present[a] = j >= 0 && j < ny;  // beyond a wall: no node (geometry/domain.hpp)
+          const std::size_t n = d.grid.index(i0, present[a] ? j : 0);
+          rows_x[a] = ux.data() + n;
+          rows_y[a] = uy.data() + n;
+        }
+        interpolate_rows_of_four(rows_x, rows_y, present, wx, wy, Ux[m], Uy[m]);
+        continue;
+      }
+    }
     double sx = 0.0, sy = 0.0;
     for (int a = 0; a < W; ++a) {
       int j = j0 + a;

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "common/portable_sincos.hpp"
 #include "ib/kernel.hpp"
 #include "ib/transfer.hpp"
 
@@ -208,4 +209,68 @@ TEST(Transfer, RejectsBadInput) {
   EXPECT_THROW(tr.spread(X, Y, F, F, f.x, f.y), std::domain_error);
   std::vector<double> small(10);
   EXPECT_THROW(tr.spread(Y, Y, F, F, small, small), std::invalid_argument);
+}
+
+// The 1D weight of support node b of a marker at X (origin i0): φ(X − (i0 + b + ½)), for the
+// cosine kernel in the form the code evaluates it (model.md eq 2.4a, through sin and cos of πx/2).
+namespace {
+double weight(KernelType t, double X, int i0, int b) {
+  if (t != KernelType::cosine4) return phi(t, X - (i0 + b + 0.5));
+  double s, c;
+  numeric::sin_cos_half_pi(X - (i0 + 1.5), s, c);
+  const double w[4] = {0.25 * (1.0 - s), 0.25 * (1.0 + c), 0.25 * (1.0 + s), 0.25 * (1.0 - c)};
+  return w[b];
+}
+}  // namespace
+
+// Interpolation as model.md eq 2.3 writes it, one marker at a time in the code's order (each
+// row's sum over b from +0, then the rows from +0, a row beyond a wall left out): the kernel's
+// path, whichever it takes (the four-wide supports inside their rows go through vector lanes,
+// one row per lane), gives these bits exactly, near walls, across periodic sides and inside.
+TEST(Transfer, InterpolationIsTheOrderedSumBitForBit) {
+  for (const bool periodic_y : {false, true}) {
+    const Domain d{Grid{20, 14}, true, periodic_y};
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> value(-1.0, 1.0);
+    Field u(d.grid);
+    for (std::size_t n = 0; n < d.grid.size(); ++n) {
+      u.x[n] = value(rng);
+      u.y[n] = value(rng);
+    }
+    // Inside, next to both walls (or across the periodic bottom and top) and across the sides.
+    Markers m = random_markers(400, 0.0, 14.0, 11);
+    for (double y : {0.05, 0.6, 1.3, 12.7, 13.4, 13.95}) {
+      for (double x : {0.2, 7.3, 19.8}) {
+        m.X.push_back(x);
+        m.Y.push_back(y);
+      }
+    }
+    for (KernelType t : kAllKernels) {
+      Transfer tr(t, d);
+      std::vector<double> Ux(m.X.size()), Uy(m.X.size());
+      tr.interpolate(m.X, m.Y, u.x, u.y, Ux, Uy);
+      const int w = width(t);
+      for (std::size_t k = 0; k < m.X.size(); ++k) {
+        const int i0 = support_start(m.X[k], w), j0 = support_start(m.Y[k], w);
+        double sx = 0.0, sy = 0.0;
+        for (int a = 0; a < w; ++a) {
+          int j = j0 + a;
+          if (periodic_y) j = (j % 14 + 14) % 14;
+          else if (j < 0 || j >= 14) continue;
+          double rx = 0.0, ry = 0.0;
+          for (int b = 0; b < w; ++b) {
+            const int i = ((i0 + b) % 20 + 20) % 20;
+            const double wb = weight(t, m.X[k], i0, b);
+            rx += u.x[d.grid.index(i, j)] * wb;
+            ry += u.y[d.grid.index(i, j)] * wb;
+          }
+          const double wa = weight(t, m.Y[k], j0, a);
+          sx += rx * wa;
+          sy += ry * wa;
+        }
+        EXPECT_EQ(Ux[k], sx) << to_string(t) << " marker " << k << " periodic_y " << periodic_y;
+        EXPECT_EQ(Uy[k], sy) << to_string(t) << " marker " << k << " periodic_y " << periodic_y;
+      }
+    }
+  }
 }
