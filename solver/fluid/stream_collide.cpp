@@ -163,11 +163,11 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
     for (int x = 0; x < g.nx; ++x) general(x);
     return;
   }
-  // The row's run of nodes that the vector loop takes (the "full rows", docs/performance.md):
-  // every node whose nine sources are each a contiguous stream along x. A pull_swap step's
-  // first and last nodes wrap across a periodic side or bounce off a side wall, so they take
-  // the general path; a local step reads every node's own slots, so only a side with a wall
-  // term (moving) keeps its end node general.
+  // The row's run of nodes that the vector loop takes: every node whose nine sources are each
+  // a contiguous stream along x (docs/performance.md, "Wall rows in the vector loop"). A
+  // pull_swap step's first and last nodes wrap across a periodic side or bounce off a side
+  // wall, so they take the general path; a local step reads every node's own slots, so only a
+  // side with a wall term (moving) keeps its end node general.
   const bool ends_general = Step == AaStep::pull_swap || a.boundaries.left.type == SideType::moving_wall ||
                             a.boundaries.right.type == SideType::moving_wall;
   const int begin = ends_general ? 1 : 0, end = ends_general ? g.nx - 1 : g.nx;
