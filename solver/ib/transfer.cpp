@@ -94,16 +94,20 @@ void interpolate_impl(const geometry::Domain& d, long M, const Weights& weights,
     int i0, j0;
     double wx[W], wy[W];
     weights(static_cast<std::size_t>(m), i0, wx, j0, wy);
+    // The support's rows: wrapped across a periodic side, absent beyond a wall (no node there,
+    // geometry/domain.hpp; an absent row is left out of the sum).
+    int row[W];
+    bool present[W];
+    for (int a = 0; a < W; ++a) {
+      row[a] = d.periodic_y ? geometry::wrap_periodic(j0 + a, ny) : j0 + a;
+      present[a] = row[a] >= 0 && row[a] < ny;
+    }
     if constexpr (W == 4) {
       if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside its rows: the rows in vector lanes
         const double* rows_x[W];
         const double* rows_y[W];
-        bool present[W];
         for (int a = 0; a < W; ++a) {
-          int j = j0 + a;
-          if (d.periodic_y) j = geometry::wrap_periodic(j, ny);
-          present[a] = j >= 0 && j < ny;  // beyond a wall: no node (geometry/domain.hpp)
-          const std::size_t n = d.grid.index(i0, present[a] ? j : 0);
+          const std::size_t n = d.grid.index(i0, present[a] ? row[a] : 0);
           rows_x[a] = ux.data() + n;
           rows_y[a] = uy.data() + n;
         }
@@ -113,9 +117,8 @@ void interpolate_impl(const geometry::Domain& d, long M, const Weights& weights,
     }
     double sx = 0.0, sy = 0.0;
     for (int a = 0; a < W; ++a) {
-      int j = j0 + a;
-      if (d.periodic_y) j = geometry::wrap_periodic(j, ny);
-      else if (j < 0 || j >= ny) continue;  // beyond a wall: no node (geometry/domain.hpp)
+      if (!present[a]) continue;
+      const int j = row[a];
       double rx = 0.0, ry = 0.0;
       if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside the row: no wrap, no drop
         const double* __restrict vx = ux.data() + d.grid.index(i0, j);

@@ -305,9 +305,9 @@ TEST(ChannelFlowRate, CasesIandII) {
                      -kInf, 0.0, io::Comparison::at_least, "informative: as above"});
   // The profiles across the channel at the highest flow rate, case I (Fig. IV-1's set-up).
   const FlowRun& shown = runs[kWallShearRates.size() - 1];
-  record.add_series({"velocity_profile_case_I_400", "Velocity across the channel, case I, 400 1/s (strain 200-400)",
+  record.add_series({"velocity_profile_case_I_400", "Velocity across the channel, case I, 400 1/s (" + vv::strain_window(kSettled, kStrain) + ")",
                      "y (um)", "u_x (um/s)", shown.profile_y, shown.velocity_profile, {}, false});
-  record.add_series({"haematocrit_profile_case_I_400", "Haematocrit across the channel, case I, 400 1/s (strain 200-400)",
+  record.add_series({"haematocrit_profile_case_I_400", "Haematocrit across the channel, case I, 400 1/s (" + vv::strain_window(kSettled, kStrain) + ")",
                      "y (um)", "area fraction", shown.profile_y, shown.haematocrit_profile, {}, false});
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();

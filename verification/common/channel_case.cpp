@@ -153,16 +153,21 @@ void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<
               r.max_area_change, r.wall_s, r.completed ? "" : ": ", r.diagnosis.c_str());
 }
 
+std::string strain_window(double from, double to) {
+  char window[48];
+  std::snprintf(window, sizeof window, "strain %g-%g", from, to);
+  return window;
+}
+
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
                         const SeedEnsemble& cfl, double from, double to) {
   const double lowest = -std::numeric_limits<double>::infinity();
-  char window[48];
-  std::snprintf(window, sizeof window, "over strain %g-%g", from, to);
+  const std::string window = "over " + strain_window(from, to);
   record.add_metric({"relative_apparent_viscosity_" + tag,
-                     std::string("ensemble mean of eta_rel ") + window + " (eq 12.1)", "", eta.mean, lowest, 0.0,
+                     "ensemble mean of eta_rel " + window + " (eq 12.1)", "", eta.mean, lowest, 0.0,
                      io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(eta.ci95)});
   record.add_metric({"cell_free_layer_normalised_" + tag,
-                     std::string("ensemble mean of delta* ") + window + " (eq 12.2)", "", cfl.mean, lowest, 0.0,
+                     "ensemble mean of delta* " + window + " (eq 12.2)", "", cfl.mean, lowest, 0.0,
                      io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(cfl.ci95)});
 }
 

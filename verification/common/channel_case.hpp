@@ -96,6 +96,8 @@ void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<
 // The informative metrics of a seed ensemble's means over strain from-to, suffixed `tag`:
 // relative_apparent_viscosity_<tag> and cell_free_layer_normalised_<tag>, each with its 95 %
 // half-width in the reason.
+// "strain 200-400": the label of a window of strain units, for records' texts.
+std::string strain_window(double from, double to);
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
                         const SeedEnsemble& cfl, double from, double to);
 
