@@ -94,10 +94,16 @@ struct EnsembleSpec {
   const char* name;
   double de_star;
   double shear_modulus_dyn_cm;
-  const char* requirement;
+  std::string requirement;
   const char* reference;
   const char* scene;
 };
+
+// "seeds 1-4, 400 strain units, means over strain 200-400 (four blocks of 50)", from the constants.
+std::string design() {
+  return "seeds " + std::to_string(kSeeds.front()) + "-" + std::to_string(kSeeds.back()) + ", " +
+         vv::strain_design(kStrain, kSettled, kBlocks);
+}
 
 void run_ensemble(const EnsembleSpec& spec) {
   const char* kCase = spec.name;
@@ -145,7 +151,7 @@ void run_ensemble(const EnsembleSpec& spec) {
                           {{"wall_shear_rate_per_s", rate}, {"seed", static_cast<double>(kSeeds[si])}}, kSettled,
                           kStrain, kBlocks, tag(rate) + " seed " + std::to_string(kSeeds[si]));
     const std::string t = tag(rate);
-    record.add_metric({"completed_seeds_" + t, "seeds (of 4) that ran their 400 strain units", "",
+    record.add_metric({"completed_seeds_" + t, "seeds (of 4) that ran their " + vv::fmt("%g", kStrain) + " strain units", "",
                        static_cast<double>(s.completed), 4.0, 0.0, io::Comparison::at_least,
                        "issue 19 item 6: at the scene's resolution no membrane tears (verification.channel_resolution)"});
     record.add_metric({"max_edge_strain_" + t, "largest edge strain |l/l0 - 1| of any cell over the runs", "",
@@ -155,7 +161,7 @@ void run_ensemble(const EnsembleSpec& spec) {
                        kAreaLimit, 0.0, io::Comparison::at_most, "issue 19 item 6: every cell's area within 1 %"});
     if (s.ensemble) {
       vv::add_ensemble_means(record, t, s.eta, s.cfl, kSettled, kStrain);
-      record.add_metric({"discharge_haematocrit_" + t, "ensemble mean of H_d over strain 200-400", "", s.hd.mean, lowest,
+      record.add_metric({"discharge_haematocrit_" + t, "ensemble mean of H_d over " + vv::strain_window(kSettled, kStrain), "", s.hd.mean, lowest,
                          0.0, io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(s.hd.ci95)});
     }
   }
@@ -242,7 +248,7 @@ TEST(ChannelFlowRateEnsemble, FourSeedsTwoRates) {
       {"validation.channel_flow_rate_ensemble", 0.0, 0.0,
        "The user's channel scene as it is (case I RBCs, no aggregation, 2D haematocrit 0.3, h = 0.25 um, 110 "
        "markers, time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 "
-       "mu gamma_w), seeds 1-4, 400 strain units, means over strain 200-400 (four blocks of 50): every run completes "
+       "mu gamma_w), " + design() + ": every run completes "
        "with areas within 1 % and edge strains within 0.5; the relative apparent viscosity's ensemble mean falls "
        "from 50 to 200 1/s and the normalised cell-free layer's rises (thesis Figs. IV-1, IV-2); each difference "
        "reported against its 95 % half-width.",
@@ -258,7 +264,7 @@ TEST(ChannelFlowRateEnsemble, AggregatedFourSeedsTwoRates) {
       {"validation.channel_flow_rate_ensemble_aggregated", 5.0, 0.0,
        "The user's channel scene with the thesis's Morse aggregation De* = 5 (case I RBCs, 2D haematocrit 0.3, h = "
        "0.25 um, 110 markers, time mapping Re = 0.1) in its 30 um channel at plasma wall shear rates 50 and 200 1/s "
-       "(repulsion 2 mu gamma_w), seeds 1-4, 400 strain units, means over strain 200-400 (four blocks of 50): every "
+       "(repulsion 2 mu gamma_w), " + design() + ": every "
        "run completes with areas within 1 % and edge strains within 0.5; the relative apparent viscosity's ensemble "
        "mean falls from 50 to 200 1/s and the normalised cell-free layer's rises (thesis Figs. IV-1, IV-2, whose "
        "cells aggregate at De* = 5); each difference reported against its 95 % half-width.",
@@ -274,8 +280,8 @@ TEST(ChannelFlowRateEnsemble, AggregatedCaseIIFourSeedsTwoRates) {
       {"validation.channel_flow_rate_ensemble_aggregated_case_ii", 5.0, 20.0e-3,
        "The user's channel scene with the thesis's case II membrane (E_S = 20e-3 dyn/cm, the scene's other membrane "
        "values) and Morse aggregation De* = 5 (2D haematocrit 0.3, h = 0.25 um, 110 markers, time mapping Re = 0.1) "
-       "in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), seeds 1-4, 400 "
-       "strain units, means over strain 200-400 (four blocks of 50): every run completes with areas within 1 % and "
+       "in its 30 um channel at plasma wall shear rates 50 and 200 1/s (repulsion 2 mu gamma_w), " + design() +
+       ": every run completes with areas within 1 % and "
        "edge strains within 0.5; the relative apparent viscosity's ensemble mean falls from 50 to 200 1/s and the "
        "normalised cell-free layer's rises (thesis Figs. IV-1, IV-2); each difference reported against its 95 % "
        "half-width.",

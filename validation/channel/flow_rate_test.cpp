@@ -183,7 +183,8 @@ TEST(ChannelFlowRate, CasesIandII) {
   record.set_requirement(
       "The channel scene in a 50 um lumen (40 um long, 2D haematocrit 0.3, Morse aggregation De* = 5, time mapping "
       "Re = 0.1) for case I (E_S = 6e-3 dyn/cm) and case II (20e-3) RBCs at plasma wall shear rates 50, 100, 200 and "
-      "400 1/s, 400 strain units each, means over strain 200-400 (thesis Figs. IV-1, IV-2, IV-4): the relative apparent "
+      "400 1/s, " + vv::fmt("%g", kStrain) + " strain units each, means over " + vv::strain_window(kSettled, kStrain) +
+      " (thesis Figs. IV-1, IV-2, IV-4): the relative apparent "
       "viscosity falls with flow rate and the normalised cell-free layer widens (least-squares slopes against ln "
       "gamma_w), case II gives the higher viscosity, D_yy has a diffusive window and grows with flow rate; no marker closer than d/4 to another cell's or to a wall, "
       "every cell's area within 1 %. One seed.");
@@ -192,7 +193,8 @@ TEST(ChannelFlowRate, CasesIandII) {
       "Hct 43 % (Kim laboratory) and Pries et al. (1992) in vitro viscosity: informative (3D blood, 2D cells).");
   record.set_parameter("scene", std::string(kScene) + " with domain 40 x 50 um, h = 0.4 um (69 markers per cell), "
                                 "min_gap 0.4 um, aggregation.de_star = 5, repulsion P = 2 mu gamma_w, F = 2 mu "
-                                "gamma_w / H, tau - 1/2 = 0.5 sqrt(min(1, gamma_w / 100 1/s)), 400 strain units, seed 1");
+                                "gamma_w / H, tau - 1/2 = 0.5 sqrt(min(1, gamma_w / 100 1/s)), " +
+                                vv::fmt("%g", kStrain) + " strain units, seed 1");
   std::vector<FlowRun> runs(kMembranes.size() * kWallShearRates.size());
   std::vector<std::function<void()>> jobs;
   for (std::size_t c = 0; c < kMembranes.size(); ++c)

@@ -159,6 +159,16 @@ std::string strain_window(double from, double to) {
   return window;
 }
 
+std::string strain_design(double strain, double from, int blocks) {
+  static constexpr const char* kWords[] = {"zero", "one", "two", "three", "four", "five",
+                                           "six", "seven", "eight", "nine", "ten"};
+  const std::string count = blocks >= 0 && blocks <= 10 ? kWords[blocks] : std::to_string(blocks);
+  char text[128];
+  std::snprintf(text, sizeof text, "%g strain units, means over %s (%s blocks of %g)", strain,
+                strain_window(from, strain).c_str(), count.c_str(), (strain - from) / blocks);
+  return text;
+}
+
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
                         const SeedEnsemble& cfl, double from, double to) {
   const double lowest = -std::numeric_limits<double>::infinity();

@@ -98,6 +98,9 @@ void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<
 // half-width in the reason.
 // "strain 200-400": the label of a window of strain units, for records' texts.
 std::string strain_window(double from, double to);
+// "400 strain units, means over strain 200-400 (four blocks of 50)": a run's length, its settled
+// window and the window's blocks, for records' texts.
+std::string strain_design(double strain, double from, int blocks);
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
                         const SeedEnsemble& cfl, double from, double to);
 

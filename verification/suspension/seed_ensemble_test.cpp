@@ -123,8 +123,9 @@ void seed_ensemble(const Channel& channel) {
   for (long s : channel.seeds) seeds += (seeds.empty() ? "" : ", ") + std::to_string(s);
   record.set_requirement(
       "The channel scene (case I RBCs, 2D haematocrit 0.3, time mapping Re = 0.1) in a " + std::string(height) +
-      " um channel run with four seeds (" + seeds + ") for 400 strain units at the wall shear rate: the time means "
-      "over strain 200-400 of the relative apparent viscosity, the normalised cell-free layer and the discharge "
+      " um channel run with four seeds (" + seeds + ") for " + vv::fmt("%g", kStrain) + " strain units at the wall "
+      "shear rate: the time means over " + vv::strain_window(kSettled, kStrain) + " of the relative apparent "
+      "viscosity, the normalised cell-free layer and the discharge "
       "haematocrit agree between the seeds within their statistical error (one-way analysis of variance of the seeds' "
       "block means, four blocks of 50 strain units each: F below its 99 % quantile, 5.953 for 3 and 12 degrees of "
       "freedom); ensemble means with 95 % confidence intervals and the chi^2 homogeneity statistic reported; every "
@@ -136,7 +137,8 @@ void seed_ensemble(const Channel& channel) {
                 channel.markers);
   record.set_parameter("scene", "scenes/rbc_channel.toml with domain 30 x " + std::string(height) + " um, " +
                                     resolution + ", min_gap 0.4 um, F = 2 mu gamma_w / H "
-                                    "(wall shear rate 400 1/s), 1 s (400 strain units), seeds " + seeds +
+                                    "(wall shear rate 400 1/s), " + vv::fmt("%g", kStrain / kWallShearRate) + " s (" +
+                                    vv::fmt("%g", kStrain) + " strain units), seeds " + seeds +
                                     " (1-4 chose the window and the test)");
   std::vector<SeedRun> runs(channel.seeds.size());
   std::vector<std::function<void()>> jobs;
@@ -156,7 +158,7 @@ void seed_ensemble(const Channel& channel) {
   bool all_completed = true;
   for (const SeedRun& r : runs) {
     all_completed = all_completed && r.completed;
-    record.add_metric({"completed_seed" + std::to_string(r.seed), "1 when the run reached its 400 strain units, 0 "
+    record.add_metric({"completed_seed" + std::to_string(r.seed), "1 when the run reached its " + vv::fmt("%g", kStrain) + " strain units, 0 "
                        "when the health monitor stopped it or its scene could not be set up", "",
                        r.completed ? 1.0 : 0.0, 1.0, 0.0, io::Comparison::at_least,
                        r.completed ? "the statistics need the whole window" : "stopped: " + r.diagnosis});
