@@ -52,7 +52,6 @@ struct Engine {
   double min_wall_gap = std::numeric_limits<double>::infinity();
   std::vector<std::size_t>& count;
   std::vector<PairScratch>& per_thread;
-  PairTermStore& terms;
   std::atomic<bool> coincident{false};
   std::size_t beyond_wall = SIZE_MAX;  // the first marker on or beyond a wall (add_walls is serial)
   double beyond_wall_gap = 0.0;
@@ -70,8 +69,7 @@ struct Engine {
         rmin(ws.rmin),
         W(ws.W),
         count(ws.count),
-        per_thread(ws.per_thread),
-        terms(ws.terms) {
+        per_thread(ws.per_thread) {
     check_view(v);
     W.clear();
     const std::size_t N = v.x.size();
@@ -372,10 +370,10 @@ void CellContacts::pair_sums_all(E& eng) {
   const std::size_t N = eng.v.x.size();
   if (!lists_.valid(eng.v)) lists_.build(eng.v, eng.cell_of, threads_forces(N));
   // Over the threads from kParallelMarkers on, unless already inside the caller's region (a
-  // team of one there); each pair evaluated once (pair_sweep.hpp).
+  // team of one there); each pair evaluated once within a thread's range (pair_sweep.hpp).
   const int threads = threads_forces(N) && !omp_in_parallel() ? omp_get_max_threads() : 1;
   const SweepArrays arrays{eng.v.x, eng.v.y, eng.ell, eng.S, eng.px, eng.py, eng.rmin, eng.count};
-  if (sweep_pair_lists(domain_, potential_, lists_, arrays, threads, eng.per_thread, eng.terms))
+  if (sweep_pair_lists(domain_, potential_, lists_, arrays, threads, eng.per_thread))
     eng.coincident.store(true, std::memory_order_relaxed);
 }
 

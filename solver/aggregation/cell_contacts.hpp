@@ -48,7 +48,6 @@
 
 #include "aggregation/contact_law.hpp"
 #include "aggregation/pair_lists.hpp"
-#include "aggregation/pair_sweep.hpp"
 #include "aggregation/pair_terms.hpp"
 #include "common/state_record.hpp"
 #include "geometry/domain.hpp"
@@ -66,7 +65,6 @@ struct ContactWorkspace {
   std::vector<std::size_t> cell_of, count, offsets;
   std::vector<double> edge, ell, S, px, py, rmin, W;
   std::vector<PairScratch> per_thread;
-  PairTermStore terms;  // the pairs' terms on several threads (pair_sweep.hpp)
 };
 }  // namespace detail
 

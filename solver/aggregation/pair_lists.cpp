@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <stdexcept>
 
 #include "aggregation/pair_terms.hpp"
 
@@ -197,17 +196,6 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
     std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(begin[m]), length[m], first);
     upper_[m] = static_cast<std::size_t>(std::upper_bound(first, last, m) - list_.begin());  // ascending lists
   }
-  // The mirror entries: owners m in ascending order meet each partner n's lower partners in
-  // ascending order, which is the order of n's lower entries.
-  mirror_.resize(list_.size());
-  cursor_.assign(start_.begin(), start_.end() - 1);
-  owned_before_.assign(N + 1, 0);
-  for (std::size_t m = 0; m < N; ++m) {
-    for (std::size_t e = upper_[m]; e < start_[m + 1]; ++e) mirror_[cursor_[list_[e]]++] = e;
-    owned_before_[m + 1] = owned_before_[m] + (start_[m + 1] - upper_[m]);
-  }
-  for (std::size_t m = 0; m < N; ++m)
-    if (cursor_[m] != upper_[m]) throw std::logic_error("pair lists: a pair is listed by one of its markers only");
   x_.assign(v.x.begin(), v.x.end());
   y_.assign(v.y.begin(), v.y.end());
   offsets_.assign(v.offsets.begin(), v.offsets.end());

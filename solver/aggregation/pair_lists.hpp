@@ -39,13 +39,6 @@ class PairLists {
   // upper()[m]: the first entry of marker m whose partner has a higher index (start()[m + 1]
   // if none): the entries upper()[m] … start()[m+1] hold the pairs (m, n > m), each pair once.
   std::span<const std::size_t> upper() const { return upper_; }
-  // For an entry e of marker m below upper()[m] (a partner n < m): the entry of the same pair
-  // in n's upper part, where n lists m. Lets a marker read the terms its partners below it
-  // evaluated for their pairs with it (pair_sweep.hpp).
-  std::span<const std::size_t> mirror() const { return mirror_; }
-  // owned_before()[m]: the pairs held by the upper parts of markers 0 … m − 1 (size N + 1),
-  // for splitting the pairs' evaluation evenly over threads.
-  std::span<const std::size_t> owned_before() const { return owned_before_; }
   double skin() const { return skin_; }
   int bins_x() const { return nbx_; }
   int bins_y() const { return nby_; }
@@ -55,8 +48,7 @@ class PairLists {
   geometry::Domain domain_;
   double cutoff_ = 0.0, skin_ = 0.0;
   int nbx_ = 1, nby_ = 1;
-  std::vector<std::size_t> start_, list_, upper_, mirror_, owned_before_;
-  std::vector<std::size_t> cursor_;     // build scratch: each marker's next lower entry
+  std::vector<std::size_t> start_, list_, upper_;
   std::vector<double> x_, y_;           // the positions they were built at
   std::vector<std::size_t> offsets_;    // the cells they were built for
   std::size_t builds_ = 0;

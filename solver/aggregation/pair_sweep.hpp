@@ -1,20 +1,17 @@
 #pragma once
 // Every marker's pair sums over the pair lists (docs/model.md §4, §4b; cell_contacts.hpp), each
-// pair's terms evaluated once and added to both of its markers, every marker adding its partners
-// in ascending order (below it, then above it), so the sums are the same bits for any thread
-// count. Each pair's terms are the same bits seen from either end (Φ, Φ', r and w are symmetric
-// in (m, n) and X_n − X_m = −(X_m − X_n) exactly: pair_terms.hpp).
+// pair's terms evaluated once where the threads allow it and added to both of its markers.
 //
-// One thread sweeps the markers in ascending order over their partners above them and adds each
-// pair to both markers at once: a marker's partners below it have been added by their own sweeps
-// by the time it is swept.
-//
-// Several threads work in two phases. First each thread evaluates the pairs of its share of the
-// owners (a pair belongs to its lower marker; the shares hold equal numbers of pairs) and keeps
-// each pair's terms at its list entry (PairTermStore). Then, after a barrier, each thread sums
-// its share of the markers: a marker reads its pairs with the partners below it through
-// PairLists::mirror() and those above it at its own entries. No pair is evaluated twice and no
-// marker is written by two threads.
+// The markers are split into one contiguous range per thread. A thread first adds to each of
+// its markers the pairs with partners below its range (evaluated for that marker alone), then
+// sweeps its markers in ascending order over their partners above them: a pair inside the
+// range goes to both markers, a pair reaching above the range to the swept marker alone (the
+// thread above adds it to its own). So every marker adds its partners in ascending order, as a
+// marker summing its own list would: below its range, then inside it (from the sweeps of the
+// markers below it), then above it (its own sweep). Each pair's terms are the same bits seen
+// from either end (Φ, Φ', r and w are symmetric in (m, n) and X_n − X_m = −(X_m − X_n)
+// exactly: pair_terms.hpp), so the sums are the same bits for any thread count. On one thread
+// every pair is evaluated once; on T threads the pairs between ranges twice.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -34,19 +31,9 @@ struct SweepArrays {
   std::span<std::size_t> count;
 };
 
-// The terms of every evaluated pair at its entry of the lists (the two-phase sweep): whether it
-// interacts (within the cut-off and on), Φ, w, X_m − X_n of its owner m and r.
-struct PairTermStore {
-  std::vector<unsigned char> on;
-  std::vector<double> phi, w, dx, dy, r;
-  void resize(std::size_t entries);
-};
-
-// The sums of every marker over the lists, on `threads` threads (1: the one-thread sweep).
-// Returns whether two markers of different cells sit on one point (a pair at r = 0, which has no
-// direction).
+// The sums of every marker over the lists; `threads` ranges (1: one thread). Returns whether
+// two markers of different cells sit on one point (a pair at r = 0, which has no direction).
 bool sweep_pair_lists(const geometry::Domain& domain, const ContactPotential& potential, const PairLists& lists,
-                      const SweepArrays& a, int threads, std::vector<PairScratch>& per_thread,
-                      PairTermStore& terms);
+                      const SweepArrays& a, int threads, std::vector<PairScratch>& per_thread);
 
 }  // namespace erythro::aggregation
