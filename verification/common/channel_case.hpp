@@ -93,14 +93,15 @@ OneWayAnova one_way_anova(const std::vector<std::vector<double>>& groups);
 void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<std::string, io::Value> keys,
                      double from, double to, int blocks, const std::string& label);
 
-// The informative metrics of a seed ensemble's means over strain from-to, suffixed `tag`:
-// relative_apparent_viscosity_<tag> and cell_free_layer_normalised_<tag>, each with its 95 %
-// half-width in the reason.
 // "strain 200-400": the label of a window of strain units, for records' texts.
 std::string strain_window(double from, double to);
 // "400 strain units, means over strain 200-400 (four blocks of 50)": a run's length, its settled
 // window and the window's blocks, for records' texts.
 std::string strain_design(double strain, double from, int blocks);
+
+// The informative metrics of a seed ensemble's means over strain from-to, suffixed `tag`:
+// relative_apparent_viscosity_<tag> and cell_free_layer_normalised_<tag>, each with its 95 %
+// half-width in the reason.
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
                         const SeedEnsemble& cfl, double from, double to);
 
