@@ -370,10 +370,12 @@ void CellContacts::pair_sums_all(E& eng) {
   const std::size_t N = eng.v.x.size();
   if (!lists_.valid(eng.v)) lists_.build(eng.v, eng.cell_of, threads_forces(N));
   // Over the threads from kParallelMarkers on, unless already inside the caller's region (a
-  // team of one there); each pair evaluated once within a thread's range (pair_sweep.hpp).
+  // team of one there); each pair evaluated once within a thread's cells (pair_sweep.hpp),
+  // which are a slab of the domain (sweep_owners.hpp).
   const int threads = threads_forces(N) && !omp_in_parallel() ? omp_get_max_threads() : 1;
+  if (!work_.owners.fits(lists_, threads, N)) work_.owners.assign_slabs(domain_, eng.v, lists_, threads);
   const SweepArrays arrays{eng.v.x, eng.v.y, eng.ell, eng.S, eng.px, eng.py, eng.rmin, eng.count};
-  if (sweep_pair_lists(domain_, potential_, lists_, arrays, threads, eng.per_thread))
+  if (sweep_pair_lists(domain_, potential_, lists_, work_.owners, arrays, eng.per_thread))
     eng.coincident.store(true, std::memory_order_relaxed);
 }
 

@@ -2,16 +2,17 @@
 // Every marker's pair sums over the pair lists (docs/model.md §4, §4b; cell_contacts.hpp), each
 // pair's terms evaluated once where the threads allow it and added to both of its markers.
 //
-// The markers are split into one contiguous range per thread. A thread first adds to each of
-// its markers the pairs with partners below its range (evaluated for that marker alone), then
-// sweeps its markers in ascending order over their partners above them: a pair inside the
-// range goes to both markers, a pair reaching above the range to the swept marker alone (the
-// thread above adds it to its own). So every marker adds its partners in ascending order, as a
-// marker summing its own list would: below its range, then inside it (from the sweeps of the
-// markers below it), then above it (its own sweep). Each pair's terms are the same bits seen
-// from either end (Φ, Φ', r and w are symmetric in (m, n) and X_n − X_m = −(X_m − X_n)
-// exactly: pair_terms.hpp), so the sums are the same bits for any thread count. On one thread
-// every pair is evaluated once; on T threads the pairs between ranges twice.
+// Every cell belongs to one thread (sweep_owners.hpp). A thread visits in ascending order its
+// own markers and the other threads' markers with a partner of its own above them. An own
+// marker is swept over all its partners above it: each pair's terms to the marker (whose sums
+// hold its partners below it by then) and, for a partner of the same thread, to the partner as
+// well. Another thread's marker is swept over its partners of this thread above it, their terms
+// to those partners alone (its own thread adds them to it). So every marker adds its partners in
+// ascending order, as a marker summing its own list would, whoever evaluates them. Each pair's
+// terms are the same bits seen from either end (Φ, Φ', r and w are symmetric in (m, n) and
+// X_n − X_m = −(X_m − X_n) exactly: pair_terms.hpp), so the sums are the same bits for any
+// owners and any thread count. On one thread every pair is evaluated once; on T threads the
+// pairs between threads twice.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "aggregation/contact_law.hpp"
 #include "aggregation/pair_lists.hpp"
 #include "aggregation/pair_terms.hpp"
+#include "aggregation/sweep_owners.hpp"
 #include "geometry/domain.hpp"
 
 namespace erythro::aggregation {
@@ -31,9 +33,10 @@ struct SweepArrays {
   std::span<std::size_t> count;
 };
 
-// The sums of every marker over the lists; `threads` ranges (1: one thread). Returns whether
-// two markers of different cells sit on one point (a pair at r = 0, which has no direction).
+// The sums of every marker over the lists, on owners.threads() threads (owners made for these
+// lists). Returns whether two markers of different cells sit on one point (a pair at r = 0,
+// which has no direction).
 bool sweep_pair_lists(const geometry::Domain& domain, const ContactPotential& potential, const PairLists& lists,
-                      const SweepArrays& a, int threads, std::vector<PairScratch>& per_thread);
+                      const SweepOwners& owners, const SweepArrays& a, std::vector<PairScratch>& per_thread);
 
 }  // namespace erythro::aggregation

@@ -318,9 +318,9 @@ TEST(CellContacts, PairListsFollowMovingMarkersBitForBit) {
 
 TEST(CellContacts, PairListsSameOnAnyThreadCount) {
   // 3 000 markers (above kParallelMarkers): lists built and summed on 1, 2, 3 and 5 threads
-  // agree. Each thread sweeps its own range of markers, each pair inside it evaluated once
-  // and the pairs between ranges once from each side (pair_sweep.hpp): the ranges change
-  // with the thread count, the bits must not.
+  // agree. Each thread sweeps its own slab of cells, each pair inside it evaluated once and
+  // the pairs between slabs once from each side (pair_sweep.hpp, sweep_owners.hpp): the
+  // slabs change with the thread count, the bits must not.
   const geometry::Domain dom{Grid{200, 200}, true, true};
   const MorseParameters p{0.3, 2.5, 0.8, 6.0};
   const test_support::RingGrid rings(10.0, 19.5);

@@ -1,0 +1,126 @@
+// Unit tests of the pair sweep's owners (aggregation/sweep_owners.hpp, pair_sweep.hpp): any
+// owners give every marker's sums bit for bit, and the slabs cut across the shorter axis.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <optional>
+#include <cstddef>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "aggregation/pair_sweep.hpp"
+#include "aggregation/sweep_owners.hpp"
+#include "tests/aggregation/ring_grid.hpp"
+
+using namespace erythro;
+using namespace erythro::aggregation;
+
+namespace {
+
+const ContactLaw kLaw{MorseParameters{0.3, 2.5, 0.8, 6.0}, std::nullopt};
+
+// Every marker's sums (S, the pair force, the closest partner, the count) under some owners.
+struct Sums {
+  std::vector<double> ell, S, px, py, rmin;
+  std::vector<std::size_t> count;
+  explicit Sums(std::size_t N)
+      : ell(N), S(N, 0.0), px(N, 0.0), py(N, 0.0), rmin(N, std::numeric_limits<double>::infinity()), count(N, 0) {
+    for (std::size_t m = 0; m < N; ++m) ell[m] = 0.9 + 0.01 * static_cast<double>(m % 17);
+  }
+};
+
+Sums sweep(const geometry::Domain& dom, const MarkerView& v, const PairLists& lists, const SweepOwners& owners) {
+  Sums s(v.x.size());
+  std::vector<PairScratch> scratch;
+  const ContactPotential potential(kLaw);
+  EXPECT_FALSE(sweep_pair_lists(dom, potential, lists, owners,
+                                SweepArrays{v.x, v.y, s.ell, s.S, s.px, s.py, s.rmin, s.count}, scratch));
+  return s;
+}
+
+std::vector<std::size_t> cells_of(const MarkerView& v) {
+  std::vector<std::size_t> cell(v.x.size());
+  for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c)
+    std::fill(cell.begin() + static_cast<std::ptrdiff_t>(v.offsets[c]),
+              cell.begin() + static_cast<std::ptrdiff_t>(v.offsets[c + 1]), c);
+  return cell;
+}
+
+}  // namespace
+
+TEST(SweepOwners, AnyOwnersGiveTheSameSumsBitForBit) {
+  // Owners drawn at random per cell, so that a marker's partners below it interleave from
+  // several threads: its sums must still be those of one thread, bit for bit. Also more
+  // owners than the team has threads (they are then taken in turns).
+  const geometry::Domain dom{Grid{200, 200}, true, true};
+  const test_support::RingGrid rings(10.0, 19.5);
+  const MarkerView v = rings.view();
+  PairLists lists(dom, ContactPotential(kLaw).cutoff());
+  lists.build(v, cells_of(v), false);
+  SweepOwners one;
+  one.assign_slabs(dom, v, lists, 1);
+  const Sums a = sweep(dom, v, lists, one);
+  std::size_t pairs = 0;
+  for (const std::size_t k : a.count) pairs += k;
+  ASSERT_GT(pairs, 2000u);
+  std::mt19937 rng(7);
+  for (const int T : {2, 3, 4, 7}) {
+    std::vector<unsigned> cell_owner(v.offsets.size() - 1);
+    for (unsigned& o : cell_owner) o = static_cast<unsigned>(rng() % static_cast<unsigned>(T));
+    SweepOwners owners;
+    owners.assign(cell_owner, v, lists, T);
+    ASSERT_TRUE(owners.fits(lists, T, v.x.size()));
+    const Sums b = sweep(dom, v, lists, owners);
+    for (std::size_t m = 0; m < v.x.size(); ++m) {
+      ASSERT_EQ(a.S[m], b.S[m]) << m << " with " << T << " owners";
+      ASSERT_EQ(a.px[m], b.px[m]) << m << " with " << T << " owners";
+      ASSERT_EQ(a.py[m], b.py[m]) << m << " with " << T << " owners";
+      ASSERT_EQ(a.rmin[m], b.rmin[m]) << m << " with " << T << " owners";
+      ASSERT_EQ(a.count[m], b.count[m]) << m << " with " << T << " owners";
+    }
+  }
+}
+
+TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
+  // Walls along y, periodic along x: slabs of y have one cut, slabs of x two (the rings touch
+  // across the period); so two slabs of y, each of the 100 rings wholly on one side, 50 rings
+  // (1 500 markers) each.
+  const geometry::Domain channel{Grid{200, 200}, true, false};
+  const test_support::RingGrid rings(10.0, 19.5);
+  const MarkerView v = rings.view();
+  PairLists lists(channel, ContactPotential(kLaw).cutoff());
+  lists.build(v, cells_of(v), false);
+  SweepOwners owners;
+  owners.assign_slabs(channel, v, lists, 2);
+  double top0 = -1e300, bottom1 = 1e300;
+  std::size_t own0 = 0;
+  for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
+    double y = 0.0;
+    for (std::size_t m = v.offsets[c]; m < v.offsets[c + 1]; ++m) y += v.y[m];
+    y /= 30.0;
+    const unsigned o = owners.owner()[v.offsets[c]];
+    if (o == 0) top0 = std::max(top0, y), own0 += 30;
+    else bottom1 = std::min(bottom1, y);
+  }
+  EXPECT_LT(top0, bottom1);
+  EXPECT_EQ(own0, 1500u);
+  // Each thread visits its own 1 500 markers and the other's that reach it: a band, not all.
+  for (const int t : {0, 1}) {
+    EXPECT_GE(owners.visits(t).size(), 1500u);
+    EXPECT_LT(owners.visits(t).size(), 2000u);
+  }
+  // Periodic along both, the rings filling y but not x: slabs of x have one cut that parts
+  // pairs (their cut at the period runs through empty space), slabs of y two.
+  const geometry::Domain wide{Grid{400, 200}, true, true};
+  PairLists wide_lists(wide, ContactPotential(kLaw).cutoff());
+  wide_lists.build(v, cells_of(v), false);
+  owners.assign_slabs(wide, v, wide_lists, 2);
+  double right0 = -1e300, left1 = 1e300;
+  for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
+    const double x = v.x[v.offsets[c]] - 9.1;  // marker 0 of a ring sits at its centre + 9.1 along x
+    if (owners.owner()[v.offsets[c]] == 0) right0 = std::max(right0, x);
+    else left1 = std::min(left1, x);
+  }
+  EXPECT_LT(right0, left1);
+}
