@@ -11,23 +11,6 @@ namespace erythro::app {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr const char* kInterruptedName = "run.interrupted.h5";
-
-// The interrupted run's file in `dir`: run.h5, else the newest run.h5.partial-<pid> a killed
-// run left behind (io/atomic_file.hpp), else the run.interrupted.h5 an earlier restart set
-// aside and did not replace (it failed before its run), else "".
-std::string interrupted_run_file(const std::string& dir) {
-  const fs::path finished = fs::path(dir) / "run.h5";
-  if (fs::exists(finished)) return finished.string();
-  fs::path newest;
-  for (const fs::directory_entry& e : fs::directory_iterator(dir))
-    if (e.path().filename().string().rfind("run.h5.partial-", 0) == 0 &&
-        (newest.empty() || e.last_write_time() > fs::last_write_time(newest)))
-      newest = e.path();
-  if (newest.empty() && fs::exists(fs::path(dir) / kInterruptedName)) newest = fs::path(dir) / kInterruptedName;
-  return newest.string();
-}
-
 void refuse_changes(const std::string& stored, const std::string& now, const std::string& checkpoint_path) {
   std::string refused;
   for (const std::string& key : scene::changed_keys(stored, now))
@@ -46,18 +29,12 @@ Restart::Restart(const RunOptions& options) : checkpoint_(io::read_checkpoint(op
   refuse_changes(checkpoint_.scene_text, scene_.source_text, checkpoint_.path);
   restart_dir_ = options.restart_dir;
   out_dir_ = options.out_dir.empty() ? restart_dir_ : options.out_dir;
-  history_ = interrupted_run_file(options.restart_dir);
+  history_ = io::interrupted_run_file(options.restart_dir);
 }
 
 bool Restart::set_aside_interrupted_run() {
   if (!fs::exists(out_dir_) || !fs::equivalent(restart_dir_, out_dir_)) return false;
-  if (history_.empty()) return true;
-  const fs::path aside = fs::path(restart_dir_) / kInterruptedName;
-  if (fs::equivalent(history_, aside)) return true;
-  std::error_code ec;
-  fs::rename(history_, aside, ec);
-  if (ec) throw OutputError("cannot move the interrupted run's " + history_ + " to " + aside.string() + ": " + ec.message());
-  history_ = aside.string();
+  history_ = io::set_aside_interrupted_run(history_, restart_dir_);
   return true;
 }
 

@@ -62,6 +62,7 @@ Checkpoint read_file(const std::string& path) {
                      std::to_string(kFormat));
   c.step = static_cast<long>(h5::read_attr_double(meta.id(), "step"));
   c.scene_text = h5::read_attr_string(meta.id(), "scene_text");
+  if (h5::has_attr(meta.id(), "git_revision")) c.git_revision = h5::read_attr_string(meta.id(), "git_revision");
   h5::Handle group = h5::open_group(file.id(), "state");
   for (const std::string& name : h5::list(group.id())) c.state.put(name, h5::read_dataset(group.id(), name));
   if (h5::has_attr(group.id(), "empty_entries"))

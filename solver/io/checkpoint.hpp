@@ -25,6 +25,7 @@ struct Checkpoint {
   std::string path;        // the file it was read from
   long step = 0;           // steps done
   std::string scene_text;  // the scene as it ran (after --set overrides)
+  std::string git_revision;  // of the build that wrote it ("" in files that do not say)
   StateRecord state;
 };
 

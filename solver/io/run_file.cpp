@@ -13,6 +13,9 @@ RunFile::RunFile(const std::string& h5_path) : path_(h5_path) {
     status_ = h5::read_attr_string(meta.id(), "status");
     scene_text_ = h5::read_attr_string(meta.id(), "scene_text");
     if (h5::has_attr(meta.id(), "diagnosis")) diagnosis_ = h5::read_attr_string(meta.id(), "diagnosis");
+    if (h5::has_attr(meta.id(), "git_revision")) git_revision_ = h5::read_attr_string(meta.id(), "git_revision");
+    if (h5::has_attr(meta.id(), "steps")) steps_ = static_cast<long>(h5::read_attr_double(meta.id(), "steps"));
+    if (h5::has_attr(meta.id(), "wall_time_s")) wall_time_s_ = h5::read_attr_double(meta.id(), "wall_time_s");
   }
   {
     h5::Handle diag = h5::open_group(file.id(), "diagnostics");

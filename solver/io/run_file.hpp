@@ -38,6 +38,11 @@ class RunFile {
   const std::string& status() const { return status_; }
   const std::string& diagnosis() const { return diagnosis_; }
   const std::string& scene_text() const { return scene_text_; }
+  // /metadata: the build that wrote the file ("" if not said); the steps run and the wall time
+  // (s) of a finished run (0 before its end).
+  const std::string& git_revision() const { return git_revision_; }
+  long steps() const { return steps_; }
+  double wall_time_s() const { return wall_time_s_; }
   // Wall time (s) of a time-loop stage (/timing), 0 if the stage did not exist.
   double stage_seconds(const std::string& stage) const;
   const std::map<std::string, double>& timing() const { return timing_; }
@@ -45,7 +50,9 @@ class RunFile {
   const std::string& path() const { return path_; }
 
  private:
-  std::string path_, status_, diagnosis_, scene_text_;
+  std::string path_, status_, diagnosis_, scene_text_, git_revision_;
+  long steps_ = 0;
+  double wall_time_s_ = 0.0;
   std::map<std::string, std::vector<double>> series_;
   std::map<std::string, std::vector<std::vector<double>>> profiles_;
   std::vector<double> profile_y_um_;

@@ -205,4 +205,28 @@ std::string carry_over_history(const std::string& previous_h5, const std::string
   return note;
 }
 
+std::string interrupted_run_file(const std::string& dir) {
+  namespace fs = std::filesystem;
+  const fs::path finished = fs::path(dir) / "run.h5";
+  if (fs::exists(finished)) return finished.string();
+  fs::path newest;
+  for (const fs::directory_entry& e : fs::directory_iterator(dir))
+    if (e.path().filename().string().rfind("run.h5.partial-", 0) == 0 &&
+        (newest.empty() || e.last_write_time() > fs::last_write_time(newest)))
+      newest = e.path();
+  if (newest.empty() && fs::exists(fs::path(dir) / kInterruptedRunName)) newest = fs::path(dir) / kInterruptedRunName;
+  return newest.string();
+}
+
+std::string set_aside_interrupted_run(const std::string& file, const std::string& dir) {
+  namespace fs = std::filesystem;
+  if (file.empty()) return file;
+  const fs::path aside = fs::path(dir) / kInterruptedRunName;
+  if (fs::exists(aside) && fs::equivalent(file, aside)) return aside.string();
+  std::error_code ec;
+  fs::rename(file, aside, ec);
+  if (ec) throw OutputError("cannot move the interrupted run's " + file + " to " + aside.string() + ": " + ec.message());
+  return aside.string();
+}
+
 }  // namespace erythro::io

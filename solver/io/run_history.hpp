@@ -11,6 +11,18 @@
 
 namespace erythro::io {
 
+inline constexpr const char* kInterruptedRunName = "run.interrupted.h5";
+
+// The interrupted run's file in run folder `dir`: run.h5, else the newest
+// run.h5.partial-<pid> a killed run left behind (io/atomic_file.hpp), else the
+// run.interrupted.h5 an earlier restart set aside and did not replace (it failed before its
+// run), else "".
+std::string interrupted_run_file(const std::string& dir);
+
+// Before a restart writes into `dir`: moves the interrupted run's `file` (interrupted_run_file)
+// to dir/run.interrupted.h5 and returns that path ("" for ""). Throws OutputError.
+std::string set_aside_interrupted_run(const std::string& file, const std::string& dir);
+
 // `previous_h5`: the interrupted run's file ("" if there is none). Returns the history note
 // written to /metadata: "carried over from <file>", or why the file starts at the
 // checkpoint (no earlier file, unreadable, different series). Throws OutputError only when

@@ -2,6 +2,7 @@
 // What a running simulation tells the outside world. The I/O layer (HDF5 writer), the
 // command's progress display and the V&V cases' SeriesRecorder implement this
 // interface; the simulation never includes anything from the layers above it.
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -26,6 +27,8 @@ struct TransportFields {
 // interrupted: a signal asked it to end (interrupt.hpp).
 enum class RunStatus { completed, steady_state, stopped, diverged, interrupted };
 std::string to_string(RunStatus status);
+// The status that to_string wrote, or nothing (e.g. "running", "aborted: …").
+std::optional<RunStatus> run_status_from(const std::string& text);
 
 struct RunSummary {
   RunStatus status = RunStatus::completed;

@@ -36,6 +36,13 @@ std::string to_string(RunStatus status) {
   return "?";
 }
 
+std::optional<RunStatus> run_status_from(const std::string& text) {
+  for (const RunStatus s : {RunStatus::completed, RunStatus::steady_state, RunStatus::stopped, RunStatus::diverged,
+                            RunStatus::interrupted})
+    if (to_string(s) == text) return s;
+  return std::nullopt;
+}
+
 Simulation::Simulation(scene::Scene scene, scene::LatticeSetup setup)
     : scene_(std::move(scene)), setup_(std::move(setup)) {
   // Only the modules the scene declares are built; a fluid-only scene has nothing else,

@@ -135,7 +135,8 @@ void run_ensemble(const EnsembleSpec& spec) {
                                         .min_gap_um = kMinGapUm,
                                         .wall_shear_rate_per_s = rate,
                                         .strain = kStrain,
-                                        .settled_strain = kSettled},
+                                        .settled_strain = kSettled,
+                                        .checkpoint_interval_s = vv::kStudyCheckpointS},
                                        kCase, tag(rate) + "_seed" + std::to_string(kSeeds[si]), overrides(rate));
       });
   vv::run_concurrently(jobs);

@@ -102,12 +102,16 @@ FlowRun run_flow(const Membrane& m, double wall_shear_rate) {
        .seed = kSeed,
        .wall_shear_rate_per_s = wall_shear_rate,
        .strain = kStrain,
-       .sample_strain = kSampleStrain},
+       .sample_strain = kSampleStrain,
+       .checkpoint_interval_s = vv::kStudyCheckpointS},
       {vv::set("time.tau", tau), vv::set("membrane.shear_modulus_dyn_cm", m.shear_modulus_dyn_cm),
        vv::set("aggregation.de_star", kDeStar), vv::set("repulsion.pressure_Pa", 2.0 * mu * wall_shear_rate)});
   char label[32];
   std::snprintf(label, sizeof label, "case%s_%g", m.name, wall_shear_rate);
-  const vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, o), kCase, label);
+  vv::CaseRunOptions resumable;
+  resumable.resume = true;  // a study of hours: picks up after a kill where it was
+  const vv::CaseRun r = vv::run_case_scene(vv::case_scene(kScene, o), kCase, label, resumable);
+  std::printf("%s: %s\n", label, r.resume_note.c_str());
   if (!r.ok()) throw std::runtime_error(std::string(label) + ": " + r.summary.diagnosis);
   FlowRun out;
   out.membrane = m.name;

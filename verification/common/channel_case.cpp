@@ -22,6 +22,7 @@ std::vector<std::string> channel_overrides(const ChannelRunSpec& spec, const std
                                set("run.duration_s", spec.strain / spec.wall_shear_rate_per_s),
                                set("output.fields_interval_steps", 0L)})
     o.push_back(s);
+  if (spec.checkpoint_interval_s > 0.0) o.push_back(set("output.checkpoint_interval_s", spec.checkpoint_interval_s));
   const double dt = scene::derive_lattice(case_scene(spec.scene, o)).scales.time_s;
   o.push_back(set("output.diagnostics_interval_steps",
                   std::max(1L, std::lround(spec.sample_strain / (spec.wall_shear_rate_per_s * dt)))));
@@ -30,8 +31,14 @@ std::vector<std::string> channel_overrides(const ChannelRunSpec& spec, const std
 
 ChannelSeries run_channel(const ChannelRunSpec& spec, const std::string& case_name, const std::string& label,
                           const std::vector<std::string>& extra) {
-  const CaseRun r = run_case_scene(case_scene(spec.scene, channel_overrides(spec, extra)), case_name, label);
+  CaseRunOptions options;
+  options.resume = spec.checkpoint_interval_s > 0.0;
+  const CaseRun r = run_case_scene(case_scene(spec.scene, channel_overrides(spec, extra)), case_name, label, options);
   ChannelSeries out;
+  out.resumable = options.resume;
+  out.read_back = r.read_back;
+  out.resumed_from_step = r.resumed_from_step;
+  if (options.resume) std::printf("%s: %s\n", label.c_str(), r.resume_note.c_str());
   out.completed = r.ok();
   out.diagnosis = r.summary.diagnosis;
   for (double t : r.file.series("time_s")) out.strain.push_back(spec.wall_shear_rate_per_s * t);
@@ -147,6 +154,10 @@ void add_channel_run(io::ResultRecord& record, const ChannelSeries& r, std::map<
   keys["max_edge_strain"] = r.max_edge_strain;
   keys["max_area_change"] = r.max_area_change;
   keys["wall_time_s"] = r.wall_s;
+  if (r.resumable) {  // the wall time of the last part only when continued or read back
+    keys["resumed_from_step"] = static_cast<double>(r.resumed_from_step);
+    keys["read_back"] = r.read_back ? 1.0 : 0.0;
+  }
   record.add_run(std::move(keys), r.scene_text);
   std::printf("%s: %s at strain %.1f, eta_rel %.4f, delta* %.4f, edge %.3f, area %.4f, %.0f s%s%s\n", label.c_str(),
               r.completed ? "completed" : "stopped", reached, window_mean(r.eta), window_mean(r.cfl), r.max_edge_strain,

@@ -10,6 +10,10 @@
 
 namespace erythro::vv {
 
+// The studies' checkpoint interval (s of wall time): a kill loses at most ten minutes of a run
+// of hours; a checkpoint of a channel run takes milliseconds.
+inline constexpr double kStudyCheckpointS = 600.0;
+
 struct ChannelRunSpec {
   const char* scene = "scenes/rbc_channel.toml";  // from the source tree
   double length_um = 0.0, height_um = 0.0, spacing_um = 0.0;
@@ -20,6 +24,9 @@ struct ChannelRunSpec {
   double strain = 0.0;                 // run length, strain units at γ̇_w
   double sample_strain = 0.05;         // diagnostics interval, strain units
   double settled_strain = -1.0;        // >= 0: keep the centroid heights from this strain on (dispersion)
+  // > 0: a checkpoint every this many seconds of wall time, and the run picks up after a kill
+  // where it was (CaseRunOptions::resume, run_resume.hpp): for the studies of hours.
+  double checkpoint_interval_s = 0.0;
 };
 
 // The --set overrides of one channel run: domain, spacing, markers, placement gap h and seed,
@@ -40,6 +47,10 @@ struct ChannelSeries {
   // centres y, µm) averaged from then on: u_x (µm/s) and the haematocrit (docs/model.md §12).
   std::vector<double> profile_y_um, velocity_profile_um_s, haematocrit_profile;
   bool completed = false;  // false: the health monitor stopped it (`diagnosis` says why)
+  // A resumable run (spec.checkpoint_interval_s > 0): the step it continued from (−1: none)
+  // and whether it was read back finished; wall_s is then of its last part only.
+  bool resumable = false, read_back = false;
+  long resumed_from_step = -1;
   std::string diagnosis, scene_text;
 };
 

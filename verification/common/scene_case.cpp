@@ -4,10 +4,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <stdexcept>
 
 #include "common/case_support.hpp"
 #include "common/error.hpp"
+#include "common/run_resume.hpp"
 #include "io/field_pictures.hpp"
+#include "io/run_history.hpp"
 #include "io/scene_run.hpp"
 #include "scene/scene_parser.hpp"
 
@@ -50,6 +53,17 @@ scene::Scene case_scene(const std::string& relative_path, const std::vector<std:
   return scene::load_scene((fs::path(source_dir()) / relative_path).string(), overrides);
 }
 
+namespace {
+sim::RunSummary summary_of(const io::RunFile& file) {
+  sim::RunSummary s;
+  s.status = *sim::run_status_from(file.status());
+  s.steps = file.steps();
+  s.wall_time_s = file.wall_time_s();
+  s.diagnosis = file.diagnosis();
+  return s;
+}
+}  // namespace
+
 CaseRun run_case_scene(const scene::Scene& scene, const std::string& case_name, const std::string& label,
                        const CaseRunOptions& options) {
   Stopwatch clock;
@@ -57,14 +71,39 @@ CaseRun run_case_scene(const scene::Scene& scene, const std::string& case_name, 
   run.scene = scene;
   run.setup = scene::derive_lattice(scene);
   const fs::path dir = fs::path(io::ResultRecord::results_dir()) / "runs" / case_name / folder_name(label);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const io::SceneRunResult result = io::run_scene(scene, run.setup, dir.string(), options.observers, options.configure);
-  run.summary = result.summary;
-  run.file = io::RunFile(result.h5_path);
-  if (options.pictures) run.pictures = io::last_field_pictures(result.h5_path, label);
-  if (!options.keep) fs::remove_all(dir);
-  run.wall_time_s = clock.seconds();
+  if (options.resume && !options.observers.empty())
+    throw std::logic_error("run_case_scene: a resumable run takes no observers (a run read back feeds none)");
+  ResumePoint from;
+  if (options.resume) from = find_resume_point(dir.string(), scene.source_text);
+  run.resume_note = from.note;
+  if (from.finished) {
+    run.file = std::move(*from.finished);
+    run.summary = summary_of(run.file);
+    run.read_back = true;
+  } else {
+    std::string history;
+    if (from.checkpoint) {
+      history = io::set_aside_interrupted_run(io::interrupted_run_file(dir.string()), dir.string());
+    } else {
+      fs::remove_all(dir);
+      fs::create_directories(dir);
+    }
+    // The case's own stages and probes first, then the checkpoint's state (which holds theirs).
+    auto configure = [&](sim::Simulation& simulation) {
+      if (options.configure) options.configure(simulation);
+      if (from.checkpoint) simulation.restore(std::move(from.checkpoint->state));
+    };
+    const io::SceneRunResult result = io::run_scene(scene, run.setup, dir.string(), options.observers, configure);
+    if (from.checkpoint) {
+      io::carry_over_history(history, result.h5_path, result.xdmf_path, from.checkpoint->step);
+      run.resumed_from_step = from.checkpoint->step;
+    }
+    run.summary = result.summary;
+    run.file = io::RunFile(result.h5_path);
+  }
+  if (options.pictures) run.pictures = io::last_field_pictures(run.file.path(), label);
+  if (!options.keep && !options.resume) fs::remove_all(dir);
+  run.wall_time_s = run.read_back ? run.summary.wall_time_s : clock.seconds();
   return run;
 }
 

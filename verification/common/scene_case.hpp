@@ -31,8 +31,13 @@ struct CaseRun {
   scene::LatticeSetup setup;
   sim::RunSummary summary;
   io::RunFile file;  // run.h5 as written
-  double wall_time_s = 0.0;
+  double wall_time_s = 0.0;  // of this call; a run read back or continued: of the run's own (last) part
   std::vector<io::FieldPicture> pictures;  // with CaseRunOptions::pictures: the last field output
+  // With CaseRunOptions::resume: what the folder gave (run_resume.hpp), the step continued
+  // from (−1: run from the start or read back) and whether the run was read back.
+  std::string resume_note;
+  long resumed_from_step = -1;
+  bool read_back = false;
   bool ok() const { return summary.status != sim::RunStatus::diverged; }
 };
 
@@ -47,6 +52,11 @@ struct CaseRunOptions {
   // Read pictures of the last field output (speed, concentrations, membranes) for the
   // report: record.add_field(p) for each of CaseRun::pictures.
   bool pictures = false;
+  // Continue after a kill (run_resume.hpp): read back the folder's finished run of this scene,
+  // or continue from its checkpoint, when this build wrote them; the folder is then kept.
+  // The scene should ask for checkpoints (output.checkpoint_interval_s). Only for runs
+  // without `observers` (a run read back feeds none).
+  bool resume = false;
 };
 
 // Derives the lattice set-up (InputError for an impossible scene), runs the scene and

@@ -102,7 +102,8 @@ SeedRun run_seed(const Channel& channel, long seed) {
                                                             .min_gap_um = kMinGapUm,
                                                             .wall_shear_rate_per_s = kWallShearRate,
                                                             .strain = kStrain,
-                                                            .sample_strain = kSampleStrain},
+                                                            .sample_strain = kSampleStrain,
+                                                            .checkpoint_interval_s = vv::kStudyCheckpointS},
                                                            channel.case_name, label);
   } catch (const std::exception& e) {
     out.completed = false;
