@@ -42,12 +42,22 @@ scene::Scene channel(double strain, long diagnostics_interval, long checkpoint) 
 void expect_same_series(const io::RunFile& a, const io::RunFile& b) {
   ASSERT_GT(a.samples(), 5u);
   for (const char* name : {"step", "time_s", "relative_apparent_viscosity", "cell_free_layer_normalised",
-                           "cells_max_area_change", "cells_max_edge_strain"}) {
+                           "cells_max_area_change", "cells_max_edge_strain", "cell_0_centroid_y_um"}) {
     ASSERT_TRUE(a.has(name) && b.has(name)) << name;
     ASSERT_EQ(a.series(name).size(), b.series(name).size()) << name;
     for (std::size_t k = 0; k < a.series(name).size(); ++k)
       ASSERT_EQ(std::bit_cast<std::uint64_t>(a.series(name)[k]), std::bit_cast<std::uint64_t>(b.series(name)[k]))
           << name << " " << k;  // bit for bit, NaN samples included (η_rel before the flow is set up)
+  }
+  // The profiles across the channel, one row per sample (carried over row by row).
+  ASSERT_FALSE(a.profile_names().empty());
+  ASSERT_EQ(a.profile_names(), b.profile_names());
+  for (const std::string& name : a.profile_names()) {
+    ASSERT_EQ(a.profile(name).size(), b.profile(name).size()) << name;
+    for (std::size_t k = 0; k < a.profile(name).size(); ++k)
+      for (std::size_t j = 0; j < a.profile(name)[k].size(); ++j)
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(a.profile(name)[k][j]), std::bit_cast<std::uint64_t>(b.profile(name)[k][j]))
+            << name << " " << k << " " << j;
   }
 }
 
