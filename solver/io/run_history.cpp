@@ -225,7 +225,8 @@ std::string set_aside_interrupted_run(const std::string& file, const std::string
   if (fs::exists(aside) && fs::equivalent(file, aside)) return aside.string();
   std::error_code ec;
   fs::rename(file, aside, ec);
-  if (ec) throw OutputError("cannot move the interrupted run's " + file + " to " + aside.string() + ": " + ec.message());
+  if (ec)
+    throw OutputError("cannot move the interrupted run's " + file + " to " + aside.string() + ": " + ec.message());
   return aside.string();
 }
 

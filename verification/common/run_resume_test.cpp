@@ -56,7 +56,8 @@ void expect_same_series(const io::RunFile& a, const io::RunFile& b) {
     ASSERT_EQ(a.profile(name).size(), b.profile(name).size()) << name;
     for (std::size_t k = 0; k < a.profile(name).size(); ++k)
       for (std::size_t j = 0; j < a.profile(name)[k].size(); ++j)
-        ASSERT_EQ(std::bit_cast<std::uint64_t>(a.profile(name)[k][j]), std::bit_cast<std::uint64_t>(b.profile(name)[k][j]))
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(a.profile(name)[k][j]),
+                  std::bit_cast<std::uint64_t>(b.profile(name)[k][j]))
             << name << " " << k << " " << j;
   }
 }
