@@ -47,6 +47,13 @@ std::vector<std::size_t> cells_of(const MarkerView& v) {
   return cell;
 }
 
+// The pair lists of these markers in this domain, built.
+PairLists lists_of(const geometry::Domain& dom, const MarkerView& v) {
+  PairLists lists(dom, ContactPotential(kLaw).cutoff());
+  lists.build(v, cells_of(v), false);
+  return lists;
+}
+
 }  // namespace
 
 TEST(SweepOwners, AnyOwnersGiveTheSameSumsBitForBit) {
@@ -56,8 +63,7 @@ TEST(SweepOwners, AnyOwnersGiveTheSameSumsBitForBit) {
   const geometry::Domain dom{Grid{200, 200}, true, true};
   const test_support::RingGrid rings(10.0, 19.5);
   const MarkerView v = rings.view();
-  PairLists lists(dom, ContactPotential(kLaw).cutoff());
-  lists.build(v, cells_of(v), false);
+  const PairLists lists = lists_of(dom, v);
   SweepOwners one;
   one.assign_slabs(dom, v, lists, 1);
   const Sums a = sweep(dom, v, lists, one);
@@ -89,8 +95,7 @@ TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
   const geometry::Domain channel{Grid{200, 200}, true, false};
   const test_support::RingGrid rings(10.0, 19.5);
   const MarkerView v = rings.view();
-  PairLists lists(channel, ContactPotential(kLaw).cutoff());
-  lists.build(v, cells_of(v), false);
+  const PairLists lists = lists_of(channel, v);
   SweepOwners owners;
   owners.assign_slabs(channel, v, lists, 2);
   double top0 = -1e300, bottom1 = 1e300;
@@ -113,8 +118,7 @@ TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
   // Periodic along both, the rings filling y but not x: slabs of x have one cut that parts
   // pairs (their cut at the period runs through empty space), slabs of y two.
   const geometry::Domain wide{Grid{400, 200}, true, true};
-  PairLists wide_lists(wide, ContactPotential(kLaw).cutoff());
-  wide_lists.build(v, cells_of(v), false);
+  const PairLists wide_lists = lists_of(wide, v);
   owners.assign_slabs(wide, v, wide_lists, 2);
   double right0 = -1e300, left1 = 1e300;
   for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
