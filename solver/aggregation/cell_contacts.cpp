@@ -373,9 +373,11 @@ void CellContacts::pair_sums_all(E& eng) {
   // team of one there); each pair evaluated once within a thread's cells (pair_sweep.hpp),
   // which are a slab of the domain (sweep_owners.hpp).
   const int threads = threads_forces(N) && !omp_in_parallel() ? omp_get_max_threads() : 1;
-  if (!work_.owners.fits(lists_, threads, N)) work_.owners.assign_slabs(domain_, eng.v, lists_, threads);
+  // (A step whose forces run beside the index field, on one thread, leaves the owners as they are.)
+  if (threads > 1 && !work_.owners.fits(lists_, threads, N))
+    work_.owners.assign_slabs(domain_, eng.v, lists_, threads);
   const SweepArrays arrays{eng.v.x, eng.v.y, eng.ell, eng.S, eng.px, eng.py, eng.rmin, eng.count};
-  if (sweep_pair_lists(domain_, potential_, lists_, work_.owners, arrays, eng.per_thread))
+  if (sweep_pair_lists(domain_, potential_, lists_, work_.owners, threads, arrays, eng.per_thread))
     eng.coincident.store(true, std::memory_order_relaxed);
 }
 

@@ -73,10 +73,13 @@ std::size_t gather(const SweepArrays& a, const PairLists& lists, const SweepOwne
 template <bool kOneOwner>
 void sweep_owner(const geometry::Domain& d, const ContactPotential& potential, const PairLists& lists,
                  const SweepOwners& owners, const SweepArrays& a, unsigned t, PairScratch& s, bool& coincident) {
-  const std::span<const std::size_t> visits = owners.visits(static_cast<int>(t));
+  // One owner visits every marker in order and looks nothing up (its owners may be empty).
+  const std::span<const std::size_t> visits =
+      kOneOwner ? std::span<const std::size_t>{} : owners.visits(static_cast<int>(t));
   const std::span<const unsigned> owner = owners.owner();
-  for (std::size_t first = 0; first < visits.size(); first += kChunk) {
-    const std::size_t last = std::min(visits.size(), first + kChunk);
+  const std::size_t count = kOneOwner ? a.x.size() : visits.size();
+  for (std::size_t first = 0; first < count; first += kChunk) {
+    const std::size_t last = std::min(count, first + kChunk);
     const std::size_t n = gather<kOneOwner>(a, lists, owners, t, visits, first, last, s);
     if (n == 0) continue;  // no pair above these markers: their sums are complete
     const std::size_t k = evaluate_pairs(d, potential, n, s, coincident);
@@ -113,8 +116,9 @@ void sweep_owner(const geometry::Domain& d, const ContactPotential& potential, c
 }  // namespace
 
 bool sweep_pair_lists(const geometry::Domain& domain, const ContactPotential& potential, const PairLists& lists,
-                      const SweepOwners& owners, const SweepArrays& a, std::vector<PairScratch>& per_thread) {
-  const int threads = std::max(owners.threads(), 1);
+                      const SweepOwners& owners, int threads, const SweepArrays& a,
+                      std::vector<PairScratch>& per_thread) {
+  threads = std::max(threads, 1);
   if (per_thread.size() < static_cast<std::size_t>(threads)) per_thread.resize(static_cast<std::size_t>(threads));
   bool coincident = false;
 #pragma omp parallel num_threads(threads) if (threads > 1) reduction(|| : coincident)

@@ -33,10 +33,12 @@ struct SweepArrays {
   std::span<std::size_t> count;
 };
 
-// The sums of every marker over the lists, on owners.threads() threads (owners made for these
-// lists). Returns whether two markers of different cells sit on one point (a pair at r = 0,
-// which has no direction).
+// The sums of every marker over the lists on `threads` threads: on one, in marker order (the
+// owners are not read); on more, by the owners (made for these lists and this thread count).
+// Returns whether two markers of different cells sit on one point (a pair at r = 0, which has
+// no direction).
 bool sweep_pair_lists(const geometry::Domain& domain, const ContactPotential& potential, const PairLists& lists,
-                      const SweepOwners& owners, const SweepArrays& a, std::vector<PairScratch>& per_thread);
+                      const SweepOwners& owners, int threads, const SweepArrays& a,
+                      std::vector<PairScratch>& per_thread);
 
 }  // namespace erythro::aggregation

@@ -34,7 +34,7 @@ Sums sweep(const geometry::Domain& dom, const MarkerView& v, const PairLists& li
   Sums s(v.x.size());
   std::vector<PairScratch> scratch;
   const ContactPotential potential(kLaw);
-  EXPECT_FALSE(sweep_pair_lists(dom, potential, lists, owners,
+  EXPECT_FALSE(sweep_pair_lists(dom, potential, lists, owners, owners.threads(),
                                 SweepArrays{v.x, v.y, s.ell, s.S, s.px, s.py, s.rmin, s.count}, scratch));
   return s;
 }
