@@ -375,7 +375,7 @@ void CellContacts::pair_sums_all(E& eng) {
   const int threads = threads_forces(N) && !omp_in_parallel() ? omp_get_max_threads() : 1;
   // (A step whose forces run beside the index field, on one thread, leaves the owners as they are.)
   if (threads > 1 && !work_.owners.fits(lists_, threads, N))
-    work_.owners.assign_slabs(domain_, eng.v, lists_, threads);
+    work_.owners.assign_slabs(domain_, eng.v, eng.cell_of, lists_, threads);
   const SweepArrays arrays{eng.v.x, eng.v.y, eng.ell, eng.S, eng.px, eng.py, eng.rmin, eng.count};
   if (sweep_pair_lists(domain_, potential_, lists_, work_.owners, threads, arrays, eng.per_thread))
     eng.coincident.store(true, std::memory_order_relaxed);

@@ -50,17 +50,14 @@ std::size_t pairs_between(std::span<const unsigned> cell_owner, std::span<const 
 
 }  // namespace
 
-void SweepOwners::assign_slabs(const geometry::Domain& d, const MarkerView& v, const PairLists& lists,
-                               int threads) {
+void SweepOwners::assign_slabs(const geometry::Domain& d, const MarkerView& v, std::span<const std::size_t> cell_of,
+                               const PairLists& lists, int threads) {
   const std::size_t cells = v.offsets.size() - 1;
+  if (cell_of.size() != v.x.size()) throw std::invalid_argument("SweepOwners::assign_slabs: cell_of does not match");
   cell_owner_.assign(cells, 0);
   if (threads > 1 && !v.x.empty()) {
     // Slabs along x and along y; the cut that separates fewer pairs is kept (along y on a
     // tie). Where the cells crowd (the core of a channel) a cut along the flow parts more.
-    std::vector<std::size_t> cell_of(v.x.size());
-    for (std::size_t c = 0; c < cells; ++c)
-      std::fill(cell_of.begin() + static_cast<std::ptrdiff_t>(v.offsets[c]),
-                cell_of.begin() + static_cast<std::ptrdiff_t>(v.offsets[c + 1]), c);
     std::vector<unsigned> along_x;
     slabs_along(false, d, v, threads, along_x);
     slabs_along(true, d, v, threads, cell_owner_);

@@ -23,8 +23,10 @@ class SweepOwners {
   bool fits(const PairLists& lists, int threads, std::size_t markers) const {
     return threads_ == threads && builds_ == lists.builds() && owner_.size() == markers;
   }
-  // Slabs of cells, one per thread (1: every cell to thread 0), made with the lists.
-  void assign_slabs(const geometry::Domain& domain, const MarkerView& v, const PairLists& lists, int threads);
+  // Slabs of cells, one per thread (1: every cell to thread 0), made with the lists;
+  // cell_of[m]: marker m's cell, as the lists were built with.
+  void assign_slabs(const geometry::Domain& domain, const MarkerView& v, std::span<const std::size_t> cell_of,
+                    const PairLists& lists, int threads);
   // Any owner per cell (cell_owner[c] < threads), for the tests.
   void assign(std::span<const unsigned> cell_owner, const MarkerView& v, const PairLists& lists, int threads);
 

@@ -9,12 +9,13 @@
 namespace erythro::vv {
 namespace fs = std::filesystem;
 
-bool build_can_resume() {
-  const std::string rev = build_info::git_revision();
+bool revision_can_resume(const std::string& rev) {
   const std::string dirty = "-dirty";
   return !rev.empty() && rev != "unknown" &&
          !(rev.size() >= dirty.size() && rev.compare(rev.size() - dirty.size(), dirty.size(), dirty) == 0);
 }
+
+bool build_can_resume() { return revision_can_resume(build_info::git_revision()); }
 
 ResumePoint find_resume_point(const std::string& dir, const std::string& scene_text) {
   ResumePoint point;

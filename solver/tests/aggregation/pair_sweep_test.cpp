@@ -47,12 +47,16 @@ std::vector<std::size_t> cells_of(const MarkerView& v) {
   return cell;
 }
 
-// The pair lists of these markers in this domain, built.
-PairLists lists_of(const geometry::Domain& dom, const MarkerView& v) {
-  PairLists lists(dom, ContactPotential(kLaw).cutoff());
-  lists.build(v, cells_of(v), false);
-  return lists;
-}
+// The test rings (ring_grid.hpp) in a domain: their markers, cells and pair lists.
+struct RingsIn {
+  test_support::RingGrid rings{10.0, 19.5};
+  MarkerView v = rings.view();
+  std::vector<std::size_t> cell_of = cells_of(v);
+  PairLists lists;
+  explicit RingsIn(const geometry::Domain& dom) : lists(dom, ContactPotential(kLaw).cutoff()) {
+    lists.build(v, cell_of, false);
+  }
+};
 
 }  // namespace
 
@@ -61,11 +65,11 @@ TEST(SweepOwners, AnyOwnersGiveTheSameSumsBitForBit) {
   // several threads: its sums must still be those of one thread, bit for bit. Also more
   // owners than the team has threads (they are then taken in turns).
   const geometry::Domain dom{Grid{200, 200}, true, true};
-  const test_support::RingGrid rings(10.0, 19.5);
-  const MarkerView v = rings.view();
-  const PairLists lists = lists_of(dom, v);
+  const RingsIn r(dom);
+  const MarkerView& v = r.v;
+  const PairLists& lists = r.lists;
   SweepOwners one;
-  one.assign_slabs(dom, v, lists, 1);
+  one.assign_slabs(dom, v, r.cell_of, lists, 1);
   const Sums a = sweep(dom, v, lists, one);
   std::size_t pairs = 0;
   for (const std::size_t k : a.count) pairs += k;
@@ -93,11 +97,10 @@ TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
   // across the period); so two slabs of y, each of the 100 rings wholly on one side, 50 rings
   // (1 500 markers) each.
   const geometry::Domain channel{Grid{200, 200}, true, false};
-  const test_support::RingGrid rings(10.0, 19.5);
-  const MarkerView v = rings.view();
-  const PairLists lists = lists_of(channel, v);
+  const RingsIn r(channel);
+  const MarkerView& v = r.v;
   SweepOwners owners;
-  owners.assign_slabs(channel, v, lists, 2);
+  owners.assign_slabs(channel, v, r.cell_of, r.lists, 2);
   double top0 = -1e300, bottom1 = 1e300;
   std::size_t own0 = 0;
   for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
@@ -118,8 +121,8 @@ TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
   // Periodic along both, the rings filling y but not x: slabs of x have one cut that parts
   // pairs (their cut at the period runs through empty space), slabs of y two.
   const geometry::Domain wide{Grid{400, 200}, true, true};
-  const PairLists wide_lists = lists_of(wide, v);
-  owners.assign_slabs(wide, v, wide_lists, 2);
+  const RingsIn w(wide);
+  owners.assign_slabs(wide, w.v, w.cell_of, w.lists, 2);
   double right0 = -1e300, left1 = 1e300;
   for (std::size_t c = 0; c + 1 < v.offsets.size(); ++c) {
     const double x = v.x[v.offsets[c]] - 9.1;  // marker 0 of a ring sits at its centre + 9.1 along x
