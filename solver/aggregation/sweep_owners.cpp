@@ -10,11 +10,25 @@ namespace erythro::aggregation {
 
 namespace {
 
+// A cell's share of the sweep's work: its markers and their entries in the lists (each pair
+// is in the lists of both its markers; a thread evaluates the pairs of its own markers).
+std::vector<std::size_t> cell_work(const MarkerView& v, const PairLists& lists) {
+  const std::span<const std::size_t> start = lists.start();
+  std::vector<std::size_t> work(v.offsets.size() - 1);
+  for (std::size_t c = 0; c < work.size(); ++c) {
+    const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
+    work[c] = (e - o) + (start[e] - start[o]);
+  }
+  return work;
+}
+
 // The cells sorted by their centroids along one axis and given out in `threads` slabs of equal
-// marker counts, each cell to the slab holding the middle of its markers' count.
-void slabs_along(bool along_y, const geometry::Domain& d, const MarkerView& v, int threads,
-                 std::vector<unsigned>& cell_owner) {
-  const std::size_t cells = v.offsets.size() - 1, N = v.x.size();
+// work, each cell to the slab holding the middle of its work.
+void slabs_along(bool along_y, const geometry::Domain& d, const MarkerView& v, std::span<const std::size_t> work,
+                 int threads, std::vector<unsigned>& cell_owner) {
+  const std::size_t cells = v.offsets.size() - 1;
+  std::size_t total = 0;
+  for (const std::size_t w : work) total += w;
   const std::span<const double> coord = along_y ? v.y : v.x;
   const bool periodic = along_y ? d.periodic_y : d.periodic_x;
   const double L = along_y ? d.grid.ny : d.grid.nx;
@@ -31,9 +45,8 @@ void slabs_along(bool along_y, const geometry::Domain& d, const MarkerView& v, i
   cell_owner.assign(cells, 0);
   std::size_t before = 0;
   for (const auto& [centre, c] : key) {
-    const std::size_t size = v.offsets[c + 1] - v.offsets[c];
-    cell_owner[c] = static_cast<unsigned>(std::min((2 * before + size) * T / (2 * N), T - 1));
-    before += size;
+    cell_owner[c] = static_cast<unsigned>(std::min((2 * before + work[c]) * T / (2 * total), T - 1));
+    before += work[c];
   }
 }
 
@@ -58,9 +71,10 @@ void SweepOwners::assign_slabs(const geometry::Domain& d, const MarkerView& v, s
   if (threads > 1 && !v.x.empty()) {
     // Slabs along x and along y; the cut that separates fewer pairs is kept (along y on a
     // tie). Where the cells crowd (the core of a channel) a cut along the flow parts more.
+    const std::vector<std::size_t> work = cell_work(v, lists);
     std::vector<unsigned> along_x;
-    slabs_along(false, d, v, threads, along_x);
-    slabs_along(true, d, v, threads, cell_owner_);
+    slabs_along(false, d, v, work, threads, along_x);
+    slabs_along(true, d, v, work, threads, cell_owner_);
     if (pairs_between(along_x, cell_of, lists) < pairs_between(cell_owner_, cell_of, lists))
       cell_owner_.swap(along_x);
   }

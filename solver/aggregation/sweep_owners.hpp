@@ -5,9 +5,10 @@
 // Every cell belongs to one thread. A pair of two cells of one thread is evaluated once; a pair
 // between threads is evaluated by both, each for its own marker. So the fewer pairs between
 // threads, the less work is done twice: the cells are given out in slabs across the domain
-// (sorted by their centroids along one axis, equal marker counts per slab), along the axis whose
-// slabs separate fewer pairs of the lists. The owners change the work, never the bits: every
-// marker still adds its partners in ascending order (pair_sweep.hpp), whoever evaluates them.
+// (sorted by their centroids along one axis; equal work per slab, a cell's work being its
+// markers plus their entries in the lists), along the axis whose slabs separate fewer pairs of
+// the lists. The owners change the work, never the bits: every marker still adds its partners
+// in ascending order (pair_sweep.hpp), whoever evaluates them.
 #include <cstddef>
 #include <span>
 #include <vector>

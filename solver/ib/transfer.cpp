@@ -17,13 +17,41 @@ namespace {
 // the bits do not depend on it): below it a parallel region costs more than it saves.
 constexpr long kParallelMarkers = 512;
 
-void check_finite(std::span<const double> X, std::span<const double> Y) {
+// Throws for the first marker with a non-finite position (looked for only once the
+// parallel pass has found one).
+void report_first_non_finite(std::span<const double> X, std::span<const double> Y) {
   for (std::size_t m = 0; m < X.size(); ++m) {
     if (!std::isfinite(X[m]) || !std::isfinite(Y[m])) {
       throw std::domain_error("immersed boundary: marker " + std::to_string(m) + " has a non-finite position (" +
                               std::to_string(X[m]) + ", " + std::to_string(Y[m]) + ")");
     }
   }
+}
+
+void check_finite(std::span<const double> X, std::span<const double> Y) {
+  const long markers = static_cast<long>(X.size());
+  bool finite = true;
+#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers) reduction(&& : finite)
+  for (long m = 0; m < markers; ++m) finite = finite && std::isfinite(X[m]) && std::isfinite(Y[m]);
+  if (!finite) report_first_non_finite(X, Y);
+}
+
+// check_finite, and whether (X, Y) equal (WX, WY) element by element, in one pass over the threads.
+bool check_finite_and_same(std::span<const double> X, std::span<const double> Y, std::span<const double> WX,
+                           std::span<const double> WY) {
+  if (WX.size() != X.size() || WY.size() != Y.size()) {
+    check_finite(X, Y);
+    return false;
+  }
+  const long markers = static_cast<long>(X.size());
+  bool finite = true, same = true;
+#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers) reduction(&& : finite, same)
+  for (long m = 0; m < markers; ++m) {
+    finite = finite && std::isfinite(X[m]) && std::isfinite(Y[m]);
+    same = same && X[m] == WX[m] && Y[m] == WY[m];
+  }
+  if (!finite) report_first_non_finite(X, Y);
+  return same;
 }
 
 // Support origin and the 1D weights φ(X − (i0 + b + ½)), b = 0 … W − 1.
@@ -171,6 +199,8 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     j0_.resize(M);
     wx_.resize(M * W);
     wy_.resize(M * W);
+    weights_x_.resize(M);  // the positions these weights belong to
+    weights_y_.resize(M);
     const long markers = static_cast<long>(M);  // each marker its own: any thread count, the same bits
     const long blocks = (markers + kWeightBlock - 1) / kWeightBlock;
 #pragma omp parallel for schedule(static) if (markers >= kParallelMarkers)
@@ -178,9 +208,9 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
       const long first = b * kWeightBlock, n = std::min(markers - first, kWeightBlock);
       weights_of_block<K>(X.data() + first, n, i0_.data() + first, wx_.data() + first * W);
       weights_of_block<K>(Y.data() + first, n, j0_.data() + first, wy_.data() + first * W);
+      std::copy_n(X.data() + first, n, weights_x_.data() + first);
+      std::copy_n(Y.data() + first, n, weights_y_.data() + first);
     }
-    weights_x_.assign(X.begin(), X.end());  // the positions these weights belong to
-    weights_y_.assign(Y.begin(), Y.end());
     // 2. Stable counting sort of markers by the bucket of their first support row.
     //    Periodic y: bucket = j0 mod ny. Walls: bucket = j0 + W − 1 ∈ [0, ny + W − 1);
     //    a marker whose whole support lies beyond a wall gets no bucket.
@@ -244,11 +274,9 @@ void Transfer::interpolate(std::span<const double> X, std::span<const double> Y,
   if (ux.size() != domain_.grid.size() || uy.size() != domain_.grid.size()) {
     throw std::invalid_argument("ib::Transfer::interpolate: velocity field size does not match the grid");
   }
-  check_finite(X, Y);
   // The positions spread() last saw (the usual IB cycle: spread at X^n, fluid step,
   // interpolate at X^n): its supports and weights serve again, the same numbers.
-  const bool same_positions = weights_x_.size() == M && std::equal(X.begin(), X.end(), weights_x_.begin()) &&
-                              std::equal(Y.begin(), Y.end(), weights_y_.begin());
+  const bool same_positions = check_finite_and_same(X, Y, weights_x_, weights_y_);
   const long markers = static_cast<long>(M);
   dispatch(kernel_, [&](auto k) {
     using K = decltype(k);

@@ -38,13 +38,16 @@ geometry::Polygon ImmersedCells::polygon(int c) const {
 }
 
 void ImmersedCells::compute_forces() {
-  std::fill(fx_.begin(), fx_.end(), 0.0);
-  std::fill(fy_.begin(), fy_.end(), 0.0);
   const int n = cell_count();
-  // Cells own disjoint marker ranges: parallel over cells is race-free and deterministic.
-#pragma omp parallel for schedule(dynamic) if (threads_forces())
+  // Cells own disjoint marker ranges (together every marker): parallel over cells is race-free
+  // and deterministic. In equal static shares, so that a thread works on the same cells'
+  // markers in every step (the cells cost alike; measured faster than a dynamic schedule).
+#pragma omp parallel for schedule(static) if (threads_forces())
   for (int c = 0; c < n; ++c) {
-    add_membrane_forces_only(cells_[c].model, cells_[c].rest, x(c), y(c), range(fx_, c), range(fy_, c));
+    const std::span<double> fx = range(fx_, c), fy = range(fy_, c);
+    std::fill(fx.begin(), fx.end(), 0.0);
+    std::fill(fy.begin(), fy.end(), 0.0);
+    add_membrane_forces_only(cells_[c].model, cells_[c].rest, x(c), y(c), fx, fy);
   }
 }
 

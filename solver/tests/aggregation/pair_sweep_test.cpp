@@ -1,5 +1,5 @@
 // Unit tests of the pair sweep's owners (aggregation/sweep_owners.hpp, pair_sweep.hpp): any
-// owners give every marker's sums bit for bit, and the slabs cut across the shorter axis.
+// owners give every marker's sums bit for bit, and the slabs cut across the shorter axis and share the work.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -92,7 +92,7 @@ TEST(SweepOwners, AnyOwnersGiveTheSameSumsBitForBit) {
   }
 }
 
-TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
+TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {  // equal rings: equal work, equal cells
   // Walls along y, periodic along x: slabs of y have one cut, slabs of x two (the rings touch
   // across the period); so two slabs of y, each of the 100 rings wholly on one side, 50 rings
   // (1 500 markers) each.
@@ -130,4 +130,49 @@ TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
     else left1 = std::min(left1, x);
   }
   EXPECT_LT(right0, left1);
+}
+
+TEST(SweepOwners, SlabsShareTheWorkNotTheCells) {
+  // 70 touching rings in seven rows (each with many pairs) and 5 lone rings above them (none),
+  // walls along y: slabs of y (one cut across ten columns; slabs of x would need two cuts across
+  // seven rows, the rings touching across the period). Slabs of equal marker counts would give
+  // thread 0 the lowest 37 rings and thread 1 the other 33 touching ones with the lone ones, so
+  // thread 0 would evaluate more pairs. The slabs share the work (a cell's markers plus their
+  // entries in the lists) instead: thread 0 gets fewer cells.
+  const test_support::RingGrid grid{10.0, 19.5};
+  std::vector<double> x, y;
+  std::vector<std::size_t> off{0};
+  for (int j = 0; j < 10; ++j)  // cells numbered row by row, as the slabs sort them
+    for (int i = 0; i < 10; ++i) {
+      if (j >= 7 && (j != 8 || i % 2 == 1)) continue;  // above the seven rows: row 8, even columns
+      const auto o = static_cast<std::ptrdiff_t>(grid.off[static_cast<std::size_t>(10 * i + j)]);
+      x.insert(x.end(), grid.x.begin() + o, grid.x.begin() + o + 30);
+      y.insert(y.end(), grid.y.begin() + o, grid.y.begin() + o + 30);
+      off.push_back(x.size());
+    }
+  ASSERT_EQ(off.size(), 76u);
+  const MarkerView v{x, y, off};
+  const std::vector<std::size_t> cell_of = cells_of(v);
+  const geometry::Domain channel{Grid{190, 200}, true, false};  // gaps across the period as between rings
+  PairLists lists(channel, ContactPotential(kLaw).cutoff());
+  lists.build(v, cell_of, false);
+  SweepOwners owners;
+  owners.assign_slabs(channel, v, cell_of, lists, 2);
+  std::size_t work[2] = {0, 0}, cells[2] = {0, 0}, largest = 0;
+  double top0 = -1e300, bottom1 = 1e300;
+  const std::span<const std::size_t> start = lists.start();
+  for (std::size_t c = 0; c + 1 < off.size(); ++c) {
+    const std::size_t w = (off[c + 1] - off[c]) + (start[off[c + 1]] - start[off[c]]);
+    const unsigned t = owners.owner()[off[c]];
+    work[t] += w;
+    ++cells[t];
+    largest = std::max(largest, w);
+    const double yc = y[off[c]] + 0.0;  // marker 0 sits at the ring's centre height
+    if (t == 0) top0 = std::max(top0, yc);
+    else bottom1 = std::min(bottom1, yc);
+  }
+  EXPECT_LT(top0, bottom1);  // slabs of y
+  EXPECT_LE(std::max(work[0], work[1]) - std::min(work[0], work[1]), largest);
+  EXPECT_LT(cells[0], 37u);
+  EXPECT_EQ(cells[0] + cells[1], 75u);
 }

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "common/portable_sincos.hpp"
@@ -209,6 +211,36 @@ TEST(Transfer, RejectsBadInput) {
   EXPECT_THROW(tr.spread(X, Y, F, F, f.x, f.y), std::domain_error);
   std::vector<double> small(10);
   EXPECT_THROW(tr.spread(Y, Y, F, F, small, small), std::invalid_argument);
+}
+
+// Many markers (the threads' path): the first non-finite marker is named, by spreading and by
+// interpolation, whether or not the positions are those the last spread saw.
+TEST(Transfer, NamesTheFirstNonFiniteMarkerOfMany) {
+  const Domain d{Grid{64, 64}, true, true};
+  Transfer tr(KernelType::cosine4, d);
+  Field f(d.grid);
+  const std::size_t M = 2000;
+  std::vector<double> X(M), Y(M), F(M, 1.0), U(M);
+  for (std::size_t m = 0; m < M; ++m) {
+    X[m] = 0.031 * static_cast<double>(m);
+    Y[m] = 0.017 * static_cast<double>(m);
+  }
+  auto message = [](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const std::domain_error& e) {
+      return e.what();
+    }
+    return "no error";
+  };
+  tr.spread(X, Y, F, F, f.x, f.y);
+  tr.interpolate(X, Y, f.x, f.y, U, U);  // the positions of the spread: its weights serve
+  Y[1500] = std::numeric_limits<double>::infinity();
+  X[1700] = std::nan("");
+  EXPECT_NE(message([&] { tr.interpolate(X, Y, f.x, f.y, U, U); }).find("marker 1500 "), std::string::npos);
+  EXPECT_NE(message([&] { tr.spread(X, Y, F, F, f.x, f.y); }).find("marker 1500 "), std::string::npos);
+  Y[1500] = 1.0;
+  EXPECT_NE(message([&] { tr.interpolate(X, Y, f.x, f.y, U, U); }).find("marker 1700 "), std::string::npos);
 }
 
 // The 1D weight of support node b of a marker at X (origin i0): φ(X − (i0 + b + ½)), for the
