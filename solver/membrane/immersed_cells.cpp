@@ -41,7 +41,9 @@ void ImmersedCells::compute_forces() {
   const int n = cell_count();
   // Cells own disjoint marker ranges (together every marker): parallel over cells is race-free
   // and deterministic. In equal static shares, so that a thread works on the same cells'
-  // markers in every step (the cells cost alike; measured faster than a dynamic schedule).
+  // markers in every step: faster than a dynamic schedule in the bench's box of like cells
+  // (docs/performance.md, "The threads' shares of the cell work"); cells of very different
+  // marker counts would share less evenly.
 #pragma omp parallel for schedule(static) if (threads_forces())
   for (int c = 0; c < n; ++c) {
     const std::span<double> fx = range(fx_, c), fy = range(fy_, c);
