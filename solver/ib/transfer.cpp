@@ -28,31 +28,24 @@ void report_first_non_finite(std::span<const double> X, std::span<const double> 
   }
 }
 
-void check_finite(std::span<const double> X, std::span<const double> Y) {
-  const long markers = static_cast<long>(X.size());
-  bool finite = true;
-#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers) reduction(&& : finite)
-  for (long m = 0; m < markers; ++m) finite = finite && std::isfinite(X[m]) && std::isfinite(Y[m]);
-  if (!finite) report_first_non_finite(X, Y);
-}
-
-// check_finite, and whether (X, Y) equal (WX, WY) element by element, in one pass over the threads.
+// Throws for a non-finite position (naming the first such marker) and returns whether (X, Y)
+// equal (WX, WY) element by element; arrays of another size are not compared (false). One
+// pass over the threads.
 bool check_finite_and_same(std::span<const double> X, std::span<const double> Y, std::span<const double> WX,
                            std::span<const double> WY) {
-  if (WX.size() != X.size() || WY.size() != Y.size()) {
-    check_finite(X, Y);
-    return false;
-  }
+  const bool compare = WX.size() == X.size() && WY.size() == Y.size();
   const long markers = static_cast<long>(X.size());
   bool finite = true, same = true;
 #pragma omp parallel for schedule(static) if (markers >= kParallelMarkers) reduction(&& : finite, same)
   for (long m = 0; m < markers; ++m) {
     finite = finite && std::isfinite(X[m]) && std::isfinite(Y[m]);
-    same = same && X[m] == WX[m] && Y[m] == WY[m];
+    same = same && compare && X[m] == WX[m] && Y[m] == WY[m];  // `compare` first: no read beyond WX
   }
   if (!finite) report_first_non_finite(X, Y);
-  return same;
+  return compare && same;
 }
+
+void check_finite(std::span<const double> X, std::span<const double> Y) { check_finite_and_same(X, Y, {}, {}); }
 
 // Support origin and the 1D weights φ(X − (i0 + b + ½)), b = 0 … W − 1.
 template <class K>

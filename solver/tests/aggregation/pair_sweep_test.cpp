@@ -92,10 +92,10 @@ TEST(SweepOwners, AnyOwnersGiveTheSameSumsBitForBit) {
   }
 }
 
-TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {  // equal rings: equal work, equal cells
+TEST(SweepOwners, SlabsSeparateTheFewerPairsWithEqualShares) {
   // Walls along y, periodic along x: slabs of y have one cut, slabs of x two (the rings touch
   // across the period); so two slabs of y, each of the 100 rings wholly on one side, 50 rings
-  // (1 500 markers) each.
+  // (1 500 markers) each: alike rings, so equal work is equal cells.
   const geometry::Domain channel{Grid{200, 200}, true, false};
   const RingsIn r(channel);
   const MarkerView& v = r.v;
@@ -167,7 +167,7 @@ TEST(SweepOwners, SlabsShareTheWorkNotTheCells) {
     work[t] += w;
     ++cells[t];
     largest = std::max(largest, w);
-    const double yc = y[off[c]] + 0.0;  // marker 0 sits at the ring's centre height
+    const double yc = y[off[c]];  // marker 0 sits at the ring's centre height
     if (t == 0) top0 = std::max(top0, yc);
     else bottom1 = std::min(bottom1, yc);
   }

@@ -214,13 +214,12 @@ TEST(Transfer, RejectsBadInput) {
 }
 
 // Many markers (the threads' path): the first non-finite marker is named, by spreading and by
-// interpolation, whether or not the positions are those the last spread saw.
+// interpolation, both after a spread (its positions compared) and with no spread before.
 TEST(Transfer, NamesTheFirstNonFiniteMarkerOfMany) {
   const Domain d{Grid{64, 64}, true, true};
-  Transfer tr(KernelType::cosine4, d);
   Field f(d.grid);
   const std::size_t M = 2000;
-  std::vector<double> X(M), Y(M), F(M, 1.0), U(M);
+  std::vector<double> X(M), Y(M), F(M, 1.0), Ux(M), Uy(M);
   for (std::size_t m = 0; m < M; ++m) {
     X[m] = 0.031 * static_cast<double>(m);
     Y[m] = 0.017 * static_cast<double>(m);
@@ -233,14 +232,17 @@ TEST(Transfer, NamesTheFirstNonFiniteMarkerOfMany) {
     }
     return "no error";
   };
+  Transfer tr(KernelType::cosine4, d);
   tr.spread(X, Y, F, F, f.x, f.y);
-  tr.interpolate(X, Y, f.x, f.y, U, U);  // the positions of the spread: its weights serve
+  tr.interpolate(X, Y, f.x, f.y, Ux, Uy);  // the positions of the spread: its weights serve
   Y[1500] = std::numeric_limits<double>::infinity();
   X[1700] = std::nan("");
-  EXPECT_NE(message([&] { tr.interpolate(X, Y, f.x, f.y, U, U); }).find("marker 1500 "), std::string::npos);
+  EXPECT_NE(message([&] { tr.interpolate(X, Y, f.x, f.y, Ux, Uy); }).find("marker 1500 "), std::string::npos);
   EXPECT_NE(message([&] { tr.spread(X, Y, F, F, f.x, f.y); }).find("marker 1500 "), std::string::npos);
+  Transfer fresh(KernelType::cosine4, d);  // no spread before: no positions to compare with
+  EXPECT_NE(message([&] { fresh.interpolate(X, Y, f.x, f.y, Ux, Uy); }).find("marker 1500 "), std::string::npos);
   Y[1500] = 1.0;
-  EXPECT_NE(message([&] { tr.interpolate(X, Y, f.x, f.y, U, U); }).find("marker 1700 "), std::string::npos);
+  EXPECT_NE(message([&] { tr.interpolate(X, Y, f.x, f.y, Ux, Uy); }).find("marker 1700 "), std::string::npos);
 }
 
 // The 1D weight of support node b of a marker at X (origin i0): φ(X − (i0 + b + ½)), for the
