@@ -39,3 +39,8 @@ endif()
 # in the kernel's interior and boundary paths, and a node's result depended on where
 # it sat (docs/performance.md, "Rounding and equivalence").
 target_compile_options(erythro_flags INTERFACE -ffp-contract=off)
+# No errno from the math functions: nothing reads it, and with it GCC keeps every std::sqrt
+# scalar (a branch to the library call for a negative argument), so loops over pair
+# distances did not vectorise. sqrt is correctly rounded either way: the same bits
+# (docs/performance.md, "Square roots in vector loops").
+target_compile_options(erythro_flags INTERFACE -fno-math-errno)
