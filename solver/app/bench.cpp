@@ -29,6 +29,7 @@
 
 #include "app/bench_metric.hpp"
 #include "app/coupled_bench.hpp"
+#include "app/scene_bench.hpp"
 #include "common/error.hpp"
 #include "fluid/fluid_lattice.hpp"
 #include "io/result_record.hpp"
@@ -364,7 +365,10 @@ int run_coupled_only(const BenchOptions& o) {
   return run_alone(o, "benchmark.coupled",
                    "Informative: measure the cost of the immersed cells per cell and time step, and the stages of the "
                    "coupled step, beside the fluid step of the same grid without cells.",
-                   [&](io::ResultRecord& record) { run_coupled_bench(o.coupled, record); });
+                   [&](io::ResultRecord& record) {
+                     if (o.coupled.scene.empty()) run_coupled_bench(o.coupled, record);
+                     else run_scene_bench(o.coupled.scene, o.coupled, record);
+                   });
 }
 
 // ---------------------------------------------------------------- the fluid step's inputs
@@ -655,28 +659,44 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
   cmd->add_option("--sample-seconds", options.sample_seconds, "Minimum duration of one sample")
       ->check(CLI::Range(1e-3, 60.0));
   cmd->add_flag("--quick", options.quick, "Smoke run: 256^2 and 1024^2, 3 short samples; 2 and 8 cells, one pair");
-  cmd->add_flag("--coupled-only", options.coupled_only,
-                "Only the coupled step (cells in a shear box), into $ERYTHRO_RESULTS_DIR/benchmark.coupled.h5");
+  CLI::Option* coupled_only =
+      cmd->add_flag("--coupled-only", options.coupled_only,
+                    "Only the coupled step (cells in a shear box), into $ERYTHRO_RESULTS_DIR/benchmark.coupled.h5");
   cmd->add_flag("--fluid-inputs", options.fluid_inputs,
                 "Only what a force field, a tau field and the velocity output add to the fluid step, into "
                 "$ERYTHRO_RESULTS_DIR/benchmark.fluid_inputs.h5");
-  cmd->add_option("--cells", options.coupled.cells, "Cell counts of the coupled step (box sized for area fraction 0.3)")
-      ->check(CLI::Range(1, 4096));
+  CLI::Option* cells = cmd->add_option("--cells", options.coupled.cells,
+                                       "Cell counts of the coupled step (box sized for area fraction 0.3)")
+                           ->check(CLI::Range(1, 4096));
   cmd->add_option("--coupled-steps", options.coupled.steps, "Time steps of each coupled-step run")
       ->check(CLI::Range(10, 1000000));
   cmd->add_option("--coupled-pairs", options.coupled.pairs, "Fluid-only and coupled runs per configuration")
       ->check(CLI::Range(1, 100));
-  cmd->add_flag("--aggregation", options.coupled.aggregation,
-                "Coupled step with Morse aggregation between the cells (De* = 5, thesis ch. IV)");
-  cmd->add_option("--index-interval", options.coupled.index_interval,
-                  "Index-field rebuild interval k of the coupled step (0: per box, the largest k with k U <= 0.1 h)")
-      ->check(CLI::Range(0L, 1000000L));
+  CLI::Option* aggregation =
+      cmd->add_flag("--aggregation", options.coupled.aggregation,
+                    "Coupled step with Morse aggregation between the cells (De* = 5, thesis ch. IV)");
+  CLI::Option* interval =
+      cmd->add_option(
+             "--index-interval", options.coupled.index_interval,
+             "Index-field rebuild interval k of the coupled step (0: per box, the largest k with k U <= 0.1 h)")
+          ->check(CLI::Range(0L, 1000000L));
+  cmd->add_option("--scene", options.coupled.scene,
+                  "With --coupled-only: the coupled step of this scene (its cells, its physics) beside the same scene "
+                  "without its cells, instead of the shear boxes")
+      ->check(CLI::ExistingFile)
+      ->needs(coupled_only)
+      ->excludes(cells)
+      ->excludes(aggregation)
+      ->excludes(interval);
   return cmd;
 }
 
 int bench_command(const BenchOptions& options) {
   try {
     return run_bench(options);
+  } catch (const InputError& e) {  // a --scene that does not parse or has no cells
+    std::cerr << "erythro: error: " << e.what() << "\n";
+    return exit_code::bad_input;
   } catch (const OutputError& e) {
     std::cerr << "erythro: error: " << e.what() << "\n";
     return exit_code::output_failure;

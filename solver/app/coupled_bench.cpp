@@ -3,7 +3,7 @@
 // membrane and shear of scenes/rbc_suspension_shear.toml. The scene goes the product's way
 // (scene text → scene::parse_scene, which seeds the cells → derive_lattice → sim::Simulation,
 // as io::run_scene, without an output file), and the time loop's own stage timings
-// (RunSummary::stages) give the cost of each stage. Beside it, one after the other in the
+// (RunSummary::stages) give the cost of each stage (coupled_timing.hpp). Beside it, one after the other in the
 // same process, the same grid without cells (fluid only): the extra cost per cell and step
 // is (coupled step − fluid-only step)/N, and the grid-proportional overhead of the cells is
 // the fluid step with cells (forces, per-node τ of the interior) over the fluid-only one.
@@ -14,19 +14,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "app/bench_metric.hpp"
+#include "app/coupled_timing.hpp"
 #include "geometry/polygon.hpp"
 #include "io/result_record.hpp"
 #include "scene/cell_seeding.hpp"
-#include "scene/scene_parser.hpp"
 #include "scene/units.hpp"
-#include "simulation/simulation.hpp"
 
 namespace erythro::app {
 namespace {
@@ -78,79 +75,9 @@ std::string scene_text(int n, int cells, long steps, const CoupledBenchOptions& 
   return s.str();
 }
 
-// A scene ready to be simulated (parsed, seeded, derived once per box: the set-up's overlap
-// check of 128 cells takes a while).
-struct Prepared {
-  scene::Scene scene;
-  scene::LatticeSetup setup;
-};
-
-Prepared prepare(int n, int cells, long steps, const CoupledBenchOptions& o, long index_interval) {
-  scene::Scene s = scene::parse_scene(scene_text(n, cells, steps, o, index_interval),
-                                      "bench_coupled_" + std::to_string(cells) + ".toml");
-  scene::LatticeSetup setup = scene::derive_lattice(s);
-  return {std::move(s), std::move(setup)};
-}
-
-class Silent : public sim::RunObserver {};
-
-// Seconds of each stage of one run, without the observe phase (progress, observation).
-struct Timed {
-  std::vector<std::pair<std::string, double>> stages;  // in the loop's order
-  double step_seconds = 0.0;                             // their sum / steps
-  double fluid_step_seconds = 0.0;
-};
-
-Timed time_run(const Prepared& p, long steps) {
-  sim::Simulation simulation(p.scene, p.setup);
-  Silent silent;
-  const sim::RunSummary summary = simulation.run(silent);
-  if (summary.status != sim::RunStatus::completed)
-    throw std::runtime_error("bench: the coupled-step run ended early (" + sim::to_string(summary.status) +
-                             "): " + summary.diagnosis);
-  Timed t;
-  for (const sim::StageTiming& stage : summary.stages) {
-    if (stage.phase == sim::Phase::observe) continue;
-    t.stages.emplace_back(stage.name, stage.seconds);
-    t.step_seconds += stage.seconds / static_cast<double>(steps);
-    if (stage.name == "fluid_step") t.fluid_step_seconds = stage.seconds / static_cast<double>(steps);
-  }
-  return t;
-}
-
-double median(std::vector<double> v) { return stats_of(std::move(v)).median; }
-
-struct Measurement {
-  double fluid_only_us = 0.0, coupled_us = 0.0, fluid_with_cells_us = 0.0;  // per step, medians over pairs
-  double extra_per_cell_us = 0.0, grid_overhead = 0.0;                      // medians over pairs
-  std::vector<std::pair<std::string, double>> stage_us;                     // per step, over all pairs
-};
-
-Measurement measure(const Prepared& coupled, const Prepared& fluid_only, int cells, const CoupledBenchOptions& o) {
-  std::vector<double> fluid_only_us, coupled_us, with_cells_us, extra, overhead;
-  std::map<std::string, double> stage_seconds;
-  Measurement m;
-  for (int pair = 0; pair < o.pairs; ++pair) {
-    const Timed f = time_run(fluid_only, o.steps);
-    const Timed c = time_run(coupled, o.steps);
-    fluid_only_us.push_back(1e6 * f.step_seconds);
-    coupled_us.push_back(1e6 * c.step_seconds);
-    with_cells_us.push_back(1e6 * c.fluid_step_seconds);
-    extra.push_back(1e6 * (c.step_seconds - f.step_seconds) / cells);
-    overhead.push_back(c.fluid_step_seconds / f.fluid_step_seconds);
-    for (const auto& [name, seconds] : c.stages) {
-      if (pair == 0) m.stage_us.emplace_back(name, 0.0);
-      stage_seconds[name] += seconds;
-    }
-  }
-  const double steps = static_cast<double>(o.steps) * o.pairs;
-  for (auto& [name, us] : m.stage_us) us = 1e6 * stage_seconds[name] / steps;
-  m.fluid_only_us = median(fluid_only_us);
-  m.coupled_us = median(coupled_us);
-  m.fluid_with_cells_us = median(with_cells_us);
-  m.extra_per_cell_us = median(extra);
-  m.grid_overhead = median(overhead);
-  return m;
+PreparedScene prepare(int n, int cells, long steps, const CoupledBenchOptions& o, long index_interval) {
+  return prepare_scene(scene_text(n, cells, steps, o, index_interval),
+                       "bench_coupled_" + std::to_string(cells) + ".toml");
 }
 
 }  // namespace
@@ -185,52 +112,31 @@ void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
     // 0 … mk run, and the index field is rebuilt before steps k, 2k, … mk (m rebuilds; the
     // one at set-up is not timed), one per k steps.
     const long steps = std::max(4 * k, (o.steps + k - 1) / k * k) + 1;
-    CoupledBenchOptions run = o;
-    run.steps = steps;
-    const Prepared coupled = prepare(n, cells, steps, o, k);
-    const Prepared fluid_only = prepare(n, 0, steps, o, 1);
+    const PreparedScene coupled = prepare(n, cells, steps, o, k);
+    const PreparedScene fluid_only = prepare(n, 0, steps, o, 1);
     const double phi = cells * cell_area_um2() / (n * kSpacingUm * n * kSpacingUm);
     for (int threads : o.threads) {
       omp_set_num_threads(threads);
-      const Measurement m = measure(coupled, fluid_only, cells, run);
+      const CoupledMeasurement m = measure_coupled(coupled, fluid_only, cells, steps, o.pairs);
       std::printf("%5d %4dx%-4d %3d %6.3f %4ld %12.1f %12.1f %14.1f %14.2f %9.3f\n", cells, n, n, threads, phi, k,
                   m.fluid_only_us, m.coupled_us, m.fluid_with_cells_us, m.extra_per_cell_us, m.grid_overhead);
       std::fflush(stdout);
-      std::ostringstream line;
-      line.precision(3);
-      line << std::fixed << "  " << cells << " cells, " << threads << " thr, k = " << k << ":";
-      std::map<std::string, io::Value> row{{"kind", std::string("coupled step")},
-                                                           {"cells", static_cast<double>(cells)},
-                                                           {"grid_n", static_cast<double>(n)},
-                                                           {"threads", static_cast<double>(threads)},
-                                                           {"area_fraction", phi},
-                                                           {"index_update_interval", static_cast<double>(k)},
-                                                           {"steps", static_cast<double>(steps)},
-                                                           {"aggregation", o.aggregation ? 1.0 : 0.0},
-                                                           {"fluid_only_us_per_step", m.fluid_only_us},
-                                                           {"coupled_us_per_step", m.coupled_us},
-                                                           {"fluid_step_with_cells_us_per_step", m.fluid_with_cells_us},
-                                                           {"extra_us_per_cell_step", m.extra_per_cell_us},
-                                                           {"grid_overhead", m.grid_overhead}};
-      for (const auto& [name, us] : m.stage_us) {
-        // Cell stages per cell and step; the fluid step per step (it scales with the grid).
-        const bool grid_stage = name == "fluid_step" || name == "force_field_reset";
-        const double value = grid_stage ? us : us / cells;
-        line << " " << name << " " << value << (grid_stage ? " us" : " us/cell");
-        row[name + (grid_stage ? "_us_per_step" : "_us_per_cell_step")] = value;
-      }
-      stage_lines.push_back(line.str());
-      record.add_run(row);
-      const std::string tag = std::to_string(cells) + "_t" + std::to_string(threads);
-      record.add_metric(informative("coupled_extra_us_per_cell_step_" + tag,
-                                    "(coupled step - fluid-only step of the same grid) / cells, median over pairs",
-                                    "us", m.extra_per_cell_us));
-      record.add_metric(informative("coupled_grid_overhead_" + tag,
-                                    "fluid step with cells (forces, interior tau field) / fluid-only fluid step", "",
-                                    m.grid_overhead));
+      const CoupledRow row{
+          std::to_string(cells) + " cells, " + std::to_string(threads) + " thr, k = " + std::to_string(k),
+          std::to_string(cells) + "_t" + std::to_string(threads),
+          {{"cells", static_cast<double>(cells)},
+           {"grid_n", static_cast<double>(n)},
+           {"threads", static_cast<double>(threads)},
+           {"area_fraction", phi},
+           {"index_update_interval", static_cast<double>(k)},
+           {"steps", static_cast<double>(steps)},
+           {"aggregation", o.aggregation ? 1.0 : 0.0}},
+          scene_text(n, cells, steps, o, k)};
+      stage_lines.push_back(record_coupled(record, row, m, cells));
     }
   }
-  std::printf("stages (mean over all runs; cell stages per cell and step, fluid_step and force_field_reset per step):\n");
+  std::printf(
+      "stages (mean over all runs; cell stages per cell and step, fluid_step and force_field_reset per step):\n");
   for (const std::string& l : stage_lines) std::printf("%s\n", l.c_str());
 }
 

@@ -2,6 +2,7 @@
 // The coupled-step section of `erythro bench` (issue 18): the cost of the immersed cells in
 // a suspension, per cell and step, beside the fluid step of the same grid without cells.
 // Informative only. Method and figures: docs/performance.md "The coupled step benchmark".
+#include <string>
 #include <vector>
 
 namespace erythro::io {
@@ -21,6 +22,9 @@ struct CoupledBenchOptions {
   // Index-field rebuild interval k; 0: the largest k the validation supports in each box,
   // k U ≤ 0.1 h with U the wall speed (docs/performance.md "The coupled step benchmark").
   long index_interval = 0;
+  // A user's scene with cells instead of the shear boxes (scene_bench.hpp); cells, aggregation
+  // and index_interval are then the scene's.
+  std::string scene;
 };
 
 // Runs the section, prints its table and adds its runs and metrics to `record`.

@@ -1,0 +1,106 @@
+#include "app/coupled_timing.hpp"
+
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "app/bench_metric.hpp"
+#include "io/result_record.hpp"
+#include "scene/scene_parser.hpp"
+#include "simulation/simulation.hpp"
+
+namespace erythro::app {
+namespace {
+
+class Silent : public sim::RunObserver {};
+
+// Seconds of each stage of one run, without the observe phase (progress, observation).
+struct Timed {
+  std::vector<std::pair<std::string, double>> stages;  // in the loop's order
+  double step_seconds = 0.0;                           // their sum / steps
+  double fluid_step_seconds = 0.0;
+};
+
+Timed time_run(const PreparedScene& p, long steps) {
+  sim::Simulation simulation(p.scene, p.setup);
+  Silent silent;
+  const sim::RunSummary summary = simulation.run(silent);
+  if (summary.status != sim::RunStatus::completed)
+    throw std::runtime_error("bench: the coupled-step run ended early (" + sim::to_string(summary.status) +
+                             "): " + summary.diagnosis);
+  Timed t;
+  for (const sim::StageTiming& stage : summary.stages) {
+    if (stage.phase == sim::Phase::observe) continue;
+    t.stages.emplace_back(stage.name, stage.seconds);
+    t.step_seconds += stage.seconds / static_cast<double>(steps);
+    if (stage.name == "fluid_step") t.fluid_step_seconds = stage.seconds / static_cast<double>(steps);
+  }
+  return t;
+}
+
+double median(std::vector<double> v) { return stats_of(std::move(v)).median; }
+
+}  // namespace
+
+PreparedScene prepare_scene(const std::string& text, const std::string& name) {
+  scene::Scene s = scene::parse_scene(text, name);
+  scene::LatticeSetup setup = scene::derive_lattice(s);
+  return {std::move(s), std::move(setup)};
+}
+
+CoupledMeasurement measure_coupled(const PreparedScene& coupled, const PreparedScene& fluid_only, int cells, long steps,
+                                   int pairs) {
+  std::vector<double> fluid_only_us, coupled_us, with_cells_us, extra, overhead;
+  std::map<std::string, double> stage_seconds;
+  CoupledMeasurement m;
+  for (int pair = 0; pair < pairs; ++pair) {
+    const Timed f = time_run(fluid_only, steps);
+    const Timed c = time_run(coupled, steps);
+    fluid_only_us.push_back(1e6 * f.step_seconds);
+    coupled_us.push_back(1e6 * c.step_seconds);
+    with_cells_us.push_back(1e6 * c.fluid_step_seconds);
+    extra.push_back(1e6 * (c.step_seconds - f.step_seconds) / cells);
+    overhead.push_back(c.fluid_step_seconds / f.fluid_step_seconds);
+    for (const auto& [name, seconds] : c.stages) {
+      if (pair == 0) m.stage_us.emplace_back(name, 0.0);
+      stage_seconds[name] += seconds;
+    }
+  }
+  const double all_steps = static_cast<double>(steps) * pairs;
+  for (auto& [name, us] : m.stage_us) us = 1e6 * stage_seconds[name] / all_steps;
+  m.fluid_only_us = median(fluid_only_us);
+  m.coupled_us = median(coupled_us);
+  m.fluid_with_cells_us = median(with_cells_us);
+  m.extra_per_cell_us = median(extra);
+  m.grid_overhead = median(overhead);
+  return m;
+}
+
+std::string record_coupled(io::ResultRecord& record, const CoupledRow& row, const CoupledMeasurement& m, int cells) {
+  std::ostringstream line;
+  line.precision(3);
+  line << std::fixed << "  " << row.label << ":";
+  std::map<std::string, io::Value> run{
+      {"kind", std::string("coupled step")},           {"fluid_only_us_per_step", m.fluid_only_us},
+      {"coupled_us_per_step", m.coupled_us},           {"fluid_step_with_cells_us_per_step", m.fluid_with_cells_us},
+      {"extra_us_per_cell_step", m.extra_per_cell_us}, {"grid_overhead", m.grid_overhead}};
+  for (const auto& [name, value] : row.columns) run[name] = value;
+  for (const auto& [name, us] : m.stage_us) {
+    // Cell stages per cell and step; the fluid step and the force field's reset per step
+    // (they scale with the grid).
+    const bool grid_stage = name == "fluid_step" || name == "force_field_reset";
+    const double value = grid_stage ? us : us / cells;
+    line << " " << name << " " << value << (grid_stage ? " us" : " us/cell");
+    run[name + (grid_stage ? "_us_per_step" : "_us_per_cell_step")] = value;
+  }
+  record.add_run(run, row.scene_text);
+  record.add_metric(informative("coupled_extra_us_per_cell_step_" + row.tag,
+                                "(coupled step - fluid-only step of the same grid) / cells, median over pairs", "us",
+                                m.extra_per_cell_us));
+  record.add_metric(informative("coupled_grid_overhead_" + row.tag,
+                                "fluid step with cells (forces, interior tau field) / fluid-only fluid step", "",
+                                m.grid_overhead));
+  return line.str();
+}
+
+}  // namespace erythro::app

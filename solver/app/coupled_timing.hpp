@@ -1,0 +1,48 @@
+#pragma once
+// Timing a scene with cells beside the same grid without them: the measurement shared by the
+// coupled-step sections of `erythro bench` (coupled_bench.hpp: shear boxes; scene_bench.hpp:
+// a user's scene). Each run goes the product's way, scene text → scene::parse_scene →
+// derive_lattice → sim::Simulation, without an output file, and the time loop's own stage
+// timings (RunSummary::stages) give each stage's cost.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "scene/scene.hpp"
+#include "scene/units.hpp"
+
+namespace erythro::io {
+class ResultRecord;
+}
+
+namespace erythro::app {
+
+// A scene ready to be simulated (parsed, seeded, derived once: seeding many cells takes a while).
+struct PreparedScene {
+  scene::Scene scene;
+  scene::LatticeSetup setup;
+};
+PreparedScene prepare_scene(const std::string& text, const std::string& name);
+
+// Medians over `pairs` pairs of runs (fluid only, then coupled, one after the other).
+struct CoupledMeasurement {
+  double fluid_only_us = 0.0, coupled_us = 0.0, fluid_with_cells_us = 0.0;  // per step
+  double extra_per_cell_us = 0.0;                                           // (coupled − fluid-only step) / cells
+  double grid_overhead = 0.0;                            // fluid step with cells / fluid-only fluid step
+  std::vector<std::pair<std::string, double>> stage_us;  // per step, mean over all coupled runs, loop order
+};
+CoupledMeasurement measure_coupled(const PreparedScene& coupled, const PreparedScene& fluid_only, int cells, long steps,
+                                   int pairs);
+
+// What identifies a measurement in the record and on the stage line.
+struct CoupledRow {
+  std::string label;                                    // e.g. "32 cells, 1 thr, k = 63"
+  std::string tag;                                      // metric suffix, e.g. "32_t1"
+  std::vector<std::pair<std::string, double>> columns;  // the run row's own columns (cells, threads, …)
+  std::string scene_text;                               // the coupled run's scene, kept in the record's /scenes
+};
+// Adds the run row (with its scene) and its two informative metrics to the record; returns the stage line
+// (cell stages per cell and step, the grid stages per step).
+std::string record_coupled(io::ResultRecord& record, const CoupledRow& row, const CoupledMeasurement& m, int cells);
+
+}  // namespace erythro::app

@@ -1,0 +1,114 @@
+#include "app/scene_bench.hpp"
+
+#include <omp.h>
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "app/coupled_timing.hpp"
+#include "common/error.hpp"
+#include "io/result_record.hpp"
+#include "scene/scene_parser.hpp"
+
+namespace erythro::app {
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open the scene file");
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// The scene text with the bench's run length and output: `steps` steps, no field snapshots, the
+// diagnostics and the health check once, at the last step, no stop conditions, no checkpoints.
+// With cells: the index-field interval k the scene derives for its own run written out (a derived
+// k depends on the speed the run reaches, so on its length). Without cells: also without the tables
+// that make and move them, and with the time mapping's cell radius written out (it was the largest
+// cell's), so that both derive the same lattice.
+std::string bench_text(const toml::table& scene, long steps, bool cells, long k, double mapping_radius_um) {
+  toml::table t = scene;
+  if (toml::table* membrane = t["membrane"].as_table(); cells && membrane)
+    membrane->insert_or_assign("index_update_interval", k);
+  t.insert_or_assign("run", toml::table{{"steps", steps}});
+  t.insert_or_assign("output", toml::table{{"fields_interval_steps", 0}, {"diagnostics_interval_steps", steps}});
+  toml::table monitor = t["monitor"].as_table() ? *t["monitor"].as_table() : toml::table{};
+  monitor.insert_or_assign("interval_steps", steps);
+  t.insert_or_assign("monitor", std::move(monitor));
+  t.erase("stop_when");
+  if (!cells) {
+    for (const char* key : {"membrane", "cells", "cell_populations", "repulsion", "aggregation"}) t.erase(key);
+    if (toml::table* mapping = t["time_mapping"].as_table(); mapping && !mapping->contains("radius_um"))
+      mapping->insert_or_assign("radius_um", mapping_radius_um);
+  }
+  std::ostringstream s;
+  s << t;
+  return s.str();
+}
+
+}  // namespace
+
+void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::ResultRecord& record) {
+  const std::string text = read_text(path);
+  const toml::table scene = toml::parse(text, path);
+  // The scene as the user runs it gives k and the cells; whole intervals per run, at least four, and
+  // one step (as the shear boxes: m rebuilds in m k + 1 steps, the one at set-up not timed).
+  const PreparedScene probe = prepare_scene(text, path);
+  if (!probe.setup.membrane || probe.setup.membrane->cells.empty())
+    throw InputError(path + ": `erythro bench --scene` needs a scene with cells ([[cells]] or [[cell_populations]])");
+  const long k = std::max(1L, probe.setup.membrane->index_update_interval);
+  const int cells = static_cast<int>(probe.setup.membrane->cells.size());
+  const long steps = std::max(4 * k, (o.steps + k - 1) / k * k) + 1;
+  const double radius_um = probe.setup.time_mapping ? probe.setup.time_mapping->radius_m * 1e6 : 0.0;
+  const std::string coupled_text = bench_text(scene, steps, true, k, radius_um);
+  const PreparedScene coupled = prepare_scene(coupled_text, path);
+  const PreparedScene fluid_only =
+      prepare_scene(bench_text(scene, steps, false, k, radius_um), path + " (without its cells)");
+  if (!coupled.setup.membrane || coupled.setup.membrane->index_update_interval != k)
+    throw InputError(path + ": the bench's copy of the scene derives another index-field interval than " +
+                     std::to_string(k));
+  const auto& grid = coupled.setup.grid;
+  if (fluid_only.setup.grid.nx != grid.nx || fluid_only.setup.grid.ny != grid.ny ||
+      fluid_only.setup.collision.tau != coupled.setup.collision.tau)
+    throw InputError(path + ": without its cells the scene derives another lattice (grid or tau): no fluid-only twin");
+  record.set_parameter("coupled_scene", path);
+  record.set_parameter("coupled_steps_per_run", static_cast<double>(steps));
+  record.set_parameter("coupled_pairs", static_cast<double>(o.pairs));
+  std::printf(
+      "\ncoupled step of %s: %d cells on a %dx%d grid, index field every %ld steps; %ld steps per run, %d "
+      "pair(s) (the scene without its cells, then with them), medians\n",
+      path.c_str(), cells, grid.nx, grid.ny, k, steps, o.pairs);
+  std::printf("%5s %3s %12s %12s %14s %14s %9s\n", "cells", "thr", "fluid-only", "coupled", "fluid w/ cells",
+              "extra/cell", "grid ovh");
+  std::printf("%5s %3s %12s %12s %14s %14s %9s\n", "", "", "us/step", "us/step", "us/step", "us/(cell step)", "");
+  std::vector<std::string> stage_lines;
+  for (int threads : o.threads) {
+    omp_set_num_threads(threads);
+    const CoupledMeasurement m = measure_coupled(coupled, fluid_only, cells, steps, o.pairs);
+    std::printf("%5d %3d %12.1f %12.1f %14.1f %14.2f %9.3f\n", cells, threads, m.fluid_only_us, m.coupled_us,
+                m.fluid_with_cells_us, m.extra_per_cell_us, m.grid_overhead);
+    std::fflush(stdout);
+    const CoupledRow row{
+        std::to_string(cells) + " cells, " + std::to_string(threads) + " thr, k = " + std::to_string(k),
+        "scene_t" + std::to_string(threads),
+        {{"cells", static_cast<double>(cells)},
+         {"grid_nx", static_cast<double>(grid.nx)},
+         {"grid_ny", static_cast<double>(grid.ny)},
+         {"threads", static_cast<double>(threads)},
+         {"index_update_interval", static_cast<double>(k)},
+         {"steps", static_cast<double>(steps)}},
+        coupled_text};
+    stage_lines.push_back(record_coupled(record, row, m, cells));
+  }
+  std::printf(
+      "stages (mean over all runs; cell stages per cell and step, fluid_step and force_field_reset per step):\n");
+  for (const std::string& l : stage_lines) std::printf("%s\n", l.c_str());
+}
+
+}  // namespace erythro::app
