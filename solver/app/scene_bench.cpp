@@ -12,6 +12,7 @@
 
 #include "app/coupled_timing.hpp"
 #include "common/error.hpp"
+#include "interior/index_field.hpp"
 #include "io/result_record.hpp"
 #include "scene/scene_parser.hpp"
 
@@ -30,11 +31,12 @@ std::string read_text(const std::string& path) {
 // diagnostics and the health check once, at the last step, no stop conditions, no checkpoints.
 // With cells: the index-field interval k the scene derives for its own run written out (a derived
 // k depends on the speed the run reaches, so on its length). Without cells: also without the tables
-// that make and move them, and with the time mapping's cell radius written out (it was the largest
-// cell's), so that both derive the same lattice.
+// that make, move and fill them (the cells' haemoglobin), and with the time mapping's cell radius
+// written out (it was the largest cell's), so that both derive the same lattice.
+// k = 0: the scene has no index field (no interior viscosity), nothing to write out.
 std::string bench_text(const toml::table& scene, long steps, bool cells, long k, double mapping_radius_um) {
   toml::table t = scene;
-  if (toml::table* membrane = t["membrane"].as_table(); cells && membrane)
+  if (toml::table* membrane = t["membrane"].as_table(); cells && membrane && k > 0)
     membrane->insert_or_assign("index_update_interval", k);
   t.insert_or_assign("run", toml::table{{"steps", steps}});
   t.insert_or_assign("output", toml::table{{"fields_interval_steps", 0}, {"diagnostics_interval_steps", steps}});
@@ -43,7 +45,8 @@ std::string bench_text(const toml::table& scene, long steps, bool cells, long k,
   t.insert_or_assign("monitor", std::move(monitor));
   t.erase("stop_when");
   if (!cells) {
-    for (const char* key : {"membrane", "cells", "cell_populations", "repulsion", "aggregation"}) t.erase(key);
+    for (const char* key : {"membrane", "cells", "cell_populations", "repulsion", "aggregation", "hemoglobin"})
+      t.erase(key);
     if (toml::table* mapping = t["time_mapping"].as_table(); mapping && !mapping->contains("radius_um"))
       mapping->insert_or_assign("radius_um", mapping_radius_um);
   }
@@ -56,21 +59,25 @@ std::string bench_text(const toml::table& scene, long steps, bool cells, long k,
 
 void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::ResultRecord& record) {
   const std::string text = read_text(path);
-  const toml::table scene = toml::parse(text, path);
-  // The scene as the user runs it gives k and the cells; whole intervals per run, at least four, and
-  // one step (as the shear boxes: m rebuilds in m k + 1 steps, the one at set-up not timed).
+  // The scene as the user runs it (its errors name its own keys) gives k and the cells; whole
+  // intervals per run, at least four, and one step (as the shear boxes: m rebuilds in m k + 1 steps,
+  // the one at set-up not timed).
   const PreparedScene probe = prepare_scene(text, path);
+  const toml::table scene = toml::parse(text, path);
+  if (!probe.setup.has_fluid)
+    throw InputError(path + ": `erythro bench --scene` times cells in a fluid; this scene has no fluid");
   if (!probe.setup.membrane || probe.setup.membrane->cells.empty())
     throw InputError(path + ": `erythro bench --scene` needs a scene with cells ([[cells]] or [[cell_populations]])");
-  const long k = std::max(1L, probe.setup.membrane->index_update_interval);
+  const bool index_field = probe.setup.membrane->indicator != interior::Method::indexless;
+  const long k = index_field ? std::max(1L, probe.setup.membrane->index_update_interval) : 1;
   const int cells = static_cast<int>(probe.setup.membrane->cells.size());
   const long steps = std::max(4 * k, (o.steps + k - 1) / k * k) + 1;
   const double radius_um = probe.setup.time_mapping ? probe.setup.time_mapping->radius_m * 1e6 : 0.0;
-  const std::string coupled_text = bench_text(scene, steps, true, k, radius_um);
+  const std::string coupled_text = bench_text(scene, steps, true, index_field ? k : 0, radius_um);
   const PreparedScene coupled = prepare_scene(coupled_text, path);
   const PreparedScene fluid_only =
-      prepare_scene(bench_text(scene, steps, false, k, radius_um), path + " (without its cells)");
-  if (!coupled.setup.membrane || coupled.setup.membrane->index_update_interval != k)
+      prepare_scene(bench_text(scene, steps, false, 0, radius_um), path + " (without its cells)");
+  if (index_field && coupled.setup.membrane->index_update_interval != k)
     throw InputError(path + ": the bench's copy of the scene derives another index-field interval than " +
                      std::to_string(k));
   const auto& grid = coupled.setup.grid;
@@ -81,9 +88,10 @@ void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::
   record.set_parameter("coupled_steps_per_run", static_cast<double>(steps));
   record.set_parameter("coupled_pairs", static_cast<double>(o.pairs));
   std::printf(
-      "\ncoupled step of %s: %d cells on a %dx%d grid, index field every %ld steps; %ld steps per run, %d "
-      "pair(s) (the scene without its cells, then with them), medians\n",
-      path.c_str(), cells, grid.nx, grid.ny, k, steps, o.pairs);
+      "\ncoupled step of %s: %d cells on a %dx%d grid, %s; %ld steps per run, %d pair(s) (the scene without "
+      "its cells, then with them), medians\n",
+      path.c_str(), cells, grid.nx, grid.ny,
+      index_field ? ("index field every " + std::to_string(k) + " steps").c_str() : "no index field", steps, o.pairs);
   std::printf("%5s %3s %12s %12s %14s %14s %9s\n", "cells", "thr", "fluid-only", "coupled", "fluid w/ cells",
               "extra/cell", "grid ovh");
   std::printf("%5s %3s %12s %12s %14s %14s %9s\n", "", "", "us/step", "us/step", "us/step", "us/(cell step)", "");
