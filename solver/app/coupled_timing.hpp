@@ -26,10 +26,14 @@ PreparedScene prepare_scene(const std::string& text, const std::string& name);
 
 // Medians over `pairs` pairs of runs (fluid only, then coupled, one after the other).
 struct CoupledMeasurement {
-  double fluid_only_us = 0.0, coupled_us = 0.0, fluid_with_cells_us = 0.0;  // per step
-  double extra_per_cell_us = 0.0;                                           // (coupled − fluid-only step) / cells
-  double grid_overhead = 0.0;                            // fluid step with cells / fluid-only fluid step
-  std::vector<std::pair<std::string, double>> stage_us;  // per step, mean over all coupled runs, loop order
+  // Per step.
+  double fluid_only_us = 0.0, coupled_us = 0.0, fluid_with_cells_us = 0.0;
+  // (coupled − fluid-only step) / cells.
+  double extra_per_cell_us = 0.0;
+  // Fluid step with cells / fluid-only fluid step.
+  double grid_overhead = 0.0;
+  // Each stage per step, the mean over all coupled runs, in the loop's order.
+  std::vector<std::pair<std::string, double>> stage_us;
 };
 CoupledMeasurement measure_coupled(const PreparedScene& coupled, const PreparedScene& fluid_only, int cells, long steps,
                                    int pairs);
