@@ -175,14 +175,18 @@ TEST(AggregationForces, All) {
     const auto c = vv::random_cells(k.cells, k.markers, k.nx, k.ny, k.periodic, k.seed);
     CellContacts agg(c.domain, kP);
     std::vector<double> fx(c.markers(), 0.0), fy(c.markers(), 0.0), bx(c.markers(), 0.0), by(c.markers(), 0.0);
+    // The cell lists on two threads whatever OMP_NUM_THREADS says (the comparison with one thread
+    // below must not become one thread against one).
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(2);
     vv::Stopwatch sw;
     const ContactStats a = agg.add_forces(c.view(), fx, fy);
     const double t_cl = sw.seconds();
+    omp_set_num_threads(threads);
     vv::Stopwatch sb;
     const ContactStats b = add_forces_brute_force(c.domain, ContactLaw{kP, std::nullopt}, c.view(), bx, by);
     const double t_bf = sb.seconds();
     // Same with one thread: deterministic for any thread count.
-    const int threads = omp_get_max_threads();
     omp_set_num_threads(1);
     std::vector<double> sx(c.markers(), 0.0), sy(c.markers(), 0.0);
     agg.add_forces(c.view(), sx, sy);
