@@ -75,10 +75,7 @@ std::string scene_text(int n, int cells, long steps, const CoupledBenchOptions& 
   return s.str();
 }
 
-PreparedScene prepare(int n, int cells, long steps, const CoupledBenchOptions& o, long index_interval) {
-  return prepare_scene(scene_text(n, cells, steps, o, index_interval),
-                       "bench_coupled_" + std::to_string(cells) + ".toml");
-}
+std::string scene_name(int cells) { return "bench_coupled_" + std::to_string(cells) + ".toml"; }
 
 }  // namespace
 
@@ -107,13 +104,12 @@ void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
     // The interval from the wall speed of this box (the fluid-only scene has no cells: k = 1).
     const long k = o.index_interval > 0
                        ? o.index_interval
-                       : scene::supported_index_interval(prepare(n, 0, 10, o, 1).setup.boundaries.top.ux);
-    // A whole number m of rebuild intervals per run, at least four, and one step: steps n =
-    // 0 … mk run, and the index field is rebuilt before steps k, 2k, … mk (m rebuilds; the
-    // one at set-up is not timed), one per k steps.
-    const long steps = std::max(4 * k, (o.steps + k - 1) / k * k) + 1;
-    const PreparedScene coupled = prepare(n, cells, steps, o, k);
-    const PreparedScene fluid_only = prepare(n, 0, steps, o, 1);
+                       : scene::supported_index_interval(
+                             prepare_scene(scene_text(n, 0, 10, o, 1), scene_name(0)).setup.boundaries.top.ux);
+    const long steps = whole_interval_steps(k, o.steps);
+    const std::string coupled_text = scene_text(n, cells, steps, o, k);
+    const PreparedScene coupled = prepare_scene(coupled_text, scene_name(cells));
+    const PreparedScene fluid_only = prepare_scene(scene_text(n, 0, steps, o, 1), scene_name(0));
     const double phi = cells * cell_area_um2() / (n * kSpacingUm * n * kSpacingUm);
     for (int threads : o.threads) {
       omp_set_num_threads(threads);
@@ -131,13 +127,11 @@ void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
            {"index_update_interval", static_cast<double>(k)},
            {"steps", static_cast<double>(steps)},
            {"aggregation", o.aggregation ? 1.0 : 0.0}},
-          scene_text(n, cells, steps, o, k)};
+          coupled_text};
       stage_lines.push_back(record_coupled(record, row, m, cells));
     }
   }
-  std::printf(
-      "stages (mean over all runs; cell stages per cell and step, fluid_step and force_field_reset per step):\n");
-  for (const std::string& l : stage_lines) std::printf("%s\n", l.c_str());
+  print_stage_lines(stage_lines);
 }
 
 }  // namespace erythro::app

@@ -1,5 +1,7 @@
 #include "app/coupled_timing.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -41,6 +43,14 @@ Timed time_run(const PreparedScene& p, long steps) {
 double median(std::vector<double> v) { return stats_of(std::move(v)).median; }
 
 }  // namespace
+
+long whole_interval_steps(long k, long at_least) { return std::max(4 * k, (at_least + k - 1) / k * k) + 1; }
+
+void print_stage_lines(const std::vector<std::string>& lines) {
+  std::printf(
+      "stages (mean over all runs; cell stages per cell and step, fluid_step and force_field_reset per step):\n");
+  for (const std::string& l : lines) std::printf("%s\n", l.c_str());
+}
 
 PreparedScene prepare_scene(const std::string& text, const std::string& name) {
   scene::Scene s = scene::parse_scene(text, name);

@@ -17,6 +17,14 @@ class ResultRecord;
 
 namespace erythro::app {
 
+// Steps of a timed run: a whole number m ≥ 4 of index-field intervals k, at least `at_least`,
+// plus one (steps 0 … m k; the rebuilds before steps k, 2k, … m k are m, one per k steps; the
+// one at set-up is not timed).
+long whole_interval_steps(long k, long at_least);
+
+// Prints the stage lines of record_coupled under their heading.
+void print_stage_lines(const std::vector<std::string>& lines);
+
 // A scene ready to be simulated (parsed, seeded, derived once: seeding many cells takes a while).
 struct PreparedScene {
   scene::Scene scene;

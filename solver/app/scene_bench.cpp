@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -18,14 +17,6 @@
 
 namespace erythro::app {
 namespace {
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open the scene file");
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 // The scene text with the bench's run length and output: `steps` steps, no field snapshots, the
 // diagnostics and the health check once, at the last step, no stop conditions, no checkpoints.
@@ -58,12 +49,11 @@ std::string bench_text(const toml::table& scene, long steps, bool cells, long k,
 }  // namespace
 
 void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::ResultRecord& record) {
-  const std::string text = read_text(path);
-  // The scene as the user runs it (its errors name its own keys) gives k and the cells; whole
-  // intervals per run, at least four, and one step (as the shear boxes: m rebuilds in m k + 1 steps,
-  // the one at set-up not timed).
-  const PreparedScene probe = prepare_scene(text, path);
-  const toml::table scene = toml::parse(text, path);
+  // The scene as the user runs it (read and checked by load_scene: its errors name the file's own
+  // keys) gives k and the cells.
+  PreparedScene probe{scene::load_scene(path), {}};
+  probe.setup = scene::derive_lattice(probe.scene);
+  const toml::table scene = toml::parse(probe.scene.source_text, path);
   if (!probe.setup.has_fluid)
     throw InputError(path + ": `erythro bench --scene` times cells in a fluid; this scene has no fluid");
   if (!probe.setup.membrane || probe.setup.membrane->cells.empty())
@@ -71,7 +61,7 @@ void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::
   const bool index_field = probe.setup.membrane->indicator != interior::Method::indexless;
   const long k = index_field ? std::max(1L, probe.setup.membrane->index_update_interval) : 1;
   const int cells = static_cast<int>(probe.setup.membrane->cells.size());
-  const long steps = std::max(4 * k, (o.steps + k - 1) / k * k) + 1;
+  const long steps = whole_interval_steps(k, o.steps);
   const double radius_um = probe.setup.time_mapping ? probe.setup.time_mapping->radius_m * 1e6 : 0.0;
   const std::string coupled_text = bench_text(scene, steps, true, index_field ? k : 0, radius_um);
   const PreparedScene coupled = prepare_scene(coupled_text, path);
@@ -114,9 +104,7 @@ void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::
         coupled_text};
     stage_lines.push_back(record_coupled(record, row, m, cells));
   }
-  std::printf(
-      "stages (mean over all runs; cell stages per cell and step, fluid_step and force_field_reset per step):\n");
-  for (const std::string& l : stage_lines) std::printf("%s\n", l.c_str());
+  print_stage_lines(stage_lines);
 }
 
 }  // namespace erythro::app

@@ -179,6 +179,20 @@ expect profiles_window 0 'time-averaged over 6 samples from t = 1\.7' -- "$ERYTH
 expect profiles_past_the_end 2 'no sample at or after 1 s' -- "$ERYTHRO" profiles one_cell/run.h5 --after-s 1
 expect profiles_no_channel 2 'no profile /profiles/velocity_x_um_s' -- "$ERYTHRO" profiles tg_same/run.h5
 
+# `erythro bench --coupled-only --scene`: a scene it cannot time is an input error (exit 2) with
+# the reason, and writes no record.
+expect bench_scene_no_cells 2 'needs a scene with cells' -- \
+  "$ERYTHRO" bench --coupled-only --scene "$SCENE" --threads 1 --out bench_no_cells.h5
+expect bench_scene_no_fluid 2 'times cells in a fluid; this scene has no fluid' -- \
+  "$ERYTHRO" bench --coupled-only --scene "$SRC/scenes/rbc_deoxygenation.toml" --threads 1 --out bench_no_fluid.h5
+expect bench_scene_malformed 2 'malformed.toml:3' -- \
+  "$ERYTHRO" bench --coupled-only --scene malformed.toml --threads 1 --out bench_malformed.h5
+expect bench_scene_needs_coupled_only 2 'scene requires --coupled-only' -- \
+  "$ERYTHRO" bench --scene "$SRC/scenes/rbc_channel.toml" --out bench_not_coupled.h5
+checks=$((checks + 1))
+if ls bench_*.h5 >/dev/null 2>&1; then echo "FAIL bench_scene_refused_no_record: $(ls bench_*.h5)"; failures=$((failures + 1))
+else echo "ok   bench_scene_refused_no_record"; fi
+
 no_partials no_partial_files
 
 echo "$((checks - failures)) passed, $failures failed"
