@@ -54,6 +54,18 @@ int guarded(Body&& body) {
   }
 }
 
+// eq 12.4b, one line per bin of the cells' heights.
+void print_dispersion_across(const io::RunDispersionAcross& a) {
+  const analysis::DispersionProfile& p = a.profile;
+  std::printf("across the channel at lag %.6g s (%s; docs/model.md eq 12.4b):\n", p.lag,
+              a.lag_from_msd ? "picked from the MSD: the diffusive window's first lag, else where the slope has "
+                               "fallen to 1.2; --lag-s to choose"
+                             : "--lag-s");
+  std::printf("%12s %12s %10s %14s %14s\n", "y_from_um", "y_to_um", "pairs", "drift_um_s", "D_yy_um2_s");
+  for (const analysis::DispersionBin& b : p.bins)
+    std::printf("%12.6g %12.6g %10ld %14.6g %14.6g\n", b.y_from, b.y_to, b.pairs, b.drift, b.D);
+}
+
 // With the folder's lock held: removes what a killed run left (and says so), and refuses
 // to overwrite an earlier run unless forced (the run writer then replaces run.h5 and
 // run.xdmf together when the run ends); never deletes anything else.
@@ -147,18 +159,22 @@ int compare_command(const std::string& current, const std::string& baseline, con
   });
 }
 
-int dispersion_command(const std::string& run_h5, double after_s) {
+int dispersion_command(const std::string& run_h5, double after_s, int across_bins, double lag_s) {
   return guarded([&] {
-    const io::RunDispersion r = io::run_dispersion(io::RunFile(run_h5), run_h5, after_s);
+    const io::RunFile file(run_h5);
+    const io::RunDispersion r = io::run_dispersion(file, run_h5, after_s);
     const analysis::Dispersion& d = r.result;
     std::printf("transverse dispersion of %zu cells, %zu samples every %.6g s from t = %.6g s (docs/model.md eq 12.4)\n",
                 r.cells, r.samples, r.dt_s, r.first_time_s);
     std::printf("%14s %16s %8s %10s\n", "lag_s", "msd_um2", "slope", "pairs");
-    for (const analysis::MsdPoint& p : d.msd) std::printf("%14.6g %16.6g %8.3f %10ld\n", p.lag, p.msd, p.slope, p.pairs);
+    for (const analysis::MsdPoint& p : d.msd)
+      std::printf("%14.6g %16.6g %8.3f %10ld\n", p.lag, p.msd, p.slope, p.pairs);
     if (d.found)
       std::printf("D_yy = %.6g um^2/s (diffusive window %.6g-%.6g s, slope within 1 +- 0.2)\n", d.D, d.lag_from, d.lag_to);
     else
       std::printf("D_yy: no diffusive window (no 4 consecutive lags with slope within 1 +- 0.2): run longer\n");
+    if (across_bins > 0)
+      print_dispersion_across(io::run_dispersion_across(file, run_h5, after_s, across_bins, lag_s, r));
     return exit_code::ok;
   });
 }

@@ -20,8 +20,10 @@ int run_command(const RunOptions& options);
 int check_command(const std::string& scene_path, const std::vector<std::string>& overrides);
 int compare_command(const std::string& current, const std::string& baseline, const std::string& tolerances);
 // `erythro dispersion RUN.h5`: the transverse dispersion of the cells from their centroid
-// heights (analysis/dispersion.hpp), samples from `after_s` on; prints the MSD table and D_yy.
-int dispersion_command(const std::string& run_h5, double after_s);
+// heights (analysis/dispersion.hpp), samples from `after_s` on; prints the MSD table and D_yy,
+// and with `across_bins` > 0 the drift and dispersion across the channel in that many bins at
+// the lag `lag_s` (0: picked from the MSD; analysis/dispersion_profile.hpp).
+int dispersion_command(const std::string& run_h5, double after_s, int across_bins, double lag_s);
 // `erythro profiles RUN.h5`: the profiles across a channel (/profiles) averaged over the
 // samples from `after_s` on (analysis/profiles.hpp, eq 12.7); prints the table and H_t, H_d.
 int profiles_command(const std::string& run_h5, double after_s);

@@ -48,6 +48,18 @@ int main(int argc, char** argv) {
   dispersion_cmd->add_option("run", dispersion_run, "run.h5 of a run with cells")->required()->check(CLI::ExistingFile);
   dispersion_cmd->add_option("--after-s", dispersion_after_s, "Leave out the samples before this time (s)")
       ->check(CLI::Range(0.0, 1e30));
+  int dispersion_bins = 0;
+  double dispersion_lag_s = 0.0;
+  auto* across_opt =
+      dispersion_cmd
+          ->add_option("--across", dispersion_bins,
+                       "Also the drift and dispersion across the channel, in this many bins of the cells' heights")
+          ->check(CLI::Range(1, 1000));
+  dispersion_cmd
+      ->add_option("--lag-s", dispersion_lag_s,
+                   "The lag of --across (s), a whole number of sample intervals (default: from the MSD)")
+      ->check(CLI::Range(0.0, 1e30))
+      ->needs(across_opt);
 
   std::string profiles_run;
   double profiles_after_s = 0.0;
@@ -77,7 +89,8 @@ int main(int argc, char** argv) {
   if (*run_cmd) return app::run_command(run);
   if (*check_cmd) return app::check_command(check_scene, check_overrides);
   if (*compare_cmd) return app::compare_command(current, baseline, tolerances);
-  if (*dispersion_cmd) return app::dispersion_command(dispersion_run, dispersion_after_s);
+  if (*dispersion_cmd)
+    return app::dispersion_command(dispersion_run, dispersion_after_s, dispersion_bins, dispersion_lag_s);
   if (*profiles_cmd) return app::profiles_command(profiles_run, profiles_after_s);
   if (*bench_cmd) return app::bench_command(bench);
   if (*schema_cmd) return app::schema_command(schema);

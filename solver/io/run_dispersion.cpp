@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <sstream>
 #include <vector>
 
 #include "analysis/profiles.hpp"
@@ -42,6 +44,41 @@ RunDispersion run_dispersion(const RunFile& file, const std::string& file_name, 
   out.samples = h.y.front().size();
   out.dt_s = h.dt_s;
   out.first_time_s = h.first_time_s;
+  return out;
+}
+
+RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, double after_s, int bins,
+                                          double lag_s, const RunDispersion& whole) {
+  if (bins < 1) throw InputError(file_name + ": --across needs at least 1 bin");
+  const CentroidHeights h = settled_centroid_heights(file, file_name, after_s);
+  RunDispersionAcross out;
+  out.lag_from_msd = !(lag_s > 0.0);
+  const double lag = out.lag_from_msd ? analysis::profile_lag(whole.result) : lag_s;
+  const double k = std::round(lag / h.dt_s);
+  const double samples = static_cast<double>(h.y.front().size());
+  // A lag typed from the printed table (six digits) is off the interval by round-off: within a
+  // hundredth of an interval it is that whole number of intervals.
+  if (k < 1.0 || std::abs(k * h.dt_s - lag) > 0.01 * h.dt_s || k >= samples) {
+    std::ostringstream why;
+    why << file_name << ": --lag-s " << lag << " must be a whole number of sample intervals (" << h.dt_s << " s) from "
+        << h.dt_s << " s to below " << samples * h.dt_s << " s (the samples from t = " << h.first_time_s << " s)";
+    throw InputError(why.str());
+  }
+  double y_from = 0.0, y_to = 0.0;
+  const std::vector<double>& rows = file.profile_y_um();
+  if (rows.size() >= 2) {
+    y_to = rows.back() + 0.5 * (rows[1] - rows[0]);  // rows are centred: the top wall half a row above the last
+  } else {
+    y_from = y_to = h.y.front().front();
+    for (const auto& s : h.y)
+      for (const double v : s) {
+        y_from = std::min(y_from, v);
+        y_to = std::max(y_to, v);
+      }
+    y_to = std::nextafter(y_to, std::numeric_limits<double>::infinity());  // the highest centroid in the top bin
+    if (!(y_to > y_from)) y_to = y_from + 1.0;
+  }
+  out.profile = analysis::dispersion_across(h.y, h.dt_s, static_cast<long>(k), y_from, y_to, bins);
   return out;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The transverse dispersion of the cells of a finished run (docs/model.md §12, eq 12.4):
+// The transverse dispersion of the cells of a finished run (docs/model.md §12, eqs 12.4, 12.4b):
 // the centroid heights cell_<c>_centroid_y_um of run.h5 from `after_s` on, handed to
 // analysis::transverse_dispersion. Used by `erythro dispersion` and by the V&V cases, so
 // both judge the same samples.
@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "analysis/dispersion.hpp"
+#include "analysis/dispersion_profile.hpp"
 #include "io/run_file.hpp"
 
 namespace erythro::io {
@@ -31,5 +32,17 @@ struct RunDispersion {
 // analysis::transverse_dispersion of settled_centroid_heights(file, file_name, after_s).
 RunDispersion run_dispersion(const RunFile& file, const std::string& file_name, double after_s,
                              const analysis::DispersionOptions& options = {});
+
+// The dispersion across the channel (eq 12.4b) of the same samples, in `bins` equal bins
+// between the walls (y = 0 and the channel height of /profiles; a run without profiles: the
+// span of the centroids), at the lag `lag_s` (0: analysis::profile_lag of `whole`).
+struct RunDispersionAcross {
+  analysis::DispersionProfile profile;  // lag in s, heights in µm, drift in µm/s, D_b in µm²/s
+  bool lag_from_msd = false;            // the lag was picked from the whole channel's MSD
+};
+// Throws InputError naming `file_name` when lag_s is not a whole number of sample intervals (within 1 % of one)
+// shorter than the samples, or bins < 1.
+RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, double after_s, int bins,
+                                          double lag_s, const RunDispersion& whole);
 
 }  // namespace erythro::io

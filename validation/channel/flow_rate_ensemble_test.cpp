@@ -22,7 +22,8 @@
 //    quadrature) and their ratio: a ratio above 1 is a trend the four seeds resolve;
 //  - the transverse dispersion D_yy (eq 12.4) from the lateral mean-square displacement of the cells
 //    of all four seeds pooled over strain 200–400, its diffusive window and the MSD curve are reported
-//    (informative here: validation.channel_flow_rate asserts D_yy's window and growth).
+//    (informative here: validation.channel_flow_rate asserts D_yy's window and growth), and D_yy
+//    across the channel (eq 12.4b) from the same pooled cells.
 // Reference: thesis Figs. IV-1, IV-2 (trends; the thesis's cells aggregate at De* = 5); four
 // independent seeds, Student's t_0.975 = 3.182. docs/validation-channel.md, "Seed ensembles at the
 // scene's resolution".
@@ -36,11 +37,12 @@
 #include <string>
 #include <vector>
 
+#include "analysis/dispersion.hpp"
+#include "analysis/dispersion_profile.hpp"
 #include "common/case_support.hpp"
 #include "common/channel_case.hpp"
 #include "common/concurrent_runs.hpp"
 #include "common/scene_case.hpp"
-#include "analysis/dispersion.hpp"
 
 using namespace erythro;
 
@@ -219,6 +221,25 @@ void run_ensemble(const EnsembleSpec& spec) {
     }
     record.add_series({"lateral_msd_" + t, "Lateral mean-square displacement, 4 seeds pooled, " + t.substr(1) + " 1/s",
                        "lag (strain units)", "MSD (um^2)", lag, msd, {}, true});
+    // D_yy across the channel (eq 12.4b), informative: six bins of 5 µm, at the lag the MSD suggests.
+    const double across_lag = analysis::profile_lag(d);
+    const analysis::DispersionProfile across = analysis::dispersion_across(
+        pooled, dt, std::lround(across_lag / dt), 0.0, kSizeUm, static_cast<int>(kSizeUm / 5.0));
+    std::vector<double> across_y, across_dyy;
+    for (const analysis::DispersionBin& b : across.bins) {
+      if (b.pairs < 200) continue;  // a strain unit's samples of ten cells, at least
+      across_y.push_back(0.5 * (b.y_from + b.y_to));
+      across_dyy.push_back(b.D);
+    }
+    record.add_series({"dyy_across_" + t,
+                       "D_yy across the channel, 4 seeds pooled, " + t.substr(1) + " 1/s (lag " +
+                           vv::fmt("%.3g", across.lag * rate) + " strain units, eq 12.4b)",
+                       "y at the time origin (um)",
+                       "D_yy (um^2/s)",
+                       across_y,
+                       across_dyy,
+                       {},
+                       false});
     std::printf("%s: D_yy %s %.4g um^2/s (%.4g gamma a^2), window %.2f-%.2f strain, slope at longest lag %.3f\n",
                 t.c_str(), d.found ? "found" : "not found", d.D, d.D / unit, d.lag_from * rate, d.lag_to * rate,
                 d.msd.back().slope);

@@ -11,7 +11,8 @@
 //     below zero) for each case;
 //   - the normalised cell-free layer widens with flow rate (slope above zero) for each case;
 //   - the stiffer cells (case II) give the higher viscosity (mean over the flow rates);
-//   - the transverse dispersion D_yy (eq 12.4) has a diffusive window and grows with flow rate;
+//   - the transverse dispersion D_yy (eq 12.4) has a diffusive window and grows with flow rate
+//     (and, informative, D_yy across the channel, eq 12.4b, at the lowest and highest rate);
 // no two membranes come closer than d/4 (d the repulsion range; nor a membrane to a wall), every
 // cell's area within 1 %.
 // The normalised cell-free layer is compared with the in vivo widths (Kim laboratory, rat
@@ -66,6 +67,11 @@ constexpr double kDeStar = 5.0;  // thesis ch. IV: D_e = 1.3e-7 (docs/model.md e
 constexpr double kStrain = 400.0, kSettled = 200.0, kSampleStrain = 0.05;
 constexpr int kBlocks = 4;
 constexpr long kSeed = 1;
+// D_yy across the channel: ten bins of 5 µm, a little over a cell's radius (3.91 µm), so the
+// cells of a bin sit at about the same distance from the wall; a bin is shown once it holds a
+// strain unit's samples of ten cells (about 1e4 in the runs).
+constexpr int kAcrossBins = 10;
+constexpr long kAcrossMinPairs = 200;
 
 struct FlowRun {
   std::string membrane;
@@ -79,6 +85,10 @@ struct FlowRun {
   long steps = 0, cells = 0, index_interval = 0;
   double tau = 1.0;
   double msd_slope_at_longest_lag = 0.0;
+  // D_yy across the channel (eq 12.4b) at the lag eq 12.4's MSD suggests: bin centres (µm) and
+  // D_yy,b (µm²/s) of the bins at least kAcrossMinPairs origins started from.
+  double across_lag_strain = 0.0;
+  std::vector<double> across_y, across_dyy;
   std::vector<double> cfl_history_strain, cfl_history;  // δ* per strain unit over the run
   std::vector<double> profile_y, velocity_profile, haematocrit_profile;
   std::string scene_text;
@@ -139,6 +149,13 @@ FlowRun run_flow(const Membrane& m, double wall_shear_rate) {
   out.dyy_found = d.result.found;
   out.dyy_um2_s = d.result.D;
   if (!d.result.msd.empty()) out.msd_slope_at_longest_lag = d.result.msd.back().slope;
+  const io::RunDispersionAcross across = io::run_dispersion_across(r.file, label, settled_s, kAcrossBins, 0.0, d);
+  out.across_lag_strain = across.profile.lag * wall_shear_rate;
+  for (const analysis::DispersionBin& b : across.profile.bins) {
+    if (b.pairs < kAcrossMinPairs) continue;
+    out.across_y.push_back(0.5 * (b.y_from + b.y_to));
+    out.across_dyy.push_back(b.D);
+  }
   const std::vector<double> per_unit =
       vv::block_means(strain, r.file.series("cell_free_layer_normalised"), 0.0, kStrain, static_cast<int>(kStrain));
   for (std::size_t u = 0; u < per_unit.size(); ++u) {
@@ -187,11 +204,13 @@ TEST(ChannelFlowRate, CasesIandII) {
   record.set_requirement(
       "The channel scene in a 50 um lumen (40 um long, 2D haematocrit 0.3, Morse aggregation De* = 5, time mapping "
       "Re = 0.1) for case I (E_S = 6e-3 dyn/cm) and case II (20e-3) RBCs at plasma wall shear rates 50, 100, 200 and "
-      "400 1/s, " + vv::fmt("%g", kStrain) + " strain units each, means over " + vv::strain_window(kSettled, kStrain) +
+      "400 1/s, " +
+      vv::fmt("%g", kStrain) + " strain units each, means over " + vv::strain_window(kSettled, kStrain) +
       " (thesis Figs. IV-1, IV-2, IV-4): the relative apparent "
       "viscosity falls with flow rate and the normalised cell-free layer widens (least-squares slopes against ln "
-      "gamma_w), case II gives the higher viscosity, D_yy has a diffusive window and grows with flow rate; no marker closer than d/4 to another cell's or to a wall, "
-      "every cell's area within 1 %. One seed.");
+      "gamma_w), case II gives the higher viscosity, D_yy has a diffusive window and grows with flow rate (D_yy "
+      "across the channel, eq 12.4b, informative); no marker closer than d/4 to another cell's or to a wall, every "
+      "cell's area within 1 %. One seed.");
   record.set_reference(
       "Thesis Figs. IV-1, IV-2, IV-4 (trends); in vivo cell-free layer 11-24 % of the radius in 50 um arterioles at "
       "Hct 43 % (Kim laboratory) and Pries et al. (1992) in vitro viscosity: informative (3D blood, 2D cells).");
@@ -281,6 +300,7 @@ TEST(ChannelFlowRate, CasesIandII) {
                     {"mean_velocity_um_s", r.mean_velocity_um_s},
                     {"dyy_um2_s", r.dyy_um2_s},
                     {"msd_slope_at_longest_lag", r.msd_slope_at_longest_lag},
+                    {"dyy_across_lag_strain", r.across_lag_strain},
                     {"pries_relative_viscosity", pries},
                     {"max_area_change", r.max_area_change},
                     {"min_gap_um", r.min_gap_um},
@@ -315,6 +335,16 @@ TEST(ChannelFlowRate, CasesIandII) {
                      "y (um)", "u_x (um/s)", shown.profile_y, shown.velocity_profile, {}, false});
   record.add_series({"haematocrit_profile_case_I_400", "Haematocrit across the channel, case I, 400 1/s (" + vv::strain_window(kSettled, kStrain) + ")",
                      "y (um)", "area fraction", shown.profile_y, shown.haematocrit_profile, {}, false});
+  // D_yy across the channel (eq 12.4b; issue 19 item 8), informative: each case at the lowest and
+  // the highest flow rate.
+  for (const FlowRun& r : runs) {
+    if (r.wall_shear_rate != kWallShearRates.front() && r.wall_shear_rate != kWallShearRates.back()) continue;
+    char name[64], title[160];
+    std::snprintf(name, sizeof name, "dyy_across_case_%s_%g", r.membrane.c_str(), r.wall_shear_rate);
+    std::snprintf(title, sizeof title, "D_yy across the channel, case %s, %g 1/s (lag %.3g strain units, eq 12.4b)",
+                  r.membrane.c_str(), r.wall_shear_rate, r.across_lag_strain);
+    record.add_series({name, title, "y at the time origin (um)", "D_yy (um^2/s)", r.across_y, r.across_dyy, {}, false});
+  }
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();
   for (const auto& m : record.metrics()) EXPECT_TRUE(m.passed()) << m.name << " = " << m.value << " expected " << m.expected;

@@ -168,6 +168,12 @@ expect one_cell_run 0 'results: ' -- "$ERYTHRO" run "$ONE" --out one_cell --quie
   --set output.diagnostics_interval_steps=4
 expect dispersion_table 0 'transverse dispersion of 1 cells, 11 samples' -- "$ERYTHRO" dispersion one_cell/run.h5
 expect dispersion_no_cells 2 'no cell centroid series' -- "$ERYTHRO" dispersion tg_same/run.h5
+# `--across N`: one line per bin between the walls (eq 12.4b); a lag off the samples, or `--lag-s`
+# without `--across`, is an input error (exit 2).
+expect dispersion_across 0 'across the channel at lag .*picked from the MSD' -- "$ERYTHRO" dispersion one_cell/run.h5 --across 4
+expect dispersion_across_bad_lag 2 'lag-s 1e\+09 must be a whole number of sample intervals' -- \
+  "$ERYTHRO" dispersion one_cell/run.h5 --across 4 --lag-s 1e9
+expect dispersion_lag_needs_across 2 'lag-s requires --across' -- "$ERYTHRO" dispersion one_cell/run.h5 --lag-s 1
 
 # `erythro profiles`: a channel run gives its time-averaged profiles (80 rows) and haematocrits
 # (the circle's 448 nodes of 6400: H_t = 0.07); a window past the last sample, or a run that is
