@@ -173,8 +173,7 @@ int dispersion_command(const std::string& run_h5, double after_s, int across_bin
       std::printf("D_yy = %.6g um^2/s (diffusive window %.6g-%.6g s, slope within 1 +- 0.2)\n", d.D, d.lag_from, d.lag_to);
     else
       std::printf("D_yy: no diffusive window (no 4 consecutive lags with slope within 1 +- 0.2): run longer\n");
-    if (across_bins > 0)
-      print_dispersion_across(io::run_dispersion_across(file, run_h5, after_s, across_bins, lag_s, r));
+    if (across_bins > 0) print_dispersion_across(io::run_dispersion_across(file, run_h5, across_bins, lag_s, r));
     return exit_code::ok;
   });
 }

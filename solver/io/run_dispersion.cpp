@@ -37,8 +37,9 @@ CentroidHeights settled_centroid_heights(const RunFile& file, const std::string&
 
 RunDispersion run_dispersion(const RunFile& file, const std::string& file_name, double after_s,
                              const analysis::DispersionOptions& options) {
-  const CentroidHeights h = settled_centroid_heights(file, file_name, after_s);
   RunDispersion out;
+  out.heights = settled_centroid_heights(file, file_name, after_s);
+  const CentroidHeights& h = out.heights;
   out.result = analysis::transverse_dispersion(h.y, h.dt_s, options);
   out.cells = h.y.size();
   out.samples = h.y.front().size();
@@ -47,10 +48,10 @@ RunDispersion run_dispersion(const RunFile& file, const std::string& file_name, 
   return out;
 }
 
-RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, double after_s, int bins,
-                                          double lag_s, const RunDispersion& whole) {
+RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, int bins, double lag_s,
+                                          const RunDispersion& whole) {
   if (bins < 1) throw InputError(file_name + ": --across needs at least 1 bin");
-  const CentroidHeights h = settled_centroid_heights(file, file_name, after_s);
+  const CentroidHeights& h = whole.heights;
   RunDispersionAcross out;
   out.lag_from_msd = !(lag_s > 0.0);
   const double lag = out.lag_from_msd ? analysis::profile_lag(whole.result) : lag_s;

@@ -27,22 +27,23 @@ struct RunDispersion {
   analysis::Dispersion result;  // lags in s, MSD in µm², D_yy in µm²/s
   std::size_t cells = 0, samples = 0;
   double dt_s = 0.0, first_time_s = 0.0;
+  CentroidHeights heights;  // the samples judged
 };
 
 // analysis::transverse_dispersion of settled_centroid_heights(file, file_name, after_s).
 RunDispersion run_dispersion(const RunFile& file, const std::string& file_name, double after_s,
                              const analysis::DispersionOptions& options = {});
 
-// The dispersion across the channel (eq 12.4b) of the same samples, in `bins` equal bins
-// between the walls (y = 0 and the channel height of /profiles; a run without profiles: the
-// span of the centroids), at the lag `lag_s` (0: analysis::profile_lag of `whole`).
+// The dispersion across the channel (eq 12.4b) of the samples `whole` judged, in `bins` equal
+// bins between the walls (y = 0 and the channel height of the run's /profiles; a run without
+// profiles: the span of the centroids), at the lag `lag_s` (0: analysis::profile_lag of `whole`).
 struct RunDispersionAcross {
   analysis::DispersionProfile profile;  // lag in s, heights in µm, drift in µm/s, D_b in µm²/s
   bool lag_from_msd = false;            // the lag was picked from the whole channel's MSD
 };
 // Throws InputError naming `file_name` when lag_s is not a whole number of sample intervals (within 1 % of one)
 // shorter than the samples, or bins < 1.
-RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, double after_s, int bins,
-                                          double lag_s, const RunDispersion& whole);
+RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, int bins, double lag_s,
+                                          const RunDispersion& whole);
 
 }  // namespace erythro::io

@@ -149,7 +149,7 @@ FlowRun run_flow(const Membrane& m, double wall_shear_rate) {
   out.dyy_found = d.result.found;
   out.dyy_um2_s = d.result.D;
   if (!d.result.msd.empty()) out.msd_slope_at_longest_lag = d.result.msd.back().slope;
-  const io::RunDispersionAcross across = io::run_dispersion_across(r.file, label, settled_s, kAcrossBins, 0.0, d);
+  const io::RunDispersionAcross across = io::run_dispersion_across(r.file, label, kAcrossBins, 0.0, d);
   out.across_lag_strain = across.profile.lag * wall_shear_rate;
   for (const analysis::DispersionBin& b : across.profile.bins) {
     if (b.pairs < kAcrossMinPairs) continue;
