@@ -225,21 +225,9 @@ void run_ensemble(const EnsembleSpec& spec) {
     const double across_lag = analysis::profile_lag(d);
     const analysis::DispersionProfile across = analysis::dispersion_across(
         pooled, dt, std::lround(across_lag / dt), 0.0, kSizeUm, static_cast<int>(kSizeUm / 5.0));
-    std::vector<double> across_y, across_dyy;
-    for (const analysis::DispersionBin& b : across.bins) {
-      if (b.pairs < 200) continue;  // a strain unit's samples of ten cells, at least
-      across_y.push_back(0.5 * (b.y_from + b.y_to));
-      across_dyy.push_back(b.D);
-    }
-    record.add_series({"dyy_across_" + t,
-                       "D_yy across the channel, 4 seeds pooled, " + t.substr(1) + " 1/s (lag " +
-                           vv::fmt("%.3g", across.lag * rate) + " strain units, eq 12.4b)",
-                       "y at the time origin (um)",
-                       "D_yy (um^2/s)",
-                       across_y,
-                       across_dyy,
-                       {},
-                       false});
+    // A bin is shown once it holds a strain unit's samples of ten cells.
+    record.add_series(vv::dispersion_across_series(across, 200, rate, "dyy_across_" + t,
+                                                   "D_yy across the channel, 4 seeds pooled, " + t.substr(1) + " 1/s"));
     std::printf("%s: D_yy %s %.4g um^2/s (%.4g gamma a^2), window %.2f-%.2f strain, slope at longest lag %.3f\n",
                 t.c_str(), d.found ? "found" : "not found", d.D, d.D / unit, d.lag_from * rate, d.lag_to * rate,
                 d.msd.back().slope);

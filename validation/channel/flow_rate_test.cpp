@@ -85,10 +85,7 @@ struct FlowRun {
   long steps = 0, cells = 0, index_interval = 0;
   double tau = 1.0;
   double msd_slope_at_longest_lag = 0.0;
-  // D_yy across the channel (eq 12.4b) at the lag eq 12.4's MSD suggests: bin centres (µm) and
-  // D_yy,b (µm²/s) of the bins at least kAcrossMinPairs origins started from.
-  double across_lag_strain = 0.0;
-  std::vector<double> across_y, across_dyy;
+  analysis::DispersionProfile across;  // D_yy across the channel (eq 12.4b) at the lag the MSD suggests
   std::vector<double> cfl_history_strain, cfl_history;  // δ* per strain unit over the run
   std::vector<double> profile_y, velocity_profile, haematocrit_profile;
   std::string scene_text;
@@ -149,13 +146,7 @@ FlowRun run_flow(const Membrane& m, double wall_shear_rate) {
   out.dyy_found = d.result.found;
   out.dyy_um2_s = d.result.D;
   if (!d.result.msd.empty()) out.msd_slope_at_longest_lag = d.result.msd.back().slope;
-  const io::RunDispersionAcross across = io::run_dispersion_across(r.file, label, kAcrossBins, 0.0, d);
-  out.across_lag_strain = across.profile.lag * wall_shear_rate;
-  for (const analysis::DispersionBin& b : across.profile.bins) {
-    if (b.pairs < kAcrossMinPairs) continue;
-    out.across_y.push_back(0.5 * (b.y_from + b.y_to));
-    out.across_dyy.push_back(b.D);
-  }
+  out.across = io::run_dispersion_across(r.file, label, kAcrossBins, 0.0, d).profile;
   const std::vector<double> per_unit =
       vv::block_means(strain, r.file.series("cell_free_layer_normalised"), 0.0, kStrain, static_cast<int>(kStrain));
   for (std::size_t u = 0; u < per_unit.size(); ++u) {
@@ -300,7 +291,7 @@ TEST(ChannelFlowRate, CasesIandII) {
                     {"mean_velocity_um_s", r.mean_velocity_um_s},
                     {"dyy_um2_s", r.dyy_um2_s},
                     {"msd_slope_at_longest_lag", r.msd_slope_at_longest_lag},
-                    {"dyy_across_lag_strain", r.across_lag_strain},
+                    {"dyy_across_lag_strain", r.across.lag * r.wall_shear_rate},
                     {"pries_relative_viscosity", pries},
                     {"max_area_change", r.max_area_change},
                     {"min_gap_um", r.min_gap_um},
@@ -339,11 +330,10 @@ TEST(ChannelFlowRate, CasesIandII) {
   // the highest flow rate.
   for (const FlowRun& r : runs) {
     if (r.wall_shear_rate != kWallShearRates.front() && r.wall_shear_rate != kWallShearRates.back()) continue;
-    char name[64], title[160];
-    std::snprintf(name, sizeof name, "dyy_across_case_%s_%g", r.membrane.c_str(), r.wall_shear_rate);
-    std::snprintf(title, sizeof title, "D_yy across the channel, case %s, %g 1/s (lag %.3g strain units, eq 12.4b)",
-                  r.membrane.c_str(), r.wall_shear_rate, r.across_lag_strain);
-    record.add_series({name, title, "y at the time origin (um)", "D_yy (um^2/s)", r.across_y, r.across_dyy, {}, false});
+    const std::string at = "case " + r.membrane + ", " + vv::fmt("%g", r.wall_shear_rate) + " 1/s";
+    record.add_series(vv::dispersion_across_series(
+        r.across, kAcrossMinPairs, r.wall_shear_rate,
+        "dyy_across_case_" + r.membrane + "_" + vv::fmt("%g", r.wall_shear_rate), "D_yy across the channel, " + at));
   }
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();

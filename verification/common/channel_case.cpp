@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "analysis/profiles.hpp"
+#include "common/case_support.hpp"
 #include "common/scene_case.hpp"
 #include "scene/units.hpp"
 
@@ -190,6 +191,21 @@ void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const 
   record.add_metric({"cell_free_layer_normalised_" + tag,
                      "ensemble mean of delta* " + window + " (eq 12.2)", "", cfl.mean, lowest, 0.0,
                      io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(cfl.ci95)});
+}
+
+io::Series dispersion_across_series(const analysis::DispersionProfile& profile, long min_pairs, double wall_shear_rate,
+                                    const std::string& name, const std::string& title) {
+  io::Series s;
+  s.name = name;
+  s.title = title + " (lag " + fmt("%.3g", profile.lag * wall_shear_rate) + " strain units, eq 12.4b)";
+  s.xlabel = "y at the time origin (um)";
+  s.ylabel = "D_yy (um^2/s)";
+  for (const analysis::DispersionBin& b : profile.bins) {
+    if (b.pairs < min_pairs) continue;
+    s.x.push_back(0.5 * (b.y_from + b.y_to));
+    s.y.push_back(b.D);
+  }
+  return s;
 }
 
 }  // namespace erythro::vv

@@ -1,6 +1,7 @@
 #pragma once
 // What the many-cell channel cases share: the overrides that size and drive the user's channel
-// scene, and time means of a settled suspension (block means over a window of strain).
+// scene, time means of a settled suspension (block means over a window of strain), and the
+// dispersion across the channel as a record's series.
 #include <map>
 #include <string>
 #include <vector>
@@ -115,5 +116,11 @@ std::string strain_design(double strain, double from, int blocks);
 // half-width in the reason.
 void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const SeedEnsemble& eta,
                         const SeedEnsemble& cfl, double from, double to);
+
+// D_yy across the channel (eq 12.4b) as a record's series, D_yy,b (µm²/s) against the bin's centre
+// (µm): the bins at least `min_pairs` origins started from (emptier ones carry too few samples to
+// show); the title adds the lag in strain units (the profile's lag times `wall_shear_rate`).
+io::Series dispersion_across_series(const analysis::DispersionProfile& profile, long min_pairs, double wall_shear_rate,
+                                    const std::string& name, const std::string& title);
 
 }  // namespace erythro::vv
