@@ -68,7 +68,9 @@ RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string
   double y_from = 0.0, y_to = 0.0;
   const std::vector<double>& rows = file.profile_y_um();
   if (rows.size() >= 2) {
-    y_to = rows.back() + 0.5 * (rows[1] - rows[0]);  // rows are centred: the top wall half a row above the last
+    // The profile's rows are centred between the walls, y measured from the bottom one: the top
+    // wall lies half a row above the last centre.
+    y_to = rows.back() + 0.5 * (rows[1] - rows[0]);
   } else {
     y_from = y_to = h.y.front().front();
     for (const auto& s : h.y)
