@@ -88,4 +88,12 @@ Dispersion transverse_dispersion(const std::vector<std::vector<double>>& y, doub
   return out;
 }
 
+double dispersion_at_lag(const Dispersion& d, double lag) {
+  if (d.msd.empty()) throw std::invalid_argument("dispersion: the MSD holds no lag");
+  const MsdPoint* nearest = &d.msd.front();
+  for (const MsdPoint& p : d.msd)
+    if (std::abs(p.lag - lag) < std::abs(nearest->lag - lag)) nearest = &p;
+  return nearest->msd / (2.0 * nearest->lag);
+}
+
 }  // namespace erythro::analysis

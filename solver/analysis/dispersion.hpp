@@ -40,4 +40,9 @@ struct DispersionOptions {
 Dispersion transverse_dispersion(const std::vector<std::vector<double>>& y, double dt,
                                  const DispersionOptions& options = {});
 
+// The apparent D_yy at one lag, MSD(τ)/(2τ) at the lag of `d` nearest `lag` (with or without a
+// diffusive window: runs compared at the same lag). Throws std::invalid_argument when `d` holds
+// no lag.
+double dispersion_at_lag(const Dispersion& d, double lag);
+
 }  // namespace erythro::analysis

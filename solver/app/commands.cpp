@@ -164,8 +164,10 @@ int dispersion_command(const std::string& run_h5, double after_s, int across_bin
     const io::RunFile file(run_h5);
     const io::RunDispersion r = io::run_dispersion(file, run_h5, after_s);
     const analysis::Dispersion& d = r.result;
-    std::printf("transverse dispersion of %zu cells, %zu samples every %.6g s from t = %.6g s (docs/model.md eq 12.4)\n",
-                r.cells, r.samples, r.dt_s, r.first_time_s);
+    const io::CentroidHeights& h = r.heights;
+    std::printf(
+        "transverse dispersion of %zu cells, %zu samples every %.6g s from t = %.6g s (docs/model.md eq 12.4)\n",
+        h.y.size(), h.y.front().size(), h.dt_s, h.first_time_s);
     std::printf("%14s %16s %8s %10s\n", "lag_s", "msd_um2", "slope", "pairs");
     for (const analysis::MsdPoint& p : d.msd)
       std::printf("%14.6g %16.6g %8.3f %10ld\n", p.lag, p.msd, p.slope, p.pairs);

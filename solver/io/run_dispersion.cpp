@@ -39,18 +39,12 @@ RunDispersion run_dispersion(const RunFile& file, const std::string& file_name, 
                              const analysis::DispersionOptions& options) {
   RunDispersion out;
   out.heights = settled_centroid_heights(file, file_name, after_s);
-  const CentroidHeights& h = out.heights;
-  out.result = analysis::transverse_dispersion(h.y, h.dt_s, options);
-  out.cells = h.y.size();
-  out.samples = h.y.front().size();
-  out.dt_s = h.dt_s;
-  out.first_time_s = h.first_time_s;
+  out.result = analysis::transverse_dispersion(out.heights.y, out.heights.dt_s, options);
   return out;
 }
 
 RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, int bins, double lag_s,
                                           const RunDispersion& whole) {
-  if (bins < 1) throw InputError(file_name + ": --across needs at least 1 bin");
   const CentroidHeights& h = whole.heights;
   RunDispersionAcross out;
   out.lag_from_msd = !(lag_s > 0.0);
@@ -79,7 +73,6 @@ RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string
         y_to = std::max(y_to, v);
       }
     y_to = std::nextafter(y_to, std::numeric_limits<double>::infinity());  // the highest centroid in the top bin
-    if (!(y_to > y_from)) y_to = y_from + 1.0;
   }
   out.profile = analysis::dispersion_across(h.y, h.dt_s, static_cast<long>(k), y_from, y_to, bins);
   return out;

@@ -25,9 +25,7 @@ CentroidHeights settled_centroid_heights(const RunFile& file, const std::string&
 
 struct RunDispersion {
   analysis::Dispersion result;  // lags in s, MSD in µm², D_yy in µm²/s
-  std::size_t cells = 0, samples = 0;
-  double dt_s = 0.0, first_time_s = 0.0;
-  CentroidHeights heights;  // the samples judged
+  CentroidHeights heights;      // the samples judged: cells, samples per cell, Δt, first time
 };
 
 // analysis::transverse_dispersion of settled_centroid_heights(file, file_name, after_s).
@@ -42,7 +40,7 @@ struct RunDispersionAcross {
   bool lag_from_msd = false;            // the lag was picked from the whole channel's MSD
 };
 // Throws InputError naming `file_name` when lag_s is not a whole number of sample intervals (within 1 % of one)
-// shorter than the samples, or bins < 1.
+// shorter than the samples; std::invalid_argument when bins < 1.
 RunDispersionAcross run_dispersion_across(const RunFile& file, const std::string& file_name, int bins, double lag_s,
                                           const RunDispersion& whole);
 

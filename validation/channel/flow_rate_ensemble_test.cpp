@@ -225,8 +225,7 @@ void run_ensemble(const EnsembleSpec& spec) {
     const double across_lag = analysis::profile_lag(d);
     const analysis::DispersionProfile across = analysis::dispersion_across(
         pooled, dt, std::lround(across_lag / dt), 0.0, kSizeUm, static_cast<int>(kSizeUm / 5.0));
-    // A bin is shown once it holds a strain unit's samples of ten cells.
-    record.add_series(vv::dispersion_across_series(across, 200, rate, "dyy_across_" + t,
+    record.add_series(vv::dispersion_across_series(across, rate, "dyy_across_" + t,
                                                    "D_yy across the channel, 4 seeds pooled, " + t.substr(1) + " 1/s"));
     std::printf("%s: D_yy %s %.4g um^2/s (%.4g gamma a^2), window %.2f-%.2f strain, slope at longest lag %.3f\n",
                 t.c_str(), d.found ? "found" : "not found", d.D, d.D / unit, d.lag_from * rate, d.lag_to * rate,

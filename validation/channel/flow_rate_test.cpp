@@ -68,10 +68,8 @@ constexpr double kStrain = 400.0, kSettled = 200.0, kSampleStrain = 0.05;
 constexpr int kBlocks = 4;
 constexpr long kSeed = 1;
 // D_yy across the channel: ten bins of 5 µm, a little over a cell's radius (3.91 µm), so the
-// cells of a bin sit at about the same distance from the wall; a bin is shown once it holds a
-// strain unit's samples of ten cells (about 1e4 in the runs).
+// cells of a bin sit at about the same distance from the wall (about 1e4 origins per bin in the runs).
 constexpr int kAcrossBins = 10;
-constexpr long kAcrossMinPairs = 200;
 // The lateral dispersion at one lag, MSD(τ)/(2τ) at τ γ̇_w ≈ 20 strain units (informative): defined
 // at every rate, with or without a diffusive window, and compared at the same strain (the lag grid
 // is the same in strain units at every rate). An apparent D_yy: measured 2026-12-06 the MSD's local
@@ -153,14 +151,7 @@ FlowRun run_flow(const Membrane& m, double wall_shear_rate) {
   out.dyy_um2_s = d.result.D;
   if (!d.result.msd.empty()) out.msd_slope_at_longest_lag = d.result.msd.back().slope;
   out.across = io::run_dispersion_across(r.file, label, kAcrossBins, 0.0, d).profile;
-  double nearest = std::numeric_limits<double>::infinity();
-  for (const analysis::MsdPoint& p : d.result.msd) {
-    const double off = std::abs(p.lag * wall_shear_rate - kFixedLagStrain);
-    if (off < nearest) {
-      nearest = off;
-      out.dispersion_at_fixed_lag = p.msd / (2.0 * p.lag);
-    }
-  }
+  out.dispersion_at_fixed_lag = analysis::dispersion_at_lag(d.result, kFixedLagStrain / wall_shear_rate);
   const std::vector<double> per_unit =
       vv::block_means(strain, r.file.series("cell_free_layer_normalised"), 0.0, kStrain, static_cast<int>(kStrain));
   for (std::size_t u = 0; u < per_unit.size(); ++u) {
@@ -358,8 +349,8 @@ TEST(ChannelFlowRate, CasesIandII) {
     if (r.wall_shear_rate != kWallShearRates.front() && r.wall_shear_rate != kWallShearRates.back()) continue;
     const std::string at = "case " + r.membrane + ", " + vv::fmt("%g", r.wall_shear_rate) + " 1/s";
     record.add_series(vv::dispersion_across_series(
-        r.across, kAcrossMinPairs, r.wall_shear_rate,
-        "dyy_across_case_" + r.membrane + "_" + vv::fmt("%g", r.wall_shear_rate), "D_yy across the channel, " + at));
+        r.across, r.wall_shear_rate, "dyy_across_case_" + r.membrane + "_" + vv::fmt("%g", r.wall_shear_rate),
+        "D_yy across the channel, " + at));
   }
   record.set_wall_time(total.seconds());
   record.write_to_results_dir();

@@ -193,7 +193,7 @@ void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const 
                      io::Comparison::at_least, "informative; 95 % half-width " + std::to_string(cfl.ci95)});
 }
 
-io::Series dispersion_across_series(const analysis::DispersionProfile& profile, long min_pairs, double wall_shear_rate,
+io::Series dispersion_across_series(const analysis::DispersionProfile& profile, double wall_shear_rate,
                                     const std::string& name, const std::string& title) {
   io::Series s;
   s.name = name;
@@ -201,7 +201,7 @@ io::Series dispersion_across_series(const analysis::DispersionProfile& profile, 
   s.xlabel = "y at the time origin (um)";
   s.ylabel = "D_yy (um^2/s)";
   for (const analysis::DispersionBin& b : profile.bins) {
-    if (b.pairs < min_pairs) continue;
+    if (b.pairs < kAcrossMinPairs) continue;
     s.x.push_back(0.5 * (b.y_from + b.y_to));
     s.y.push_back(b.D);
   }

@@ -118,9 +118,11 @@ void add_ensemble_means(io::ResultRecord& record, const std::string& tag, const 
                         const SeedEnsemble& cfl, double from, double to);
 
 // D_yy across the channel (eq 12.4b) as a record's series, D_yy,b (µm²/s) against the bin's centre
-// (µm): the bins at least `min_pairs` origins started from (emptier ones carry too few samples to
+// (µm): the bins at least kAcrossMinPairs origins started from (a strain unit's samples of ten
+// cells at the channel cases' sampling of 0.05 strain units; emptier ones carry too few samples to
 // show); the title adds the lag in strain units (the profile's lag times `wall_shear_rate`).
-io::Series dispersion_across_series(const analysis::DispersionProfile& profile, long min_pairs, double wall_shear_rate,
+inline constexpr long kAcrossMinPairs = 200;
+io::Series dispersion_across_series(const analysis::DispersionProfile& profile, double wall_shear_rate,
                                     const std::string& name, const std::string& title);
 
 }  // namespace erythro::vv

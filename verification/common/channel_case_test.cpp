@@ -55,10 +55,10 @@ TEST(ChannelCase, DispersionAcrossSeriesShowsTheFullBins) {
   analysis::DispersionProfile p;
   p.lag = 0.05;  // s: 10 strain units at 200 1/s
   p.bins = {{0.0, 5.0, 300, 0.1, 1.5}, {5.0, 10.0, 50, 0.2, 9.0}, {10.0, 15.0, 250, -0.1, 2.5}};
-  const io::Series s = vv::dispersion_across_series(p, 200, 200.0, "dyy_across_g200", "D_yy across, 200 1/s");
+  const io::Series s = vv::dispersion_across_series(p, 200.0, "dyy_across_g200", "D_yy across, 200 1/s");
   EXPECT_EQ(s.name, "dyy_across_g200");
   EXPECT_EQ(s.title, "D_yy across, 200 1/s (lag 10 strain units, eq 12.4b)");
-  ASSERT_EQ(s.x.size(), 2u);  // the bin of 50 origins is left out
+  ASSERT_EQ(s.x.size(), 2u);  // the bin of 50 origins (below kAcrossMinPairs) is left out
   EXPECT_DOUBLE_EQ(s.x[0], 2.5);
   EXPECT_DOUBLE_EQ(s.x[1], 12.5);
   EXPECT_DOUBLE_EQ(s.y[0], 1.5);

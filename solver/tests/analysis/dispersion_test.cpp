@@ -41,6 +41,16 @@ TEST(Dispersion, StraightMotionIsBallisticAndHasNoDiffusiveWindow) {
   for (const MsdPoint& p : d.msd) EXPECT_NEAR(p.slope, 2.0, 1e-9) << p.lag;
 }
 
+TEST(Dispersion, AtOneLagTakesTheNearestLag) {
+  Dispersion d;
+  d.msd = {{1.0, 4.0, 2.0, 10}, {2.0, 6.0, 0.6, 10}, {4.0, 8.0, 0.4, 10}};
+  EXPECT_DOUBLE_EQ(dispersion_at_lag(d, 2.0), 1.5);  // 6 / (2·2)
+  EXPECT_DOUBLE_EQ(dispersion_at_lag(d, 3.4), 1.0);  // nearest is 4: 8 / (2·4)
+  EXPECT_DOUBLE_EQ(dispersion_at_lag(d, 0.1), 2.0);  // below the grid: the first lag
+  EXPECT_DOUBLE_EQ(dispersion_at_lag(d, 1e9), 1.0);  // beyond it: the last
+  EXPECT_THROW(dispersion_at_lag(Dispersion{}, 1.0), std::invalid_argument);
+}
+
 TEST(Dispersion, RejectsBadInput) {
   EXPECT_THROW(transverse_dispersion({}, 1.0), std::invalid_argument);
   EXPECT_THROW(transverse_dispersion({{0.0, 1.0, 2.0}}, 0.0), std::invalid_argument);
