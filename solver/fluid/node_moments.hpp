@@ -31,9 +31,10 @@ template <class Population>
     (add(std::integral_constant<std::size_t, I>{}), ...);
   }(std::make_index_sequence<d2q9::Q>{});
   const double r = 1.0 + dr;
+  const double inv_r = 1.0 / r;  // one division for both components
   rho = r;
-  ux = (jx - 0.5 * Fx) / r;
-  uy = (jy - 0.5 * Fy) / r;
+  ux = (jx - 0.5 * Fx) * inv_r;
+  uy = (jy - 0.5 * Fy) * inv_r;
 }
 
 }  // namespace erythro::fluid::detail

@@ -215,7 +215,7 @@ std::vector<double> natural_view(const std::vector<double>& f, const Grid& g, co
 }
 
 // ρ, u_x, u_y of every node from natural-layout populations, by FluidLattice's formula
-// (ρ = 1 + Σ f̃, ρu = Σ c f̃ − F/2, sums in the order i = 0..8), and the total mass in its
+// (ρ = 1 + Σ f̃, ρu = Σ c f̃ − F/2, sums in the order i = 0..8, u through one 1/ρ), and the total mass in its
 // order (rows, then directions, then x).
 struct ReferenceMoments {
   std::vector<double> rho, ux, uy;
@@ -237,8 +237,9 @@ ReferenceMoments reference_moments(const std::vector<double>& f, const Grid& g, 
       Fy += fl.fy[n];
     }
     m.rho[n] = 1.0 + dr;
-    m.ux[n] = (jx - 0.5 * Fx) / m.rho[n];
-    m.uy[n] = (jy - 0.5 * Fy) / m.rho[n];
+    const double inv_rho = 1.0 / m.rho[n];
+    m.ux[n] = (jx - 0.5 * Fx) * inv_rho;
+    m.uy[n] = (jy - 0.5 * Fy) * inv_rho;
   }
   double deviation = 0.0;
   for (int y = 0; y < g.ny; ++y) {
