@@ -5,10 +5,6 @@
 
 namespace erythro::membrane {
 
-double turning_angle(double ax, double ay, double bx, double by) {
-  return std::atan2(ax * by - ay * bx, ax * bx + ay * by);
-}
-
 RestShape RestShape::from_polygon(const geometry::Polygon& p) {
   const std::size_t n = p.size();
   if (n < 3) throw std::invalid_argument("RestShape: a closed membrane needs at least 3 markers");

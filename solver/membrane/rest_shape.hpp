@@ -3,6 +3,7 @@
 // energy (membrane_energy.hpp) measures deformation against.
 #include <vector>
 
+#include "common/portable_atan2.hpp"
 #include "geometry/polygon.hpp"
 
 namespace erythro::membrane {
@@ -22,7 +23,10 @@ struct RestShape {
 };
 
 // Signed turning angle at the vertex between edges a and b (radians, in (−π, π];
-// positive for a left, counter-clockwise turn): atan2(a × b, a · b).
-double turning_angle(double ax, double ay, double bx, double by);
+// positive for a left, counter-clockwise turn): atan2(a × b, a · b) (docs/model.md eq 3.6a),
+// inline so that the bending loop does not call the C library.
+inline double turning_angle(double ax, double ay, double bx, double by) {
+  return numeric::atan2_portable(ax * by - ay * bx, ax * bx + ay * by);
+}
 
 }  // namespace erythro::membrane
