@@ -45,7 +45,7 @@ inline double atan2_portable(double y, double x) {
   // π/2 − (…) when |y| > |x| and π − (…) when x is negative: one sum at the end.
   double k = upper ? 1.0 : 0.0, sigma = 1.0;
   if (steep) k = 2.0 - k, sigma = -sigma;
-  if (std::signbit(x)) k = 4.0 - k, sigma = -sigma;
+  if (std::copysign(1.0, x) < 0.0) k = 4.0 - k, sigma = -sigma;  // x < 0 or x = −0 (signbit does not vectorise)
   const double base_hi = k * kPi4Hi;
   const double base_lo = std::fma(k, kPi4Hi, -base_hi) + k * kPi4Lo;  // k π/4 − base_hi
   const double angle = (base_lo + sigma * a) + base_hi;

@@ -47,17 +47,75 @@ void edge_pulls(const TensionLaw& law, const RestShape& rest, const double* x, c
   pull(n - 1, dx, dy, numeric::hypot_portable(dx, dy));
 }
 
-// Scratch of the edge pass, one per thread (cells run on the threads), grown to the largest cell.
+// Scratch of the edge and vertex passes, one per thread (cells run on the threads), grown to the
+// largest cell: the edge pulls (px, py), then the bending's pulls on each vertex's two neighbours.
 struct EdgeScratch {
-  std::vector<double> px, py;
+  std::vector<double> px, py, qx, qy;
 };
 EdgeScratch& edge_scratch(std::size_t n) {
   thread_local EdgeScratch s;
   if (s.px.size() < n) {
     s.px.resize(n);
     s.py.resize(n);
+    s.qx.resize(n);
+    s.qy.resize(n);
   }
   return s;
+}
+
+// −g ∂θ_i/∂X_{i−1} → (pax, pay) and −g ∂θ_i/∂X_{i+1} → (pbx, pby) at vertex i, a = X_i − X_{i−1},
+// b = X_{i+1} − X_i, g = ∂E_B/∂θ_i (eq 3.6, 3.6a), the difference θ_i − θ0_i kept in (−π, π] (a rest
+// angle near ±π must not jump by 2π); returns the vertex's energy term.
+// E_B is the bending modulus, θ0 and D̄ the vertex's rest angle and dual length.
+[[gnu::always_inline]] inline double bend_vertex(double E_B, double theta0, double dual, double ax, double ay,
+                                                 double bx, double by, double& pax, double& pay, double& pbx,
+                                                 double& pby) {
+  double dtheta = turning_angle(ax, ay, bx, by) - theta0;
+  if (dtheta > std::numbers::pi) dtheta -= 2.0 * std::numbers::pi;
+  if (dtheta <= -std::numbers::pi) dtheta += 2.0 * std::numbers::pi;
+  const double g = E_B * dtheta / dual;  // ∂E/∂θ_i
+  const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
+  pax = -g * (-ay) / a2;
+  pay = -g * ax / a2;
+  pbx = -g * (-by) / b2;
+  pby = -g * bx / b2;
+  return 0.5 * E_B * dtheta * dtheta / dual;
+}
+
+// Vertex pass of the bending forces (n ≥ 3): each vertex's pulls on its two neighbours on their
+// own, in a loop that vectorises (the inline atan2 of eq 3.6a; every array restrict, so the
+// compiler needs no overlap checks).
+void bending_vertex_pass(double E_B, const double* __restrict theta0, const double* __restrict dual,
+                         const double* __restrict x, const double* __restrict y, std::size_t n, double* __restrict pax,
+                         double* __restrict pay, double* __restrict pbx, double* __restrict pby) {
+  bend_vertex(E_B, theta0[0], dual[0], x[0] - x[n - 1], y[0] - y[n - 1], x[1] - x[0], y[1] - y[0], pax[0], pay[0],
+              pbx[0], pby[0]);
+  for (std::size_t i = 1; i + 1 < n; ++i)
+    bend_vertex(E_B, theta0[i], dual[i], x[i] - x[i - 1], y[i] - y[i - 1], x[i + 1] - x[i], y[i + 1] - y[i], pax[i],
+                pay[i], pbx[i], pby[i]);
+  bend_vertex(E_B, theta0[n - 1], dual[n - 1], x[n - 1] - x[n - 2], y[n - 1] - y[n - 2], x[0] - x[n - 1],
+              y[0] - y[n - 1], pax[n - 1], pay[n - 1], pbx[n - 1], pby[n - 1]);
+}
+
+// The bending forces by passes (n ≥ 3): the vertex pass, then a node pass that adds the pulls to
+// every marker in the order the one loop over the vertices adds them (vertex i − 1's pull, then
+// minus vertex i's two, then vertex i + 1's; markers 0 and n − 1 in that loop's order), so the
+// same bits as that loop.
+void add_bending_by_passes(const MembraneModel& model, const RestShape& rest, const double* x, const double* y,
+                           std::size_t n, EdgeScratch& s, double* fx, double* fy) {
+  double* pax = s.px.data();
+  double* pay = s.py.data();
+  double* pbx = s.qx.data();
+  double* pby = s.qy.data();
+  bending_vertex_pass(model.bending, rest.turning.data(), rest.dual.data(), x, y, n, pax, pay, pbx, pby);
+  fx[0] = ((fx[0] - (pax[0] + pbx[0])) + pax[1]) + pbx[n - 1];
+  fy[0] = ((fy[0] - (pay[0] + pby[0])) + pay[1]) + pby[n - 1];
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    fx[i] = ((fx[i] + pbx[i - 1]) - (pax[i] + pbx[i])) + pax[i + 1];
+    fy[i] = ((fy[i] + pby[i - 1]) - (pay[i] + pby[i])) + pay[i + 1];
+  }
+  fx[n - 1] = ((fx[n - 1] + pax[0]) + pbx[n - 2]) - (pax[n - 1] + pbx[n - 1]);
+  fy[n - 1] = ((fy[n - 1] + pay[0]) + pby[n - 2]) - (pay[n - 1] + pby[n - 1]);
 }
 
 // One pass computing the energy (kEnergy) and/or adding −∂E/∂X (kForces).
@@ -103,26 +161,25 @@ Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<con
   }
   // Bending: E_B = ½ E_B Σ (θ_i − θ0_i)² / D̄_i; with a = X_i − X_{i−1}, b = X_{i+1} − X_i,
   // ∂θ/∂X_{i+1} = b⊥/|b|², ∂θ/∂X_{i−1} = a⊥/|a|², ∂θ/∂X_i = −(both), v⊥ = (−v_y, v_x).
+  // Forces alone: the vertex and node passes; with the energy, the one loop (the same forces).
   if (model.bending != 0.0) {
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t im = (i == 0) ? n - 1 : i - 1, ip = (i + 1 == n) ? 0 : i + 1;
-      const double ax = x[i] - x[im], ay = y[i] - y[im], bx = x[ip] - x[i], by = y[ip] - y[i];
-      double dtheta = turning_angle(ax, ay, bx, by) - rest.turning[i];
-      // Keep the difference in (−π, π] (a rest angle near ±π must not jump by 2π).
-      if (dtheta > std::numbers::pi) dtheta -= 2.0 * std::numbers::pi;
-      if (dtheta <= -std::numbers::pi) dtheta += 2.0 * std::numbers::pi;
-      if constexpr (kEnergy) E.bending += 0.5 * model.bending * dtheta * dtheta / rest.dual[i];
-      if constexpr (kForces) {
-        const double g = model.bending * dtheta / rest.dual[i];  // ∂E/∂θ_i
-        const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
-        const double gax = -g * (-ay) / a2, gay = -g * ax / a2;  // −g ∂θ/∂X_{i−1}
-        const double gbx = -g * (-by) / b2, gby = -g * bx / b2;  // −g ∂θ/∂X_{i+1}
-        fx[im] += gax;
-        fy[im] += gay;
-        fx[ip] += gbx;
-        fy[ip] += gby;
-        fx[i] -= gax + gbx;
-        fy[i] -= gay + gby;
+    if (kForces && !kEnergy && n >= 3) {
+      add_bending_by_passes(model, rest, x.data(), y.data(), n, edge_scratch(n), fx, fy);
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t im = (i == 0) ? n - 1 : i - 1, ip = (i + 1 == n) ? 0 : i + 1;
+        double gax, gay, gbx, gby;
+        const double e = bend_vertex(model.bending, rest.turning[i], rest.dual[i], x[i] - x[im], y[i] - y[im],
+                                     x[ip] - x[i], y[ip] - y[i], gax, gay, gbx, gby);
+        if constexpr (kEnergy) E.bending += e;
+        if constexpr (kForces) {
+          fx[im] += gax;
+          fy[im] += gay;
+          fx[ip] += gbx;
+          fy[ip] += gby;
+          fx[i] -= gax + gbx;
+          fy[i] -= gay + gby;
+        }
       }
     }
   }

@@ -1,5 +1,6 @@
 // The membrane's tension forces (membrane_energy.cpp: an edge pass that vectorises, then a node
-// pass) against the same sums written as one loop over the edges, bit for bit: for a flowing
+// pass) against the same sums written as one loop over the edges, bit for bit (and the bending's
+// vertex and node passes against its one loop over the vertices): for a flowing
 // cell, for one so small that its edges lie outside hypot_portable's common range (so the edge
 // pass falls back to hypot_portable itself), and with every tension law.
 #include <gtest/gtest.h>
@@ -85,4 +86,38 @@ TEST(MembraneForces, TinyEdgesTakeTheFallbackWithTheSameBits) {
     y.push_back(s * (20.0 + 1.9 * std::sin(t)));
   }
   expect_one_loop_bits(p, x, y);
+}
+
+// The bending's vertex and node passes (forces alone) against the one loop over the vertices (the
+// path with the energy), bit for bit, for cells of 37 markers and of 3 (every marker then an end
+// of the passes), flowing and with rest angles near ±π (a thin sliver folds back on itself).
+TEST(MembraneForces, BendingPassesGiveTheOneLoopBits) {
+  for (int n : {37, 3}) {
+    for (double aspect : {0.5, 0.02}) {
+      geometry::Polygon p;
+      std::vector<double> x, y;
+      for (int i = 0; i < n; ++i) {
+        const double t = 2.0 * M_PI * i / n;
+        p.x.push_back(10.0 + 4.0 * std::cos(t));
+        p.y.push_back(20.0 + 4.0 * aspect * std::sin(t));
+        x.push_back(10.0 + 4.3 * std::cos(t) + 0.4 * std::sin(t) + 0.01 * std::sin(7.0 * t));
+        y.push_back(20.0 + 3.9 * aspect * std::sin(t) + 0.02 * std::cos(3.0 * t));
+      }
+      const RestShape rest = RestShape::from_polygon(p);
+      MembraneModel model;
+      model.tension = TensionLaw{TensionLawType::skalak, 0.013, 0.7};
+      model.bending = 0.37;
+      model.area_modulus = 0.05;
+      std::vector<double> fx(x.size(), 0.25), fy(x.size(), -0.5), gx = fx, gy = fy;  // nonzero start
+      add_membrane_forces_only(model, rest, x, y, fx, fy);
+      add_membrane_forces(model, rest, x, y, gx, gy);
+      EXPECT_TRUE(same_bits(fx, gx) && same_bits(fy, gy)) << n << " markers, aspect " << aspect;
+      double moved = 0.0;  // the bending acts: the forces differ from those without it
+      model.bending = 0.0;
+      std::vector<double> hx(x.size(), 0.25), hy(x.size(), -0.5);
+      add_membrane_forces_only(model, rest, x, y, hx, hy);
+      for (std::size_t i = 0; i < x.size(); ++i) moved = std::max(moved, std::fabs(hx[i] - fx[i]));
+      EXPECT_GT(moved, 1e-3) << n << " markers, aspect " << aspect;
+    }
+  }
 }
