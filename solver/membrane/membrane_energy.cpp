@@ -63,10 +63,10 @@ EdgeScratch& edge_scratch(std::size_t n) {
   return s;
 }
 
-// −g ∂θ_i/∂X_{i−1} → (pax, pay) and −g ∂θ_i/∂X_{i+1} → (pbx, pby) at vertex i, a = X_i − X_{i−1},
-// b = X_{i+1} − X_i, g = ∂E_B/∂θ_i (eq 3.6, 3.6a), the difference θ_i − θ0_i kept in (−π, π] (a rest
-// angle near ±π must not jump by 2π); returns the vertex's energy term.
-// E_B is the bending modulus, θ0 and D̄ the vertex's rest angle and dual length.
+// Vertex i of the bending energy (eq 3.6, 3.6a), with a = X_i − X_{i−1}, b = X_{i+1} − X_i, E_B the
+// bending modulus, θ0 and D̄ the vertex's rest angle and dual length, g = ∂E_B/∂θ_i: the pulls
+// −g ∂θ_i/∂X_{i−1} → (pax, pay) and −g ∂θ_i/∂X_{i+1} → (pbx, pby); returns the vertex's energy term.
+// θ_i − θ0_i is kept in (−π, π] (a rest angle near ±π must not jump by 2π).
 [[gnu::always_inline]] inline double bend_vertex(double E_B, double theta0, double dual, double ax, double ay,
                                                  double bx, double by, double& pax, double& pay, double& pbx,
                                                  double& pby) {
