@@ -175,14 +175,13 @@ namespace {
 template <CollisionModel M>
 void guo_written_out(const double* f_in, double tau, double magic, double Fx, double Fy, long double* out) {
   using L = long double;
-  L f[9], rho = 1, jx = 0, jy = 0;
+  L f[9], rho = 0, jx = 0, jy = 0;
   for (int i = 0; i < 9; ++i) {
     f[i] = L(d2q9::w[i]) + f_in[i];
+    rho += f[i];
     jx += d2q9::cx[i] * f[i];
     jy += d2q9::cy[i] * f[i];
   }
-  rho = 0;
-  for (int i = 0; i < 9; ++i) rho += f[i];
   const L ux = (jx + L(0.5) * Fx) / rho, uy = (jy + L(0.5) * Fy) / rho;
   L feq[9], S[9];
   for (int i = 0; i < 9; ++i) {
