@@ -44,8 +44,14 @@ inline Rates rates_for(CollisionModel model, double tau, double magic) {
 //  only orders 1 and 2). Hence Σ f' = Σ f and Σ c f' = Σ c f + F exactly, and the
 //  2nd moment after collision equals BGK's: the model differs from BGK only in the
 //  discarded 3rd/4th-order (ghost) moments, which it resets to equilibrium.
+// The velocity the collision relaxes towards, u = (Σ c f̃ + F/2)/ρ of the streamed populations
+// (eq 1.3): returned for a caller that needs it (the kernel's velocity output, eq 1.3b).
+struct CollisionVelocity {
+  double ux, uy;
+};
+
 template <CollisionModel Model, bool HasForce>
-inline void collide_node(double* f, Rates r, double Fx, double Fy) {
+inline CollisionVelocity collide_node(double* f, Rates r, double Fx, double Fy) {
   using namespace d2q9;
   const double drho = f[0] + f[1] + f[2] + f[3] + f[4] + f[5] + f[6] + f[7] + f[8];
   const double rho = 1.0 + drho;
@@ -159,6 +165,7 @@ inline void collide_node(double* f, Rates r, double Fx, double Fy) {
       f[j] += dp - dm;
     }
   }
+  return {ux, uy};
 }
 
 }  // namespace erythro::fluid::detail

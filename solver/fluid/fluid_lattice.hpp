@@ -106,10 +106,11 @@ class FluidLattice {
   void step();
   long steps_done() const { return steps_done_; }
 
-  // The next step() also writes every node's velocity after it into ux and uy (grid-
-  // sized), as it collides the node: the u of compute_moments() after that step, bit for
-  // bit, without a second pass over the lattice (for a caller that needs it at most nodes,
-  // the dense immersed cells). For that one step only.
+  // The next step() also writes every node's velocity into ux and uy (grid-sized), as it
+  // collides the node: the u that collision relaxed towards (docs/model.md eq 1.3b), the
+  // u of compute_moments() after that step up to round-off, at the cost of the stores
+  // alone (for a caller that needs it at most nodes, the dense immersed cells). For that
+  // one step only.
   void write_velocity_with_next_step(std::span<double> ux, std::span<double> uy);
   // Whether the last step() wrote its velocity into this ux array (and the uy given with it),
   // and nothing has changed the populations since.

@@ -1,8 +1,8 @@
 #pragma once
 // ρ and u of one node from its nine post-collision populations (docs/model.md eq 1.3),
 // the one place this is computed: FluidLattice::compute_moments and node_moments after a
-// step, and the stream–collide kernel when it writes the moments during the step
-// (KernelArgs::moments_*), so that all of them give the same bits. Internal to the fluid
+// step, so that both give the same bits. (The stream–collide kernel's velocity output is
+// the collision's own u, eq 1.3b: the same value up to round-off.) Internal to the fluid
 // layer.
 #include <cstddef>
 #include <type_traits>

@@ -21,10 +21,11 @@
 //    Each span starts its vector loop at the first cache-line aligned node (the few
 //    nodes before it go through the loop's scalar remainder).
 //    Both paths collide through the same node_update() → collide_node().
-//  - On request (KernelArgs::velocity_*) each node's u after its collision is written as
-//    well, from the post-collision values still in registers (16 B more per node, against
-//    a separate pass that reads the 72 B of populations and the force again): the dense
-//    immersed cells need the velocity at nearly every node after each step.
+//  - On request (KernelArgs::velocity_*) each node's velocity is written as well: the u its
+//    collision relaxed towards (docs/model.md eq 1.3b), already in registers, so 16 B of
+//    stores per node and no arithmetic (against summing the nine post-collision populations
+//    again, or a separate pass that reads them and the force): the dense immersed cells
+//    need the velocity at nearly every node after each step.
 //
 // Rounding: floating-point contraction is off project-wide (-ffp-contract=off in
 // cmake/CompilerSettings.cmake), so every path and thread count gives the same bits, and
@@ -37,7 +38,6 @@
 #include <stdexcept>
 
 #include "fluid/collide_node.hpp"
-#include "fluid/node_moments.hpp"
 #include "lattice/d2q9.hpp"
 
 namespace erythro::fluid::detail {
@@ -56,9 +56,9 @@ struct NodeInputs {
   double* uy = nullptr;
 };
 
-// The collision of node n (streamed populations in f) and, with Velocity, its velocity
-// after it into ux[n], uy[n] (node_moments.hpp, with the collision's own force). The one
-// place where both the interior and the general path compute, so both round identically.
+// The collision of node n (streamed populations in f) and, with Velocity, the velocity it
+// relaxed towards into ux[n], uy[n] (eq 1.3b). The one place where both the interior and
+// the general path compute, so both round identically.
 // `flatten` inlines collide_node() here: an out-of-line copy of that header function could
 // be taken by the linker from another file compiled with contraction.
 template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Velocity>
@@ -75,10 +75,10 @@ template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, b
       Fy += fy[n];
     }
   }
-  collide_node<Model, HasForce>(f, r, Fx, Fy);
+  const CollisionVelocity u = collide_node<Model, HasForce>(f, r, Fx, Fy);
   if constexpr (Velocity) {
-    double rho;
-    moments_of([&](std::size_t i) { return f[i]; }, Fx, Fy, rho, ux[n], uy[n]);
+    ux[n] = u.ux;
+    uy[n] = u.uy;
   }
 }
 
@@ -87,7 +87,7 @@ template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, b
 // f*_ī (in both AA steps the slot a population came from takes its opposite back; see
 // stream_collide.hpp). Nine streams, each read and then written at the same index: no
 // dependence between iterations (ivdep), no branches, so the loop vectorises along x.
-// With Velocity, each node's u after the collision too (node_moments.hpp).
+// With Velocity, each node's collision velocity too (eq 1.3b).
 template <CollisionModel Model, bool TauField, bool HasForce, bool ForceField, bool Velocity>
 void interior_span(const NodeInputs& in, double* const* src, std::size_t n0, int len) {
   double* s0 = src[0];

@@ -50,9 +50,9 @@ struct KernelArgs {
   const double* force_y = nullptr;
   const std::uint8_t* force_rows = nullptr;  // with F(x): 0 for a row that holds no force; null: all may
   double uniform_fx = 0.0, uniform_fy = 0.0;
-  // Optional (both or none): every node's velocity u after the step, written as the node is
-  // collided (node_moments.hpp; the u of FluidLattice::compute_moments after the step, bit
-  // for bit), so that a caller who needs it everywhere makes no second pass.
+  // Optional (both or none): every node's velocity u, the one its collision relaxed towards
+  // (docs/model.md eq 1.3b; the u of FluidLattice::compute_moments after the step up to
+  // round-off), so that a caller who needs it everywhere makes no second pass.
   double* velocity_x = nullptr;
   double* velocity_y = nullptr;
 };

@@ -69,9 +69,11 @@ class ImmersedCells {
   void add_spread_forces(fluid::FluidLattice& lattice);
   // Steps 4–5 from the velocity of the last fluid step.
   void move_markers(std::span<const double> ux, std::span<const double> uy);
-  // Velocity of the last fluid step (as FluidLattice::compute_moments, bit for bit) into
-  // support_ux/uy() at the markers' kernel-support nodes only (other entries are stale),
-  // or on the whole grid when the supports would cover it anyway. Step 4 reads only
+  // Velocity of the last fluid step into support_ux/uy() at the markers' kernel-support
+  // nodes only (as FluidLattice::compute_moments, bit for bit; other entries are stale),
+  // or on the whole grid when the supports would cover it anyway (there the velocity the
+  // step wrote, its collisions' own u: docs/model.md eq 1.3b, the moments' up to
+  // round-off; compute_moments if the step wrote none). Step 4 reads only
   // those nodes; advance() = forces, spread, step, this, move_markers(support_ux/uy).
   // Call right after lattice.step(), before its forces change (as compute_moments).
   void support_velocity(fluid::FluidLattice& lattice);
