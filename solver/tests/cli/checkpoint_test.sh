@@ -45,6 +45,10 @@ restart cells "$SRC/scenes/capsule_shear.toml" 400 171 --set output.fields_inter
   --set membrane.index_update_interval=3 --set membrane.area_correction=\"projection\"
 restart cells_aggregation "$SRC/verification/aggregation/doublet.toml" 300 131 \
   --set output.fields_interval_steps=100 --set output.diagnostics_interval_steps=10
+# Dense cells (26 in the channel): the markers move with the velocity the fluid step writes
+# (docs/model.md eq 1.3b), which no checkpoint holds: a step takes it within itself.
+restart cells_dense "$SRC/scenes/rbc_channel.toml" 400 171 --set output.fields_interval_steps=100 \
+  --set output.diagnostics_interval_steps=10
 RESTART_THREADS=1 restart transport_cells "$SRC/solver/tests/cli/checkpoint/transport_cells.toml" 600 320
 restart transport_no_fluid "$SRC/scenes/rbc_deoxygenation.toml" 300 110 --set output.fields_interval_steps=100 \
   --set output.diagnostics_interval_steps=10
