@@ -15,7 +15,10 @@
 // below π/8 (unit test PortableAtan2.*). The choices are selects, so a loop vectorises.
 //
 // Domain: finite arguments. atan2(±0, +0) = ±0 and atan2(±0, −0) = ±π, as in C.
+#include <array>
 #include <cmath>
+
+#include "common/horner.hpp"
 
 namespace erythro::numeric {
 
@@ -29,17 +32,13 @@ inline double atan2_portable(double y, double x) {
   const bool upper = t > kTanPiOver8;
   const double r = upper ? (t - 1.0) / (t + 1.0) : t;
   const double u = r * r;
-  double q = -0x1.3a31b1c0fd3b7p-6;  // degree 10
-  q = std::fma(q, u, 0x1.4162c02b1dda3p-5);
-  q = std::fma(q, u, -0x1.a0999c632b6edp-5);
-  q = std::fma(q, u, 0x1.dfe6497e96323p-5);
-  q = std::fma(q, u, -0x1.10fa77b1a6d57p-4);
-  q = std::fma(q, u, 0x1.3b1263064f6b9p-4);
-  q = std::fma(q, u, -0x1.745d0b28a7e37p-4);
-  q = std::fma(q, u, 0x1.c71c71853d7fap-4);
-  q = std::fma(q, u, -0x1.2492492436201p-3);
-  q = std::fma(q, u, 0x1.999999999934cp-3);
-  q = std::fma(q, u, -0x1.5555555555555p-2);  // degree 0: −1/3
+  static constexpr std::array<double, 11> kQ = {
+      -0x1.3a31b1c0fd3b7p-6,  // degree 10
+      0x1.4162c02b1dda3p-5,  -0x1.a0999c632b6edp-5, 0x1.dfe6497e96323p-5,  -0x1.10fa77b1a6d57p-4, 0x1.3b1263064f6b9p-4,
+      -0x1.745d0b28a7e37p-4, 0x1.c71c71853d7fap-4,  -0x1.2492492436201p-3, 0x1.999999999934cp-3,
+      -0x1.5555555555555p-2,  // degree 0: −1/3
+  };
+  const double q = horner(u, kQ);
   const double a = std::fma(r * u, q, r);     // atan r
   // Undo the reductions: atan t = k π/4 + σ atan r with k = 1, σ = 1 above tan(π/8); then
   // π/2 − (…) when |y| > |x| and π − (…) when x is negative: one sum at the end.

@@ -15,9 +15,12 @@
 //
 // Domain: |x| ≤ 700 (2^k stays a normal number). Callers: the Morse law (arguments
 // β(r0 − r) with 0 < r < r_c, a few units).
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+
+#include "common/horner.hpp"
 
 namespace erythro::numeric {
 
@@ -29,20 +32,24 @@ inline double exp_portable(double x) {
   const double kd = x * kLog2e + kShifter;
   const double k = kd - kShifter;
   const double r = (x - k * kLn2Hi) - k * kLn2Lo;
-  double p = 1.0 / 6227020800.0;                         // 1/13!
-  p = std::fma(p, r, 1.0 / 479001600.0);                 // 1/12!
-  p = std::fma(p, r, 1.0 / 39916800.0);
-  p = std::fma(p, r, 1.0 / 3628800.0);
-  p = std::fma(p, r, 1.0 / 362880.0);
-  p = std::fma(p, r, 1.0 / 40320.0);
-  p = std::fma(p, r, 1.0 / 5040.0);
-  p = std::fma(p, r, 1.0 / 720.0);
-  p = std::fma(p, r, 1.0 / 120.0);
-  p = std::fma(p, r, 1.0 / 24.0);
-  p = std::fma(p, r, 1.0 / 6.0);
-  p = std::fma(p, r, 0.5);
-  p = std::fma(p, r, 1.0);
-  p = std::fma(p, r, 1.0);
+  static constexpr std::array<double, 14> kTaylor = {
+      // 1/n!, n = 13 … 0
+      1.0 / 6227020800.0,
+      1.0 / 479001600.0,
+      1.0 / 39916800.0,
+      1.0 / 3628800.0,
+      1.0 / 362880.0,
+      1.0 / 40320.0,
+      1.0 / 5040.0,
+      1.0 / 720.0,
+      1.0 / 120.0,
+      1.0 / 24.0,
+      1.0 / 6.0,
+      0.5,
+      1.0,
+      1.0,
+  };
+  const double p = horner(r, kTaylor);
   // 2^k: kd's bits are those of 1.5·2^52 plus k (|k| < 2^51), so k + 1023 shifted into the
   // exponent field is bits(kd) − bits(1.5·2^52) + 1023, in wrapping unsigned arithmetic.
   const std::uint64_t biased = std::bit_cast<std::uint64_t>(kd) - std::bit_cast<std::uint64_t>(kShifter) + 1023u;

@@ -13,7 +13,10 @@
 // (1.3 ulp of the values in [½, 1); the C library's sin and cos of the rounded πx/2, which the
 // weights used before, 1.3e−16 and 1.9e−16), measured against long double (unit test
 // PortableSinCos.*). The choice between x and 1 − x is a select, so a loop still vectorises.
+#include <array>
 #include <cmath>
+
+#include "common/horner.hpp"
 
 namespace erythro::numeric {
 
@@ -21,26 +24,27 @@ inline void sin_cos_half_pi(double x, double& s, double& c) {
   const bool low = x <= 0.5;
   const double y = low ? x : 1.0 - x;
   const double u = y * y;
-  double p = 0x1.aaec32af93359p-38;  // degree 17
-  p = std::fma(p, u, -0x1.6fadb9f155744p-31);
-  p = std::fma(p, u, 0x1.e8f434d018d63p-25);
-  p = std::fma(p, u, -0x1.e3074fde8871fp-19);
-  p = std::fma(p, u, 0x1.50783487ee782p-13);
-  p = std::fma(p, u, -0x1.32d2cce62bd86p-8);
-  p = std::fma(p, u, 0x1.466bc6775aae2p-4);
-  p = std::fma(p, u, -0x1.4abbce625be53p-1);
-  p = std::fma(p, u, 0x1.921fb54442d18p+0);  // degree 1: π/2
-  const double sin_y = y * p;
-  double q = -0x1.2a0c591af8314p-41;  // degree 18
-  q = std::fma(q, u, 0x1.20c62c2f2d7f5p-34);
-  q = std::fma(q, u, -0x1.b6e24f44b128fp-28);
-  q = std::fma(q, u, 0x1.f9d38a3763cc3p-22);
-  q = std::fma(q, u, -0x1.a6d1f2a204a8cp-16);
-  q = std::fma(q, u, 0x1.e1f506891babbp-11);
-  q = std::fma(q, u, -0x1.55d3c7e3cbffap-6);
-  q = std::fma(q, u, 0x1.03c1f081b5ac4p-2);
-  q = std::fma(q, u, -0x1.3bd3cc9be45dep+0);
-  const double cos_y = std::fma(q, u, 1.0);
+  // sin(πy/2)/y and cos(πy/2) as polynomials in u = y², highest degree first.
+  static constexpr std::array<double, 9> kSin = {
+      0x1.aaec32af93359p-38,  // degree 17 (of the sine)
+      -0x1.6fadb9f155744p-31, 0x1.e8f434d018d63p-25, -0x1.e3074fde8871fp-19, 0x1.50783487ee782p-13,
+      -0x1.32d2cce62bd86p-8,  0x1.466bc6775aae2p-4,  -0x1.4abbce625be53p-1,
+      0x1.921fb54442d18p+0,  // degree 1: π/2
+  };
+  static constexpr std::array<double, 10> kCos = {
+      -0x1.2a0c591af8314p-41,  // degree 18
+      0x1.20c62c2f2d7f5p-34,
+      -0x1.b6e24f44b128fp-28,
+      0x1.f9d38a3763cc3p-22,
+      -0x1.a6d1f2a204a8cp-16,
+      0x1.e1f506891babbp-11,
+      -0x1.55d3c7e3cbffap-6,
+      0x1.03c1f081b5ac4p-2,
+      -0x1.3bd3cc9be45dep+0,
+      1.0,  // degree 0
+  };
+  const double sin_y = y * horner(u, kSin);
+  const double cos_y = horner(u, kCos);
   s = low ? sin_y : cos_y;
   c = low ? cos_y : sin_y;
 }
