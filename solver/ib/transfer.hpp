@@ -16,6 +16,9 @@
 // offset, then marker index). No two threads write the same node and every node
 // sums its terms in the same order for ANY thread count: the result is bitwise
 // independent of OMP_NUM_THREADS. Interpolation is parallel over markers (reads only).
+// Both read the markers' data laid out in bucket order (copied once per spread), so that a
+// row's markers are neighbours in memory and neighbouring markers read neighbouring rows
+// of the grid (grids beyond the cache).
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -49,10 +52,13 @@ class Transfer {
  private:
   KernelType kernel_;
   geometry::Domain domain_;
-  // Scratch reused across calls: per-marker support origin and weights, buckets.
-  std::vector<int> i0_, j0_, bucket_start_, order_, next_;  // scratch reused across calls
-  std::vector<double> wx_, wy_;
-  std::vector<double> weights_x_, weights_y_;  // the marker positions wx_, wy_ were computed at
+  // Scratch reused across calls. Per marker: its bucket (−1: none). The buckets: bucket_start_
+  // (CSR), order_ (the bucketed markers, by bucket, ascending within one), outside_ (the others).
+  // In order_'s order (index q): position, force, support origin and weights.
+  std::vector<int> marker_bucket_, bucket_start_, order_, next_, outside_;
+  std::vector<int> i0_, j0_;
+  std::vector<double> xs_, ys_, fxs_, fys_, wx_, wy_;
+  std::vector<double> weights_x_, weights_y_;  // the marker positions (marker order) wx_, wy_ were computed at
 };
 
 // Explicit Euler marker update of the thesis: X ← X + U Δt (lattice Δt = 1 by default).

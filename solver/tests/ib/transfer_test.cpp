@@ -1,6 +1,8 @@
 // Spreading and interpolation (docs/model.md §2, thesis eqs 23–25): conservation of force
 // and torque, adjointness, reproduction of constant and linear fields, periodic wrap
 // and the documented loss of partition of unity at a wall (geometry/domain.hpp).
+#include "ib/transfer.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,9 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "common/portable_sincos.hpp"
 #include "ib/kernel.hpp"
-#include "ib/transfer.hpp"
+#include "transfer_reference.hpp"
 
 using namespace erythro;
 using namespace erythro::ib;
@@ -245,18 +246,6 @@ TEST(Transfer, NamesTheFirstNonFiniteMarkerOfMany) {
   EXPECT_NE(message([&] { tr.interpolate(X, Y, f.x, f.y, Ux, Uy); }).find("marker 1700 "), std::string::npos);
 }
 
-// The 1D weight of support node b of a marker at X (origin i0): φ(X − (i0 + b + ½)), for the
-// cosine kernel in the form the code evaluates it (model.md eq 2.4a, through sin and cos of πx/2).
-namespace {
-double weight(KernelType t, double X, int i0, int b) {
-  if (t != KernelType::cosine4) return phi(t, X - (i0 + b + 0.5));
-  double s, c;
-  numeric::sin_cos_half_pi(X - (i0 + 1.5), s, c);
-  const double w[4] = {0.25 * (1.0 - s), 0.25 * (1.0 + c), 0.25 * (1.0 + s), 0.25 * (1.0 - c)};
-  return w[b];
-}
-}  // namespace
-
 // Interpolation as model.md eq 2.3 writes it, one marker at a time in the code's order (each
 // row's sum over b from +0, then the rows from +0, a row beyond a wall left out): the kernel's
 // path, whichever it takes (the four-wide supports inside their rows go through vector lanes,
@@ -283,25 +272,9 @@ TEST(Transfer, InterpolationIsTheOrderedSumBitForBit) {
       Transfer tr(t, d);
       std::vector<double> Ux(m.X.size()), Uy(m.X.size());
       tr.interpolate(m.X, m.Y, u.x, u.y, Ux, Uy);
-      const int w = width(t);
       for (std::size_t k = 0; k < m.X.size(); ++k) {
-        const int i0 = support_start(m.X[k], w), j0 = support_start(m.Y[k], w);
-        double sx = 0.0, sy = 0.0;
-        for (int a = 0; a < w; ++a) {
-          int j = j0 + a;
-          if (periodic_y) j = (j % 14 + 14) % 14;
-          else if (j < 0 || j >= 14) continue;
-          double rx = 0.0, ry = 0.0;
-          for (int b = 0; b < w; ++b) {
-            const int i = ((i0 + b) % 20 + 20) % 20;
-            const double wb = weight(t, m.X[k], i0, b);
-            rx += u.x[d.grid.index(i, j)] * wb;
-            ry += u.y[d.grid.index(i, j)] * wb;
-          }
-          const double wa = weight(t, m.Y[k], j0, a);
-          sx += rx * wa;
-          sy += ry * wa;
-        }
+        double sx, sy;
+        reference::interpolate_one(d, t, u.x, u.y, m.X[k], m.Y[k], sx, sy);
         EXPECT_EQ(Ux[k], sx) << to_string(t) << " marker " << k << " periodic_y " << periodic_y;
         EXPECT_EQ(Uy[k], sy) << to_string(t) << " marker " << k << " periodic_y " << periodic_y;
       }
