@@ -59,9 +59,11 @@ constexpr std::size_t kPrefetchNodes = std::size_t{1} << 17;
 constexpr long kPrefetchAhead = 16;  // markers ahead in interpolation (8 and 24 measured alike)
 
 // The lines of one support of width W in (ux, uy): each row's first and last node, columns
-// clamped into the grid, rows wrapped or left out as interpolation takes them.
+// clamped into the grid, rows wrapped or left out as interpolation takes them. Inlined by
+// force: out of line, GCC 12 took the function for one without effects and dropped its calls.
 template <int W>
-inline void prefetch_support(const geometry::Domain& d, const double* ux, const double* uy, int i0, int j0) {
+[[gnu::always_inline]] inline void prefetch_support(const geometry::Domain& d, const double* ux, const double* uy, int i0,
+                                                    int j0) {
   const int lo = std::clamp(i0, 0, d.grid.nx - 1), hi = std::clamp(i0 + W - 1, 0, d.grid.nx - 1);
   for (int a = 0; a < W; ++a) {
     int j = j0 + a;
