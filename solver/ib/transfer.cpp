@@ -51,7 +51,7 @@ void check_finite(std::span<const double> X, std::span<const double> Y) { check_
 // memory and miss the cache, so spreading and interpolation ask for the lines they will need a
 // little ahead (docs/performance.md, "Support rows ahead of their use"). Prefetches are hints:
 // no result depends on them. On grids that stay in the cache they only cost instructions
-// (interpolation 4.0 → 5.0 µs per cell at 255²), so they are asked for from kPrefetchNodes
+// (interpolation 4.0 → 5.0–5.7 µs per cell at 255²), so they are asked for from kPrefetchNodes
 // nodes on: 2^17 nodes hold 14.7 MB of populations and fields at 112 B per node, half the
 // 32 MiB last-level cache of the machines erythro is measured on (at 509² they take
 // interpolation from 9.3–10.8 to 6.2–7.1 µs per cell).
