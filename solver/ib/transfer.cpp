@@ -233,7 +233,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     //    a marker whose whole support lies beyond a wall gets no bucket (outside_).
     const int nb = d.periodic_y ? ny : ny + W - 1;
     auto bucket_of = [&](int j0) { return d.periodic_y ? geometry::wrap_periodic(j0, ny) : j0 + W - 1; };
-    marker_bucket_.resize(M);
+    marker_bucket_.resize(M);  // first the markers' first support rows (a loop that vectorises), then their buckets
     {
       const double* __restrict y = Y.data();
       int* __restrict mb = marker_bucket_.data();
