@@ -355,30 +355,25 @@ void Transfer::interpolate(std::span<const double> X, std::span<const double> Y,
       j0 = support_start(Y[m], W);
     };
     if (same_positions) {
-      // spread()'s order by rows (neighbouring markers read neighbouring rows of the grid), and
-      // then the markers it left without a bucket (no row of their support on the grid).
+      // spread()'s order by rows (neighbouring markers read neighbouring rows of the grid).
+      auto spread_support = [&](std::size_t q, int& i0, int& j0) {
+        i0 = i0_[q];
+        j0 = j0_[q];
+      };
       interpolate_impl<K>(
           domain_, static_cast<long>(order_.size()),
           [&](std::size_t q, int& i0, double* wx, int& j0, double* wy) {
-            i0 = i0_[q];
-            j0 = j0_[q];
+            spread_support(q, i0, j0);
             std::copy_n(&wx_[q * W], W, wx);
             std::copy_n(&wy_[q * W], W, wy);
           },
-          [&](std::size_t q) { return static_cast<std::size_t>(order_[q]); },
-          [&](std::size_t q, int& i0, int& j0) {
-            i0 = i0_[q];
-            j0 = j0_[q];
-          },
-          ux, uy, Ux, Uy);
-      auto outside = [&](std::size_t e) { return static_cast<std::size_t>(outside_[e]); };
-      interpolate_impl<K>(
-          domain_, static_cast<long>(outside_.size()),
-          [&](std::size_t e, int& i0, double* wx, int& j0, double* wy) {
-            weights_from_positions(outside(e), i0, wx, j0, wy);
-          },
-          outside, [&](std::size_t e, int& i0, int& j0) { support_from_positions(outside(e), i0, j0); }, ux, uy, Ux,
-          Uy);
+          [&](std::size_t q) { return static_cast<std::size_t>(order_[q]); }, spread_support, ux, uy, Ux, Uy);
+      // The markers spread() left without a bucket have no row of their support on the grid:
+      // eq 2.3's sum over no rows, +0 (what interpolate_impl gives when every row is absent).
+      for (const int m : outside_) {
+        Ux[static_cast<std::size_t>(m)] = 0.0;
+        Uy[static_cast<std::size_t>(m)] = 0.0;
+      }
     } else {
       interpolate_impl<K>(
           domain_, static_cast<long>(M), weights_from_positions, [](std::size_t m) { return m; },
