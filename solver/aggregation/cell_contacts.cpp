@@ -51,7 +51,7 @@ struct Engine {
   std::size_t wall_markers = 0;
   double min_wall_gap = std::numeric_limits<double>::infinity();
   std::vector<std::size_t>& count;
-  std::vector<PairScratch>& per_thread;
+  std::vector<SweepScratch>& per_thread;
   std::atomic<bool> coincident{false};
   std::size_t beyond_wall = SIZE_MAX;  // the first marker on or beyond a wall (add_walls is serial)
   double beyond_wall_gap = 0.0;

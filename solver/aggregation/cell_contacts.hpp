@@ -48,6 +48,7 @@
 
 #include "aggregation/contact_law.hpp"
 #include "aggregation/pair_lists.hpp"
+#include "aggregation/pair_sweep.hpp"
 #include "aggregation/pair_terms.hpp"
 #include "aggregation/sweep_owners.hpp"
 #include "common/state_record.hpp"
@@ -65,7 +66,7 @@ namespace detail {
 struct ContactWorkspace {
   std::vector<std::size_t> cell_of, count, offsets;
   std::vector<double> edge, ell, S, px, py, rmin, W;
-  std::vector<PairScratch> per_thread;
+  std::vector<SweepScratch> per_thread;
   SweepOwners owners;  // remade with the pair lists, or for another thread count
 };
 }  // namespace detail

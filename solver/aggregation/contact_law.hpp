@@ -42,10 +42,20 @@ class ContactPotential {
   // The same for k separations r[0 … k−1] (each > 0): phi[i], dphi[i] and on[i] = whether
   // pair i interacts, bit for bit what evaluate(r[i]) gives, in straight loops the
   // compiler vectorises (the exponential is numeric::exp_portable, morse.hpp).
+  // With both parts the repulsion, whose range is a small part of the Morse cut-off, is added
+  // in a second pass over the pairs within its range only (its two divisions in every lane
+  // were the loop's largest cost).
   void evaluate_many(const double* r, std::size_t k, double* phi, double* dphi, unsigned char* on) const {
-    if (morse_ && repulsion_) evaluate_many_of<true, true>(r, k, phi, dphi, on);
-    else if (morse_) evaluate_many_of<true, false>(r, k, phi, dphi, on);
-    else evaluate_many_of<false, true>(r, k, phi, dphi, on);
+    if (morse_ && repulsion_ && repulsion_->parameters().range < morse_->parameters().cutoff) {
+      evaluate_many_of<true, false>(r, k, phi, dphi, on);
+      add_repulsion_within_range(r, k, phi, dphi, on);
+    } else if (morse_ && repulsion_) {
+      evaluate_many_of<true, true>(r, k, phi, dphi, on);
+    } else if (morse_) {
+      evaluate_many_of<true, false>(r, k, phi, dphi, on);
+    } else {
+      evaluate_many_of<false, true>(r, k, phi, dphi, on);
+    }
   }
   // The largest distance at which a pair interacts (max of r_c and d).
   double cutoff() const { return cutoff_; }
@@ -59,6 +69,8 @@ class ContactPotential {
   template <bool kMorse, bool kRepulsion>
   void evaluate_many_of(const double* __restrict r, std::size_t k, double* __restrict phi, double* __restrict dphi,
                         unsigned char* __restrict on) const;
+  void add_repulsion_within_range(const double* __restrict r, std::size_t k, double* __restrict phi,
+                                  double* __restrict dphi, unsigned char* __restrict on) const;
 
   ContactLaw law_;
   std::optional<ShiftedMorse> morse_;
@@ -120,6 +132,39 @@ void ContactPotential::evaluate_many_of(const double* __restrict r, std::size_t 
     phi[i] = r_on ? (m_on ? pm + pr : pr) : pm;
     dphi[i] = r_on ? (m_on ? dpm + dpr : dpr) : dpm;
     on[i] = (m_on || r_on) ? 1 : 0;
+  }
+}
+
+// After the Morse part alone: the repulsion's formulas (evaluate_many_of's, lane by lane) for
+// the pairs with r < d, found block by block and evaluated one by one, combined as evaluate()
+// combines them (Φ_s + Φ_r where the Morse part is on, Φ_r alone where it is not).
+inline void ContactPotential::add_repulsion_within_range(const double* __restrict r, std::size_t k,
+                                                         double* __restrict phi, double* __restrict dphi,
+                                                         unsigned char* __restrict on) const {
+  const double range = repulsion_->parameters().range, pressure = repulsion_->parameters().pressure;
+  constexpr std::size_t kBlock = 32;
+  std::size_t near[kBlock];
+  for (std::size_t b = 0; b < k; b += kBlock) {
+    const std::size_t e = std::min(k, b + kBlock);
+    int any = 0;  // most blocks hold no pair within d: a vector test skips them
+#pragma omp simd reduction(| : any)
+    for (std::size_t i = b; i < e; ++i) any |= r[i] < range ? 1 : 0;
+    if (any == 0) continue;
+    std::size_t n = 0;
+    for (std::size_t i = b; i < e; ++i) {  // branch-free
+      near[n] = i;
+      n += r[i] < range ? 1 : 0;
+    }
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t i = near[j];
+      const double ri = r[i];
+      const double q = range / ri - 1.0;
+      const double pr = pressure * q * q;
+      const double dpr = -2.0 * pressure * q * range / (ri * ri);
+      phi[i] = on[i] ? phi[i] + pr : pr;
+      dphi[i] = on[i] ? dphi[i] + dpr : dpr;
+      on[i] = 1;
+    }
   }
 }
 

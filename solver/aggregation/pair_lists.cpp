@@ -196,10 +196,32 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
     std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(begin[m]), length[m], first);
     upper_[m] = static_cast<std::size_t>(std::upper_bound(first, last, m) - list_.begin());  // ascending lists
   }
+  build_runs(cell_of);
   x_.assign(v.x.begin(), v.x.end());
   y_.assign(v.y.begin(), v.y.end());
   offsets_.assign(v.offsets.begin(), v.offsets.end());
   ++builds_;
+}
+
+// Each marker's entries above it cut into runs: a run ends where the next partner is not the
+// next marker index or belongs to another cell (so each run lies in one cell).
+void PairLists::build_runs(std::span<const std::size_t> cell_of) {
+  const std::size_t N = upper_.size();
+  run_start_.assign(N + 1, 0);
+  run_first_.clear();
+  run_length_.clear();
+  for (std::size_t m = 0; m < N; ++m) {
+    for (std::size_t e = upper_[m]; e < start_[m + 1]; ++e) {
+      const std::size_t n = list_[e];
+      if (e > upper_[m] && n == list_[e - 1] + 1 && cell_of[n] == cell_of[n - 1]) {
+        ++run_length_.back();
+      } else {
+        run_first_.push_back(n);
+        run_length_.push_back(1);
+      }
+    }
+    run_start_[m + 1] = run_first_.size();
+  }
 }
 
 }  // namespace erythro::aggregation

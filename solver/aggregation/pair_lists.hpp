@@ -39,16 +39,26 @@ class PairLists {
   // upper()[m]: the first entry of marker m whose partner has a higher index (start()[m + 1]
   // if none): the entries upper()[m] … start()[m+1] hold the pairs (m, n > m), each pair once.
   std::span<const std::size_t> upper() const { return upper_; }
+  // The same pairs (m, n > m) as runs of consecutive partners of one cell: marker m's runs are
+  // run_start()[m] … run_start()[m+1] − 1, run r the partners run_first()[r] …
+  // run_first()[r] + run_length()[r] − 1, in the order of the entries (pair_sweep.hpp reads
+  // a run's partners as one contiguous stretch of the marker arrays).
+  std::span<const std::size_t> run_start() const { return run_start_; }
+  std::span<const std::size_t> run_first() const { return run_first_; }
+  std::span<const std::size_t> run_length() const { return run_length_; }
   double skin() const { return skin_; }
   int bins_x() const { return nbx_; }
   int bins_y() const { return nby_; }
   std::size_t builds() const { return builds_; }
 
  private:
+  void build_runs(std::span<const std::size_t> cell_of);
+
   geometry::Domain domain_;
   double cutoff_ = 0.0, skin_ = 0.0;
   int nbx_ = 1, nby_ = 1;
   std::vector<std::size_t> start_, list_, upper_;
+  std::vector<std::size_t> run_start_, run_first_, run_length_;
   std::vector<double> x_, y_;           // the positions they were built at
   std::vector<std::size_t> offsets_;    // the cells they were built for
   std::size_t builds_ = 0;

@@ -13,6 +13,11 @@
 // X_n − X_m = −(X_m − X_n) exactly: pair_terms.hpp), so the sums are the same bits for any
 // owners and any thread count. On one thread every pair is evaluated once; on T threads the
 // pairs between threads twice.
+//
+// A marker's partners above it come as runs of consecutive markers of one cell (pair_lists.hpp):
+// the separations, the pair law and the partners' shares are vector loops over a run's stretch
+// of the marker arrays (a partner appears once per run, so its lanes never collide); only the
+// marker's own sums, which must add its partners one after another, are a scalar loop.
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -33,12 +38,34 @@ struct SweepArrays {
   std::span<std::size_t> count;
 };
 
+// One thread's buffers for a batch of visited markers: per evaluated partner (in run order) the
+// separation X_m − X_n, r², r, ℓ_m, ℓ_n, Φ, Φ', w, the marker's terms and whether the pair interacts;
+// per run its
+// marker, first partner, length, place in the batch and whether its partners are this thread's.
+// They grow once and are reused.
+struct SweepScratch {
+  struct Run {
+    std::size_t marker, first, length, at;
+    bool to_partners;
+  };
+  struct OwnMarker {
+    std::size_t m, q0, q1;  // an own marker and its entries q0 … q1 − 1
+  };
+  std::vector<double> dx, dy, r2, hr, ml, cl, phi, dphi, w;
+  std::vector<double> ts, tx, ty, tr;  // the marker's terms: Φ ℓ_n, w dx, w dy, r (no-ops where off)
+  std::vector<unsigned char> on;
+  std::vector<Run> runs;
+  std::vector<std::size_t> run_ends;  // per visited marker of the batch: the end of its runs
+  std::vector<OwnMarker> own;         // the batch's own markers with entries, in order
+  void resize(std::size_t n);
+};
+
 // The sums of every marker over the lists on `threads` threads: on one, in marker order (the
 // owners are not read); on more, by the owners (made for these lists and this thread count).
 // Returns whether two markers of different cells sit on one point (a pair at r = 0, which has
 // no direction).
 bool sweep_pair_lists(const geometry::Domain& domain, const ContactPotential& potential, const PairLists& lists,
                       const SweepOwners& owners, int threads, const SweepArrays& a,
-                      std::vector<PairScratch>& per_thread);
+                      std::vector<SweepScratch>& per_thread);
 
 }  // namespace erythro::aggregation

@@ -1,15 +1,18 @@
 // Unit tests of the pair sweep's owners (aggregation/sweep_owners.hpp, pair_sweep.hpp): any
-// owners give every marker's sums bit for bit, and the slabs cut across the shorter axis and share the work.
+// owners give every marker's sums bit for bit, and the slabs cut across the shorter axis and share the work;
+// and of the runs of partners the sweep reads (pair_lists.hpp).
+#include "aggregation/pair_sweep.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <optional>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <random>
+#include <span>
 #include <vector>
 
-#include "aggregation/pair_sweep.hpp"
 #include "aggregation/sweep_owners.hpp"
 #include "tests/aggregation/ring_grid.hpp"
 
@@ -32,7 +35,7 @@ struct Sums {
 
 Sums sweep(const geometry::Domain& dom, const MarkerView& v, const PairLists& lists, const SweepOwners& owners) {
   Sums s(v.x.size());
-  std::vector<PairScratch> scratch;
+  std::vector<SweepScratch> scratch;
   const ContactPotential potential(kLaw);
   EXPECT_FALSE(sweep_pair_lists(dom, potential, lists, owners, owners.threads(),
                                 SweepArrays{v.x, v.y, s.ell, s.S, s.px, s.py, s.rmin, s.count}, scratch));
@@ -175,4 +178,59 @@ TEST(SweepOwners, SlabsShareTheWorkNotTheCells) {
   EXPECT_LE(std::max(work[0], work[1]) - std::min(work[0], work[1]), largest);
   EXPECT_LT(cells[0], 37u);
   EXPECT_EQ(cells[0] + cells[1], 75u);
+}
+
+namespace {
+
+// The runs the sweep reads (pair_lists.hpp): marker by marker exactly the entries above it, in
+// their order, each run consecutive markers of one cell and as long as that allows.
+void expect_runs_are_the_entries_above(const PairLists& lists, std::span<const std::size_t> cell_of) {
+  const std::span<const std::size_t> start = lists.start(), list = lists.list(), upper = lists.upper();
+  const std::span<const std::size_t> rs = lists.run_start(), first = lists.run_first(), length = lists.run_length();
+  ASSERT_EQ(rs.size(), start.size());
+  for (std::size_t m = 0; m + 1 < start.size(); ++m) {
+    std::vector<std::size_t> from_runs;
+    for (std::size_t r = rs[m]; r < rs[m + 1]; ++r) {
+      ASSERT_GT(length[r], 0u);
+      for (std::size_t k = 0; k < length[r]; ++k) {
+        from_runs.push_back(first[r] + k);
+        EXPECT_EQ(cell_of[first[r] + k], cell_of[first[r]]) << "a run across cells at marker " << m;
+      }
+      if (r > rs[m]) {  // the previous run could not go on
+        const std::size_t next = first[r - 1] + length[r - 1];
+        EXPECT_TRUE(first[r] != next || cell_of[first[r]] != cell_of[next - 1]) << "a run cut short at marker " << m;
+      }
+    }
+    const std::vector<std::size_t> entries(list.begin() + static_cast<std::ptrdiff_t>(upper[m]),
+                                           list.begin() + static_cast<std::ptrdiff_t>(start[m + 1]));
+    EXPECT_EQ(from_runs, entries) << "marker " << m;
+  }
+}
+
+}  // namespace
+
+TEST(PairLists, RunsAreTheEntriesAboveEachMarkerCellByCell) {
+  // The rings, periodic and walled: arcs of neighbouring rings, one run or two where an arc
+  // passes a ring's marker 29 → 0.
+  for (const geometry::Domain& dom :
+       {geometry::Domain{Grid{200, 200}, true, true}, geometry::Domain{Grid{190, 200}, true, false}}) {
+    const RingsIn r(dom);
+    ASSERT_GT(r.lists.list().size(), 1000u);
+    expect_runs_are_the_entries_above(r.lists, r.cell_of);
+  }
+  // Marker 0 (cell 0) near the last marker of cell 1 (index 5) and the first of cell 2 (index 6):
+  // consecutive indices of two cells, so two runs of one partner each.
+  const std::vector<double> x{10.0, 8.0, 8.0, 20.0, 20.0, 11.0, 11.0, 20.0, 20.0};
+  const std::vector<double> y{10.0, 8.0, 12.0, 8.0, 12.0, 10.0, 11.0, 13.0, 16.0};
+  const std::vector<std::size_t> off{0, 3, 6, 9};
+  const MarkerView v{x, y, off};
+  const std::vector<std::size_t> cell_of = cells_of(v);
+  PairLists lists(geometry::Domain{Grid{40, 40}, false, false}, ContactPotential(kLaw).cutoff());
+  lists.build(v, cell_of, false);
+  expect_runs_are_the_entries_above(lists, cell_of);
+  const std::span<const std::size_t> rs = lists.run_start(), first = lists.run_first();
+  ASSERT_GE(rs[1] - rs[0], 2u);
+  bool split = false;
+  for (std::size_t r = rs[0]; r + 1 < rs[1]; ++r) split = split || (first[r] == 5 && first[r + 1] == 6);
+  EXPECT_TRUE(split) << "partners 5 and 6 of two cells in one run";
 }
