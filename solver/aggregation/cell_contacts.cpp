@@ -38,6 +38,18 @@ void check_view(const MarkerView& v) {
   throw std::domain_error("cell contacts: marker " + std::to_string(m) + " has a non-finite position");
 }
 
+// The largest value (0 for none): std::max_element's value, in a loop that vectorises (a
+// maximum is exact in any order).
+double largest(const std::vector<double>& values) {
+  if (values.empty()) return 0.0;
+  const double* v = values.data();
+  double top = v[0];
+  const std::size_t n = values.size();
+#pragma omp simd reduction(max : top)
+  for (std::size_t i = 1; i < n; ++i) top = std::max(top, v[i]);
+  return top;
+}
+
 // The shared arithmetic of the pair-list and brute-force paths (see the header): the
 // per-marker arrays, the walls and the edge part. The pair sums come from pair_terms.hpp.
 struct Engine {
@@ -292,7 +304,7 @@ struct Engine {
     st.min_pair_distance = std::min(st.min_pair_distance, closest);
     st.pairs = pairs2 / 2;
     st.energy = energy();
-    st.max_force = magnitude.empty() ? 0.0 : *std::max_element(magnitude.begin(), magnitude.end());
+    st.max_force = largest(magnitude);
     return st;
   }
 };

@@ -35,14 +35,26 @@ bool check_finite_and_same(std::span<const double> X, std::span<const double> Y,
                            std::span<const double> WY) {
   const bool compare = WX.size() == X.size() && WY.size() == Y.size();
   const long markers = static_cast<long>(X.size());
-  bool finite = true, same = true;
-#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers) reduction(&& : finite, same)
-  for (long m = 0; m < markers; ++m) {
-    finite = finite && std::isfinite(X[m]) && std::isfinite(Y[m]);
-    same = same && compare && X[m] == WX[m] && Y[m] == WY[m];  // `compare` first: no read beyond WX
+  // Ints combined with & (no short cut) over raw pointers: a loop that vectorises with plain
+  // loads, where bools with && did not vectorise and spans gave gathers.
+  const double* x = X.data();
+  const double* y = Y.data();
+  const double* wx = WX.data();
+  const double* wy = WY.data();
+  int finite = 1, same = 1;
+  if (compare) {
+#pragma omp parallel for simd schedule(static) if (markers >= kParallelMarkers) reduction(& : finite, same)
+    for (long m = 0; m < markers; ++m) {
+      finite &= (std::isfinite(x[m]) ? 1 : 0) & (std::isfinite(y[m]) ? 1 : 0);
+      same &= (x[m] == wx[m] ? 1 : 0) & (y[m] == wy[m] ? 1 : 0);
+    }
+  } else {  // no positions to compare with (no read beyond WX)
+    same = 0;
+#pragma omp parallel for simd schedule(static) if (markers >= kParallelMarkers) reduction(& : finite)
+    for (long m = 0; m < markers; ++m) finite &= (std::isfinite(x[m]) ? 1 : 0) & (std::isfinite(y[m]) ? 1 : 0);
   }
-  if (!finite) report_first_non_finite(X, Y);
-  return compare && same;
+  if (finite == 0) report_first_non_finite(X, Y);
+  return same != 0;
 }
 
 void check_finite(std::span<const double> X, std::span<const double> Y) { check_finite_and_same(X, Y, {}, {}); }
