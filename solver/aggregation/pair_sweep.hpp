@@ -17,7 +17,8 @@
 // A marker's partners above it come as runs of consecutive markers of one cell (pair_lists.hpp):
 // the separations, the pair law and the partners' shares are vector loops over a run's stretch
 // of the marker arrays (a partner appears once per run, so its lanes never collide); only the
-// marker's own sums, which must add its partners one after another, are a scalar loop.
+// marker's own sums, which must add its partners one after another, are scalar (two markers'
+// sums side by side).
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -39,10 +40,9 @@ struct SweepArrays {
 };
 
 // One thread's buffers for a batch of visited markers: per evaluated partner (in run order) the
-// separation X_m − X_n, r², r, ℓ_m, ℓ_n, Φ, Φ', w, the marker's terms and whether the pair interacts;
-// per run its
-// marker, first partner, length, place in the batch and whether its partners are this thread's.
-// They grow once and are reused.
+// separation X_m − X_n, r², r, ℓ_m, ℓ_n, Φ, Φ', w, the marker's terms and whether the pair
+// interacts; per run its marker, first partner, length, place in the batch and whether its
+// partners are this thread's. They grow once and are reused.
 struct SweepScratch {
   struct Run {
     std::size_t marker, first, length, at;
