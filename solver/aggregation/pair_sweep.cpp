@@ -63,7 +63,7 @@ bool batch_terms(const ContactPotential& potential, std::size_t n, SweepScratch&
   const double* __restrict dphi = s.dphi.data();
   double* __restrict w = s.w.data();
 #pragma omp simd
-  for (std::size_t q = 0; q < n; ++q) w[q] = dphi[q] * (ml[q] * cl[q]) / hr[q];  // symmetric in (m, n) bit for bit
+  for (std::size_t q = 0; q < n; ++q) w[q] = pair_weight(dphi[q], ml[q], cl[q], hr[q]);
   // The marker's terms, where the pair does not interact the values that leave each sum as it
   // is bit for bit (x + (−0) = x and x − (+0) = x for every x, −0 included; min(x, +∞) = x).
   const double* __restrict phi = s.phi.data();

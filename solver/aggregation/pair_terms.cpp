@@ -72,7 +72,7 @@ void pair_weights(const ContactPotential& potential, std::size_t k, PairScratch&
   const double* __restrict dphi = s.dphi.data();
   double* __restrict w = s.w.data();
 #pragma omp simd
-  for (std::size_t q = 0; q < k; ++q) w[q] = dphi[q] * (ml[h[q]] * cl[h[q]]) / hr[q];  // symmetric in (m, n) bit for bit
+  for (std::size_t q = 0; q < k; ++q) w[q] = pair_weight(dphi[q], ml[h[q]], cl[h[q]], hr[q]);
 }
 
 std::size_t evaluate_pairs(const geometry::Domain& d, const ContactPotential& potential, std::size_t n,

@@ -46,6 +46,11 @@ inline double image(double d, bool periodic, double L, double inv) {
   return periodic ? d - L * std::nearbyint(d * inv) : d;
 }
 
+// The weight w = Φ'(r) ℓ_m ℓ_n / r of a pair (its force is −w (X_m − X_n)): ℓ_m ℓ_n first, so
+// the same bits from either end. The one place the formula is written (pair_weights, and the
+// pair sweep's batches, pair_sweep.cpp).
+inline double pair_weight(double dphi, double ell_m, double ell_n, double r) { return dphi * (ell_m * ell_n) / r; }
+
 // Pass 1 over candidates 0 … n − 1: s.dx, s.dy, s.r2 from s.mx, s.my, s.cx, s.cy.
 void pair_separations(const geometry::Domain& d, std::size_t n, PairScratch& s);
 // Pass 2: the candidates with 0 < r² < rc2 into s.hits, in order; returns their count.
