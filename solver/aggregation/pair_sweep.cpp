@@ -113,7 +113,7 @@ void add_to_partners(const SweepArrays& a, const SweepScratch& s, const SweepScr
 }
 
 // Entry q's terms added to a marker's sums (batch_terms: a pair that does not interact adds
-// nothing). Inlined by force: two markers' sums advance side by side (sweep_owner).
+// nothing). Inlined by force: two markers' sums advance side by side (add_to_markers).
 [[gnu::always_inline]] inline void add_entry(const SweepScratch& s, std::size_t q, PairSums& acc) {
   acc.s += s.ts[q];
   acc.fx -= s.tx[q];
