@@ -40,7 +40,7 @@ void check_view(const MarkerView& v) {
 
 // The largest value (0 for none): std::max_element's value, in a loop that vectorises (a
 // maximum is exact in any order).
-double largest(const std::vector<double>& values) {
+double largest(std::span<const double> values) {
   if (values.empty()) return 0.0;
   const double* v = values.data();
   double top = v[0];
@@ -430,7 +430,7 @@ std::vector<std::size_t> cell_offsets(const membrane::ImmersedCells& cells) {
 }
 
 double relative_contact_area(std::span<const double> mag, std::span<const std::size_t> offsets, int c, double fraction) {
-  const double fmax = mag.empty() ? 0.0 : *std::max_element(mag.begin(), mag.end());
+  const double fmax = largest(mag);
   if (!(fmax > 0.0)) return 0.0;
   const std::size_t o = offsets[static_cast<std::size_t>(c)], e = offsets[static_cast<std::size_t>(c) + 1];
   std::size_t k = 0;

@@ -135,13 +135,13 @@ void ContactPotential::evaluate_many_of(const double* __restrict r, std::size_t 
   }
 }
 
-// After the Morse part alone: the repulsion's formulas (evaluate_many_of's, lane by lane) for
-// the pairs with r < d, found block by block and evaluated one by one, combined as evaluate()
-// combines them (Φ_s + Φ_r where the Morse part is on, Φ_r alone where it is not).
+// After the Morse part alone: the repulsion (Repulsion::evaluate) for the pairs with r < d,
+// found block by block and evaluated one by one, combined as evaluate() combines them (Φ_s + Φ_r
+// where the Morse part is on, Φ_r alone where it is not).
 inline void ContactPotential::add_repulsion_within_range(const double* __restrict r, std::size_t k,
                                                          double* __restrict phi, double* __restrict dphi,
                                                          unsigned char* __restrict on) const {
-  const double range = repulsion_->parameters().range, pressure = repulsion_->parameters().pressure;
+  const double range = repulsion_->parameters().range;
   constexpr std::size_t kBlock = 32;
   std::size_t near[kBlock];
   for (std::size_t b = 0; b < k; b += kBlock) {
@@ -157,10 +157,8 @@ inline void ContactPotential::add_repulsion_within_range(const double* __restric
     }
     for (std::size_t j = 0; j < n; ++j) {
       const std::size_t i = near[j];
-      const double ri = r[i];
-      const double q = range / ri - 1.0;
-      const double pr = pressure * q * q;
-      const double dpr = -2.0 * pressure * q * range / (ri * ri);
+      double pr = 0.0, dpr = 0.0;
+      repulsion_->evaluate(r[i], pr, dpr);  // r[i] < d: on
       phi[i] = on[i] ? phi[i] + pr : pr;
       dphi[i] = on[i] ? dphi[i] + dpr : dpr;
       on[i] = 1;

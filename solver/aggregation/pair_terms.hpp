@@ -27,7 +27,6 @@ struct PairScratch {
   std::vector<std::size_t> hits;               // the candidates within the cut-off, in order
   std::vector<double> hr, phi, dphi, w;        // per pair within the cut-off: r, Φ, Φ', w
   std::vector<unsigned char> on;               // per pair: whether it interacts (ContactPotential)
-  std::vector<std::size_t> partner, ends;      // a batch's bookkeeping (pair_sweep.cpp): its own size
   void resize(std::size_t n);
 };
 

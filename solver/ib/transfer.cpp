@@ -36,25 +36,20 @@ bool check_finite_and_same(std::span<const double> X, std::span<const double> Y,
   const bool compare = WX.size() == X.size() && WY.size() == Y.size();
   const long markers = static_cast<long>(X.size());
   // Ints combined with & (no short cut) over raw pointers: a loop that vectorises with plain
-  // loads, where bools with && did not vectorise and spans gave gathers.
+  // loads, where bools with && did not vectorise and spans gave gathers. With no positions to
+  // compare with, the positions are compared with themselves (no read beyond WX).
   const double* x = X.data();
   const double* y = Y.data();
-  const double* wx = WX.data();
-  const double* wy = WY.data();
+  const double* wx = compare ? WX.data() : x;
+  const double* wy = compare ? WY.data() : y;
   int finite = 1, same = 1;
-  if (compare) {
 #pragma omp parallel for simd schedule(static) if (markers >= kParallelMarkers) reduction(& : finite, same)
-    for (long m = 0; m < markers; ++m) {
-      finite &= (std::isfinite(x[m]) ? 1 : 0) & (std::isfinite(y[m]) ? 1 : 0);
-      same &= (x[m] == wx[m] ? 1 : 0) & (y[m] == wy[m] ? 1 : 0);
-    }
-  } else {  // no positions to compare with (no read beyond WX)
-    same = 0;
-#pragma omp parallel for simd schedule(static) if (markers >= kParallelMarkers) reduction(& : finite)
-    for (long m = 0; m < markers; ++m) finite &= (std::isfinite(x[m]) ? 1 : 0) & (std::isfinite(y[m]) ? 1 : 0);
+  for (long m = 0; m < markers; ++m) {
+    finite &= (std::isfinite(x[m]) ? 1 : 0) & (std::isfinite(y[m]) ? 1 : 0);
+    same &= (x[m] == wx[m] ? 1 : 0) & (y[m] == wy[m] ? 1 : 0);
   }
   if (finite == 0) report_first_non_finite(X, Y);
-  return same != 0;
+  return compare && same != 0;
 }
 
 void check_finite(std::span<const double> X, std::span<const double> Y) { check_finite_and_same(X, Y, {}, {}); }
