@@ -45,8 +45,10 @@ double largest(std::span<const double> values) {
   const double* v = values.data();
   double top = v[0];
   const std::size_t n = values.size();
+  // Written with the comparison, not std::max: GCC 12 builds std::max's reference into a
+  // gather from the stack here, the comparison into a plain vector maximum (the same value).
 #pragma omp simd reduction(max : top)
-  for (std::size_t i = 1; i < n; ++i) top = std::max(top, v[i]);
+  for (std::size_t i = 1; i < n; ++i) top = v[i] > top ? v[i] : top;
   return top;
 }
 
@@ -198,6 +200,11 @@ struct Engine {
 
   double energy() const {
     check_coincident();
+    return energy_sum();
+  }
+
+  // E of eq 4.8 (walls: eq 4.13), one sum in marker order: its bits fix the order.
+  double energy_sum() const {
     double e = 0.0;
     for (std::size_t m = 0; m < S.size(); ++m) e += ell[m] * S[m];  // E = ½ Σ ℓ_m S_m
     e *= 0.5;
@@ -287,15 +294,25 @@ struct Engine {
     // the same statistics.
     double closest = std::numeric_limits<double>::infinity();
     std::size_t pairs2 = 0;
+    double energy_total = 0.0;
     const long n_cells = static_cast<long>(v.offsets.size()) - 1;
-#pragma omp parallel for schedule(static) if (N >= kParallelMarkers) reduction(min : closest) reduction(+ : pairs2)
-    for (long q = 0; q < n_cells; ++q) {
-      const std::size_t o = v.offsets[static_cast<std::size_t>(q)], e = v.offsets[static_cast<std::size_t>(q) + 1];
-      if (W.empty()) finish_cell<false>(o, e, fx.data(), fy.data(), mag);
-      else finish_cell<true>(o, e, fx.data(), fy.data(), mag);
-      for (std::size_t m = o; m < e; ++m) {
-        closest = std::min(closest, rmin[m]);
-        pairs2 += count[m];
+#pragma omp parallel if (N >= kParallelMarkers) reduction(min : closest) reduction(+ : pairs2)
+    {
+      // The energy is one chain of additions in a fixed order (its bits): one thread adds it
+      // while the others take the cells, which are shared out as the threads come free.
+#pragma omp single nowait
+      energy_total = energy_sum();
+#pragma omp for schedule(dynamic, 2) nowait
+      for (long q = 0; q < n_cells; ++q) {
+        const std::size_t o = v.offsets[static_cast<std::size_t>(q)], e = v.offsets[static_cast<std::size_t>(q) + 1];
+        if (W.empty())
+          finish_cell<false>(o, e, fx.data(), fy.data(), mag);
+        else
+          finish_cell<true>(o, e, fx.data(), fy.data(), mag);
+        for (std::size_t m = o; m < e; ++m) {
+          closest = std::min(closest, rmin[m]);
+          pairs2 += count[m];
+        }
       }
     }
     ContactStats st;
@@ -303,7 +320,7 @@ struct Engine {
     st.min_wall_distance = min_wall_gap;
     st.min_pair_distance = std::min(st.min_pair_distance, closest);
     st.pairs = pairs2 / 2;
-    st.energy = energy();
+    st.energy = energy_total;
     st.max_force = largest(magnitude);
     return st;
   }

@@ -1,5 +1,7 @@
 #include "ib/transfer.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -8,6 +10,7 @@
 
 #include "common/portable_sincos.hpp"
 #include "geometry/grid_polygon.hpp"
+#include "ib/row_buckets.hpp"
 
 namespace erythro::ib {
 
@@ -235,36 +238,12 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     constexpr int W = K::width;
     const geometry::Domain& d = domain_;
     const int nx = d.grid.nx, ny = d.grid.ny;
-    // 1. The first support row of every marker, and a stable counting sort of the markers by
-    //    its bucket. Periodic y: bucket = j0 mod ny. Walls: bucket = j0 + W − 1 ∈ [0, ny + W − 1);
-    //    a marker whose whole support lies beyond a wall gets no bucket (outside_).
-    const int nb = d.periodic_y ? ny : ny + W - 1;
-    auto bucket_of = [&](int j0) { return d.periodic_y ? geometry::wrap_periodic(j0, ny) : j0 + W - 1; };
-    marker_bucket_.resize(M);  // first the markers' first support rows (a loop that vectorises), then their buckets
-    {
-      const double* __restrict y = Y.data();
-      int* __restrict mb = marker_bucket_.data();
-#pragma omp simd
-      for (std::size_t m = 0; m < M; ++m) mb[m] = support_start(y[m], W);
-    }
-    bucket_start_.assign(static_cast<std::size_t>(nb) + 1, 0);
-    outside_.clear();
-    for (std::size_t m = 0; m < M; ++m) {
-      const int b = bucket_of(marker_bucket_[m]);
-      marker_bucket_[m] = b >= 0 && b < nb ? b : -1;
-      if (marker_bucket_[m] >= 0)
-        ++bucket_start_[static_cast<std::size_t>(b) + 1];
-      else
-        outside_.push_back(static_cast<int>(m));
-    }
-    for (int b = 0; b < nb; ++b) bucket_start_[b + 1] += bucket_start_[b];
-    const std::size_t Q = static_cast<std::size_t>(bucket_start_[nb]);
-    order_.resize(Q);
-    next_.assign(bucket_start_.begin(), bucket_start_.end() - 1);
-    for (std::size_t m = 0; m < M; ++m) {
-      const int b = marker_bucket_[m];
-      if (b >= 0) order_[static_cast<std::size_t>(next_[b]++)] = static_cast<int>(m);
-    }
+    // 1. The markers sorted by the first row of their support (ib/row_buckets.hpp).
+    const bool threads = d.grid.worth_threading() && M >= 64;
+    buckets_.sort(Y, W, d, threads && static_cast<long>(M) >= kParallelMarkers);
+    const int nb = buckets_.buckets();
+    const std::vector<int>& order = buckets_.sorted();
+    const std::size_t Q = order.size();
     // 2. The bucketed markers' positions and forces in that order, and their support origins
     //    and weights (the row pass and interpolation then read them in order, not scattered
     //    over the markers).
@@ -276,13 +255,21 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     ys_.resize(Q);
     fxs_.resize(Q);
     fys_.resize(Q);
-    const long sorted = static_cast<long>(Q);  // each marker its own: any thread count, the same bits
-    const long blocks = (sorted + kWeightBlock - 1) / kWeightBlock;
-#pragma omp parallel for schedule(static) if (sorted >= kParallelMarkers)
+    // Block b also copies markers b·kWeightBlock … of (X, Y), in marker order: the positions these
+    // weights belong to (interpolate() compares them with its own).
+    weights_x_.resize(M);
+    weights_y_.resize(M);
+    const long markers = static_cast<long>(M), sorted = static_cast<long>(Q);  // sorted ≤ markers
+    const long blocks = (markers + kWeightBlock - 1) / kWeightBlock;           // each marker its own: the same bits
+#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers)
     for (long b = 0; b < blocks; ++b) {
-      const long first = b * kWeightBlock, n = std::min(sorted - first, kWeightBlock);
+      const long first = b * kWeightBlock;
+      std::copy_n(X.data() + first, std::min(markers - first, kWeightBlock), weights_x_.data() + first);
+      std::copy_n(Y.data() + first, std::min(markers - first, kWeightBlock), weights_y_.data() + first);
+      if (first >= sorted) continue;  // markers beyond a wall only
+      const long n = std::min(sorted - first, kWeightBlock);
       for (long q = first; q < first + n; ++q) {
-        const std::size_t m = static_cast<std::size_t>(order_[static_cast<std::size_t>(q)]);
+        const std::size_t m = static_cast<std::size_t>(order[static_cast<std::size_t>(q)]);
         xs_[q] = X[m];
         ys_[q] = Y[m];
         fxs_[q] = Fx[m];
@@ -291,50 +278,55 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
       weights_of_block<K>(xs_.data() + first, n, i0_.data() + first, wx_.data() + first * W);
       weights_of_block<K>(ys_.data() + first, n, j0_.data() + first, wy_.data() + first * W);
     }
-    weights_x_.assign(X.begin(), X.end());  // the positions these weights belong to
-    weights_y_.assign(Y.begin(), Y.end());
     // 3. Gather per row: row y receives support row a of the markers whose first row is y − a.
-    const bool threads = d.grid.worth_threading() && M >= 64;
+    //    Each thread a share of neighbouring rows with about equal work (the cells are not spread
+    //    evenly over the rows); which thread adds a row does not change its sums.
     const bool ahead = d.grid.size() >= kPrefetchNodes;
-#pragma omp parallel for schedule(static) if (threads)
-    for (int y = 0; y < ny; ++y) {
-      double* rowx = fx.data() + d.grid.index(0, y);
-      double* rowy = fy.data() + d.grid.index(0, y);
-      for (int a = 0; a < W; ++a) {
-        const int b = bucket_of(y - a);
-        if (b < 0 || b >= nb || bucket_start_[b] == bucket_start_[b + 1]) continue;
-        if (!rows_written.empty()) rows_written[static_cast<std::size_t>(y)] = 1;
-        for (int q = bucket_start_[b]; q < bucket_start_[b + 1]; ++q) {
-          const std::size_t s = static_cast<std::size_t>(q);
-          const double gx = fxs_[s] * wy_[s * W + a], gy = fys_[s] * wy_[s * W + a];
-          const double* w = &wx_[s * W];
-          const int i0 = i0_[s];
-          if (ahead && a == 0 && y + W - 1 < ny) {  // this support's later rows (kPrefetchNodes)
-            const int lo = std::clamp(i0, 0, nx - 1);
-            for (int r = 1; r < W; ++r) {
-              __builtin_prefetch(rowx + r * nx + lo, 1);
-              __builtin_prefetch(rowy + r * nx + lo, 1);
+    const int shares = threads ? omp_get_max_threads() : 1;
+    buckets_.split_rows(shares, share_rows_);
+#pragma omp parallel for schedule(static, 1) num_threads(shares) if (shares > 1)
+    for (int share = 0; share < shares; ++share)
+      for (int y = share_rows_[static_cast<std::size_t>(share)]; y < share_rows_[static_cast<std::size_t>(share) + 1];
+           ++y) {
+        double* rowx = fx.data() + d.grid.index(0, y);
+        double* rowy = fy.data() + d.grid.index(0, y);
+        for (int a = 0; a < W; ++a) {
+          const int b = buckets_.bucket_of(y - a);
+          if (b < 0 || b >= nb || buckets_.start(b) == buckets_.start(b + 1)) continue;
+          if (!rows_written.empty()) rows_written[static_cast<std::size_t>(y)] = 1;
+          for (int q = buckets_.start(b); q < buckets_.start(b + 1); ++q) {
+            const std::size_t s = static_cast<std::size_t>(q);
+            const double gx = fxs_[s] * wy_[s * W + a], gy = fys_[s] * wy_[s * W + a];
+            const double* w = &wx_[s * W];
+            const int i0 = i0_[s];
+            if (ahead && a == 0 && y + W - 1 < ny) {  // this support's later rows (kPrefetchNodes)
+              const int lo = std::clamp(i0, 0, nx - 1);
+              for (int r = 1; r < W; ++r) {
+                __builtin_prefetch(rowx + r * nx + lo, 1);
+                __builtin_prefetch(rowy + r * nx + lo, 1);
+              }
             }
-          }
-          if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside the row: no wrap, no drop
-            double* __restrict sx = rowx + i0;
-            double* __restrict sy = rowy + i0;
+            if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside the row: no wrap, no drop
+              double* __restrict sx = rowx + i0;
+              double* __restrict sy = rowy + i0;
+              for (int c = 0; c < W; ++c) {
+                sx[c] += gx * w[c];
+                sy[c] += gy * w[c];
+              }
+              continue;
+            }
             for (int c = 0; c < W; ++c) {
-              sx[c] += gx * w[c];
-              sy[c] += gy * w[c];
+              int i = i0 + c;
+              if (d.periodic_x)
+                i = geometry::wrap_periodic(i, nx);
+              else if (i < 0 || i >= nx)
+                continue;  // beyond a wall: dropped (geometry/domain.hpp)
+              rowx[i] += gx * w[c];
+              rowy[i] += gy * w[c];
             }
-            continue;
-          }
-          for (int c = 0; c < W; ++c) {
-            int i = i0 + c;
-            if (d.periodic_x) i = geometry::wrap_periodic(i, nx);
-            else if (i < 0 || i >= nx) continue;  // beyond a wall: dropped (geometry/domain.hpp)
-            rowx[i] += gx * w[c];
-            rowy[i] += gy * w[c];
           }
         }
       }
-    }
   });
 }
 
@@ -368,16 +360,17 @@ void Transfer::interpolate(std::span<const double> X, std::span<const double> Y,
         j0 = j0_[q];
       };
       interpolate_impl<K>(
-          domain_, static_cast<long>(order_.size()),
+          domain_, static_cast<long>(buckets_.sorted().size()),
           [&](std::size_t q, int& i0, double* wx, int& j0, double* wy) {
             spread_support(q, i0, j0);
             std::copy_n(&wx_[q * W], W, wx);
             std::copy_n(&wy_[q * W], W, wy);
           },
-          [&](std::size_t q) { return static_cast<std::size_t>(order_[q]); }, spread_support, ux, uy, Ux, Uy);
+          [&](std::size_t q) { return static_cast<std::size_t>(buckets_.sorted()[q]); }, spread_support, ux, uy, Ux,
+          Uy);
       // The markers spread() left without a bucket have no row of their support on the grid:
       // eq 2.3's sum over no rows, +0 (what interpolate_impl gives when every row is absent).
-      for (const int m : outside_) {
+      for (const int m : buckets_.outside()) {
         Ux[static_cast<std::size_t>(m)] = 0.0;
         Uy[static_cast<std::size_t>(m)] = 0.0;
       }

@@ -25,6 +25,7 @@
 
 #include "geometry/domain.hpp"
 #include "ib/kernel.hpp"
+#include "ib/row_buckets.hpp"
 
 namespace erythro::ib {
 
@@ -52,10 +53,10 @@ class Transfer {
  private:
   KernelType kernel_;
   geometry::Domain domain_;
-  // Scratch reused across calls. Per marker: its bucket (−1: none). The buckets: bucket_start_
-  // (CSR), order_ (the bucketed markers, by bucket, ascending within one), outside_ (the others).
-  // In order_'s order (index q): position, force, support origin and weights.
-  std::vector<int> marker_bucket_, bucket_start_, order_, next_, outside_;
+  // Scratch reused across calls: the markers sorted by their support's first row, and in that
+  // order (index q) their position, force, support origin and weights.
+  RowBuckets buckets_;
+  std::vector<int> share_rows_;  // the threads' rows in the row pass (RowBuckets::split_rows)
   std::vector<int> i0_, j0_;
   std::vector<double> xs_, ys_, fxs_, fys_, wx_, wy_;
   std::vector<double> weights_x_, weights_y_;  // the marker positions (marker order) wx_, wy_ were computed at
