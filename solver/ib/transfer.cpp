@@ -279,54 +279,56 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
       weights_of_block<K>(ys_.data() + first, n, j0_.data() + first, wy_.data() + first * W);
     }
     // 3. Gather per row: row y receives support row a of the markers whose first row is y − a.
-    //    Each thread a share of neighbouring rows with about equal work (the cells are not spread
-    //    evenly over the rows); which thread adds a row does not change its sums.
     const bool ahead = d.grid.size() >= kPrefetchNodes;
-    const int shares = threads ? omp_get_max_threads() : 1;
-    buckets_.split_rows(shares, share_rows_);
-#pragma omp parallel for schedule(static, 1) num_threads(shares) if (shares > 1)
-    for (int share = 0; share < shares; ++share)
-      for (int y = share_rows_[static_cast<std::size_t>(share)]; y < share_rows_[static_cast<std::size_t>(share) + 1];
-           ++y) {
-        double* rowx = fx.data() + d.grid.index(0, y);
-        double* rowy = fy.data() + d.grid.index(0, y);
-        for (int a = 0; a < W; ++a) {
-          const int b = buckets_.bucket_of(y - a);
-          if (b < 0 || b >= nb || buckets_.start(b) == buckets_.start(b + 1)) continue;
-          if (!rows_written.empty()) rows_written[static_cast<std::size_t>(y)] = 1;
-          for (int q = buckets_.start(b); q < buckets_.start(b + 1); ++q) {
-            const std::size_t s = static_cast<std::size_t>(q);
-            const double gx = fxs_[s] * wy_[s * W + a], gy = fys_[s] * wy_[s * W + a];
-            const double* w = &wx_[s * W];
-            const int i0 = i0_[s];
-            if (ahead && a == 0 && y + W - 1 < ny) {  // this support's later rows (kPrefetchNodes)
-              const int lo = std::clamp(i0, 0, nx - 1);
-              for (int r = 1; r < W; ++r) {
-                __builtin_prefetch(rowx + r * nx + lo, 1);
-                __builtin_prefetch(rowy + r * nx + lo, 1);
-              }
+    auto add_row = [&](int y) {
+      double* rowx = fx.data() + d.grid.index(0, y);
+      double* rowy = fy.data() + d.grid.index(0, y);
+      for (int a = 0; a < W; ++a) {
+        const int b = buckets_.bucket_of(y - a);
+        if (b < 0 || b >= nb || buckets_.start(b) == buckets_.start(b + 1)) continue;
+        if (!rows_written.empty()) rows_written[static_cast<std::size_t>(y)] = 1;
+        for (int q = buckets_.start(b); q < buckets_.start(b + 1); ++q) {
+          const std::size_t s = static_cast<std::size_t>(q);
+          const double gx = fxs_[s] * wy_[s * W + a], gy = fys_[s] * wy_[s * W + a];
+          const double* w = &wx_[s * W];
+          const int i0 = i0_[s];
+          if (ahead && a == 0 && y + W - 1 < ny) {  // this support's later rows (kPrefetchNodes)
+            const int lo = std::clamp(i0, 0, nx - 1);
+            for (int r = 1; r < W; ++r) {
+              __builtin_prefetch(rowx + r * nx + lo, 1);
+              __builtin_prefetch(rowy + r * nx + lo, 1);
             }
-            if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside the row: no wrap, no drop
-              double* __restrict sx = rowx + i0;
-              double* __restrict sy = rowy + i0;
-              for (int c = 0; c < W; ++c) {
-                sx[c] += gx * w[c];
-                sy[c] += gy * w[c];
-              }
-              continue;
-            }
+          }
+          if (i0 >= 0 && i0 <= nx - W) {  // the whole support inside the row: no wrap, no drop
+            double* __restrict sx = rowx + i0;
+            double* __restrict sy = rowy + i0;
             for (int c = 0; c < W; ++c) {
-              int i = i0 + c;
-              if (d.periodic_x)
-                i = geometry::wrap_periodic(i, nx);
-              else if (i < 0 || i >= nx)
-                continue;  // beyond a wall: dropped (geometry/domain.hpp)
-              rowx[i] += gx * w[c];
-              rowy[i] += gy * w[c];
+              sx[c] += gx * w[c];
+              sy[c] += gy * w[c];
             }
+            continue;
+          }
+          for (int c = 0; c < W; ++c) {
+            int i = i0 + c;
+            if (d.periodic_x)
+              i = geometry::wrap_periodic(i, nx);
+            else if (i < 0 || i >= nx)
+              continue;  // beyond a wall: dropped (geometry/domain.hpp)
+            rowx[i] += gx * w[c];
+            rowy[i] += gy * w[c];
           }
         }
       }
+    };
+    // Each thread a share of neighbouring rows with about equal work (the cells are not spread
+    // evenly over the rows); which thread adds a row does not change its sums.
+    const int shares = threads ? omp_get_max_threads() : 1;
+    buckets_.split_rows(shares, share_rows_);
+#pragma omp parallel for schedule(static, 1) num_threads(shares) if (shares > 1)
+    for (int share = 0; share < shares; ++share) {
+      const std::size_t t = static_cast<std::size_t>(share);
+      for (int y = share_rows_[t]; y < share_rows_[t + 1]; ++y) add_row(y);
+    }
   });
 }
 
