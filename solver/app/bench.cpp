@@ -678,7 +678,8 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
   CLI::Option* interval =
       cmd->add_option(
              "--index-interval", options.coupled.index_interval,
-             "Index-field rebuild interval k of the coupled step (0: per box, the largest k with k U <= 0.1 h)")
+             "Index-field rebuild interval k of the coupled step (0: per box, the largest k with k U <= 0.1 h); "
+             "each run takes max(4 k, --coupled-steps rounded up to a multiple of k) + 1 steps")
           ->check(CLI::Range(0L, 1000000L));
   cmd->add_option("--scene", options.coupled.scene,
                   "With --coupled-only: the coupled step of this scene (its cells, its physics) beside the same scene "
