@@ -4,12 +4,9 @@
 
 #include <algorithm>
 
-#include "geometry/grid_polygon.hpp"
 #include "ib/kernel.hpp"
 
 namespace erythro::ib {
-
-int RowBuckets::wrap(int j) const { return geometry::wrap_periodic(j, ny_); }
 
 void RowBuckets::sort(std::span<const double> Y, int width, const geometry::Domain& domain, bool threads) {
   width_ = width;

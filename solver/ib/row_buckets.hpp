@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "geometry/domain.hpp"
+#include "geometry/grid_polygon.hpp"
 
 namespace erythro::ib {
 
@@ -24,7 +25,7 @@ class RowBuckets {
 
   int buckets() const { return static_cast<int>(start_.size()) - 1; }
   // The bucket of the markers whose first support row is j0 (may be outside [0, buckets())).
-  int bucket_of(int j0) const { return periodic_y_ ? wrap(j0) : j0 + width_ - 1; }
+  int bucket_of(int j0) const { return periodic_y_ ? geometry::wrap_periodic(j0, ny_) : j0 + width_ - 1; }
   // Bucket b holds sorted()[start(b)] … sorted()[start(b + 1) − 1].
   int start(int b) const { return start_[static_cast<std::size_t>(b)]; }
   // Every marker with a bucket, bucket after bucket, ascending within one.
@@ -38,8 +39,6 @@ class RowBuckets {
   void split_rows(int shares, std::vector<int>& first) const;
 
  private:
-  int wrap(int j) const;
-
   int width_ = 0, ny_ = 0;
   bool periodic_y_ = false;
   std::vector<int> bucket_of_marker_, start_, order_, outside_;

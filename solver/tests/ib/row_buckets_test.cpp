@@ -57,6 +57,7 @@ Expected reference(const std::vector<double>& Y, int width, const Domain& d) {
 }  // namespace
 
 TEST(RowBuckets, StableSortByBucketOnAnyNumberOfThreads) {
+  const int threads_before = omp_get_max_threads();  // restored for the tests after this one
   for (const bool periodic : {true, false}) {
     for (const int width : {4, 3, 2}) {
       const Domain d{Grid{64, 48}, true, periodic};
@@ -75,6 +76,7 @@ TEST(RowBuckets, StableSortByBucketOnAnyNumberOfThreads) {
       }
     }
   }
+  omp_set_num_threads(threads_before);
 }
 
 TEST(RowBuckets, SharesOfRowsCoverTheGridInOrderWithAboutEqualWork) {
