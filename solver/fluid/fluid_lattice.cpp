@@ -60,42 +60,60 @@ void FluidLattice::enable_force_field() {
   if (!force_x_.empty()) return;
   force_x_.assign(grid_.size(), 0.0);
   force_y_.assign(grid_.size(), 0.0);
+  zero_row_.assign(static_cast<std::size_t>(grid_.nx), 0.0);
 }
 
 std::span<double> FluidLattice::force_x() {
+  zero_cleared_rows();
   force_rows_known_ = false;
   return force_x_;
 }
 
 std::span<double> FluidLattice::force_y() {
+  zero_cleared_rows();
   force_rows_known_ = false;
   return force_y_;
 }
 
+std::uint8_t FluidLattice::force_row_state(int y) const {
+  return force_rows_known_ ? force_rows_[static_cast<std::size_t>(y)] : force_row::kForced;
+}
+
 void FluidLattice::clear_force_field() {
   enable_force_field();
+  // Rows not known (written through force_x() or restored since the last clear): any row may
+  // hold force, so every row is cleared. The field itself is zeroed later, row by row, where
+  // it is written or before the step (zero_cleared_rows).
+  if (!force_rows_known_) force_rows_.assign(static_cast<std::size_t>(grid_.ny), force_row::kForced);
+  for (std::uint8_t& state : force_rows_)
+    if (state == force_row::kForced) state = force_row::kCleared;
+  force_rows_known_ = true;
+}
+
+void FluidLattice::zero_cleared_rows() {
+  if (!force_rows_known_) return;
   const std::size_t nx = static_cast<std::size_t>(grid_.nx);
-  // Rows in parallel on a large grid (4 MB per step at 509², every row flagged when cells
-  // are everywhere): zeros, so the same bits for any number of threads.
-  const bool known = force_rows_known_;
-  const std::uint8_t* flagged = force_rows_.data();
+  long cleared = 0;
+  for (std::uint8_t state : force_rows_) cleared += state == force_row::kCleared;
+  if (cleared == 0) return;
+  // Rows in parallel when many are left (zeros: the same bits for any number of threads).
+  std::uint8_t* rows = force_rows_.data();
   double* fx = force_x_.data();
   double* fy = force_y_.data();
-#pragma omp parallel for schedule(static) if (grid_.worth_threading())
+#pragma omp parallel for schedule(static) if (grid_.worth_threading() && cleared >= 64)
   for (int y = 0; y < grid_.ny; ++y) {
-    if (known && !flagged[y]) continue;
+    if (rows[y] != force_row::kCleared) continue;
     std::fill_n(fx + static_cast<std::size_t>(y) * nx, nx, 0.0);
     std::fill_n(fy + static_cast<std::size_t>(y) * nx, nx, 0.0);
+    rows[y] = force_row::kZero;
   }
-  force_rows_.assign(static_cast<std::size_t>(grid_.ny), 0);
-  force_rows_known_ = true;
 }
 
 FluidLattice::ForceRowsWriter FluidLattice::force_rows_writer() {
   enable_force_field();
-  // Rows not known (written through force_x() since the last clear): the flags the
-  // writer sets are kept but not used, every row stays forced until the next clear.
-  force_rows_.resize(static_cast<std::size_t>(grid_.ny), 1);
+  // Rows not known (written through force_x() since the last clear; none is cleared then):
+  // the flags the writer sets are kept but not used, every row stays forced until the next clear.
+  force_rows_.resize(static_cast<std::size_t>(grid_.ny), force_row::kForced);
   return {force_x_, force_y_, force_rows_};
 }
 
@@ -123,6 +141,7 @@ void FluidLattice::refresh_tau_rows() {
 }
 
 void FluidLattice::step() {
+  zero_cleared_rows();  // the rows no writer added to since they were cleared
   detail::KernelArgs args;
   args.grid = grid_;
   args.f = f_.data();
@@ -162,8 +181,17 @@ void FluidLattice::save_state(StateRecord& r, const std::string& prefix) const {
   r.put(prefix + "applied_force", applied_force_);
   r.put_scalar(prefix + "steps_done", static_cast<double>(steps_done_));
   if (has_force_field()) {
-    r.put(prefix + "force_x", force_x_);
-    r.put(prefix + "force_y", force_y_);
+    // As read: a row cleared but not yet zeroed is recorded as zeros.
+    auto as_read = [&](const std::vector<double>& field) {
+      std::vector<double> out = field;
+      const std::size_t nx = static_cast<std::size_t>(grid_.nx);
+      for (int y = 0; y < grid_.ny; ++y)
+        if (row_cleared(y))
+          std::fill_n(out.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(y) * nx), nx, 0.0);
+      return out;
+    };
+    r.put(prefix + "force_x", as_read(force_x_));
+    r.put(prefix + "force_y", as_read(force_y_));
   }
   if (has_tau_field()) r.put(prefix + "tau", tau_field_);
 }
@@ -181,6 +209,7 @@ void FluidLattice::restore_state(const StateRecord& r, const std::string& prefix
     enable_force_field();
     r.copy_to(prefix + "force_x", force_x_);
     r.copy_to(prefix + "force_y", force_y_);
+    force_rows_.assign(static_cast<std::size_t>(grid_.ny), force_row::kForced);
     force_rows_known_ = false;  // every row may hold force until the next clear
   }
   if (r.has(prefix + "tau")) {
@@ -274,8 +303,9 @@ void row_moments(const double* const* p, int x0, int x1, double Ax, double Ay, c
 std::array<double, 2> FluidLattice::collision_force(std::size_t n) const {
   std::array<double, 2> F = applied_force_;
   if (has_force_field()) {
-    F[0] += force_x_[n];
-    F[1] += force_y_[n];
+    const bool cleared = row_cleared(static_cast<int>(n / static_cast<std::size_t>(grid_.nx)));
+    F[0] += cleared ? 0.0 : force_x_[n];
+    F[1] += cleared ? 0.0 : force_y_[n];
   }
   return F;
 }
@@ -295,7 +325,10 @@ void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, 
     auto edge = [&](int x) { node_moments(x, y, rho[row + x], ux[row + x], uy[row + x]); };
     for (int x = 0; x < v.first; ++x) edge(x);
     const double Ax = applied_force_[0], Ay = applied_force_[1];
-    if (has_force_field())
+    if (has_force_field() && row_cleared(y))  // its force counts as zero
+      row_moments<true>(v.p, v.first, v.last, Ax, Ay, zero_row_.data(), zero_row_.data(), rho.data() + row,
+                        ux.data() + row, uy.data() + row);
+    else if (has_force_field())
       row_moments<true>(v.p, v.first, v.last, Ax, Ay, force_x_.data() + row, force_y_.data() + row, rho.data() + row,
                         ux.data() + row, uy.data() + row);
     else

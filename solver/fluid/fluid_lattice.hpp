@@ -23,6 +23,7 @@
 #include "common/state_record.hpp"
 #include "fluid/boundary.hpp"
 #include "fluid/collision.hpp"
+#include "fluid/force_rows.hpp"
 #include "lattice/grid.hpp"
 
 namespace erythro::fluid {
@@ -80,12 +81,21 @@ class FluidLattice {
   bool has_force_field() const { return !force_x_.empty(); }
   std::span<double> force_x();
   std::span<double> force_y();
+  // The field as stored: between clear_force_field() and the next step() or force_x(), a
+  // row whose state is force_row::kCleared (force_row_state) still holds the force before
+  // the clear, which counts as zero. The moments, collision_force and save_state read such
+  // rows as zero; after step() no row is cleared.
   std::span<const double> force_x() const { return force_x_; }
   std::span<const double> force_y() const { return force_y_; }
-  // Zeroes the force field (enabling it if needed; only the rows that may hold force)
-  // and marks every row as free of force.
+  // A row's state (fluid/force_rows.hpp); kForced for every row while the rows are not known.
+  std::uint8_t force_row_state(int y) const;
+  // Clears the force field (enabling it if needed) without touching it: the rows that may
+  // hold force are marked cleared, and each is zeroed when a writer first adds to it
+  // (ForceRowsWriter) or else at the start of the next step() (docs/performance.md, "The
+  // force field zeroed where it is written"). Every value read is that of a zeroed field.
   void clear_force_field();
-  // Write access for a writer that sets rows[y] = 1 for every row y it writes.
+  // Write access for a writer that, before its first addition to row y, zeroes the row if
+  // rows[y] is force_row::kCleared and then sets rows[y] = force_row::kForced.
   struct ForceRowsWriter {
     std::span<double> fx, fy;
     std::span<std::uint8_t> rows;
@@ -169,6 +179,12 @@ class FluidLattice {
   void gather_natural(Storage& out) const;
   // Uniform force of the last collision plus the force field at node n.
   std::array<double, 2> collision_force(std::size_t n) const;
+  bool row_cleared(int y) const {
+    return force_rows_known_ && force_rows_[static_cast<std::size_t>(y)] == force_row::kCleared;
+  }
+  // Zeroes the rows still cleared and marks them free of force (before the step, and
+  // before write access to the whole field).
+  void zero_cleared_rows();
 
   Grid grid_;
   CollisionConfig collision_;
@@ -179,8 +195,10 @@ class FluidLattice {
   mutable Storage natural_copy_;  // what populations() returns
   mutable long natural_copy_step_ = -1;  // steps_done_ when gathered; −1: stale
   std::vector<double> force_x_, force_y_, tau_field_;
-  std::vector<std::uint8_t> force_rows_;  // 1: the row may hold force (when force_rows_known_)
+  // Per row its state (fluid/force_rows.hpp), when force_rows_known_; else every row may hold force.
+  std::vector<std::uint8_t> force_rows_;
   bool force_rows_known_ = false;
+  std::vector<double> zero_row_;  // nx zeros: the force of a cleared row, for the moments
   std::vector<double> row_tau_;  // the row's one τ, 0 where τ varies (when row_tau_known_)
   bool row_tau_known_ = false;
   std::array<double, 2> uniform_force_{0.0, 0.0};

@@ -38,6 +38,7 @@
 #include <stdexcept>
 
 #include "fluid/collide_node.hpp"
+#include "fluid/force_rows.hpp"
 #include "lattice/d2q9.hpp"
 
 namespace erythro::fluid::detail {
@@ -239,7 +240,7 @@ void run_kernel(const KernelArgs& a) {
   const bool uniform_force = a.uniform_fx != 0.0 || a.uniform_fy != 0.0;
 #pragma omp parallel for schedule(static) if (g.worth_threading())
   for (int y = 0; y < g.ny; ++y) {
-    const bool field = a.force_x != nullptr && (a.force_rows == nullptr || a.force_rows[y] != 0);
+    const bool field = a.force_x != nullptr && (a.force_rows == nullptr || a.force_rows[y] == force_row::kForced);
     const bool tau = a.tau_field != nullptr && (a.row_tau == nullptr || a.row_tau[y] == 0.0);
     NodeInputs in = base;
     if (a.tau_field != nullptr && !tau) in.uniform_rates = rates_for(Model, a.row_tau[y], a.collision.trt_magic);

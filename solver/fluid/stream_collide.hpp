@@ -48,7 +48,8 @@ struct KernelArgs {
   const double* row_tau = nullptr;    // with τ(x): per row its one τ, or 0 where τ varies; null: per node
   const double* force_x = nullptr;    // optional F(x)
   const double* force_y = nullptr;
-  const std::uint8_t* force_rows = nullptr;  // with F(x): 0 for a row that holds no force; null: all may
+  const std::uint8_t* force_rows =
+      nullptr;  // with F(x): per row its state (fluid/force_rows.hpp); null: all may hold force
   double uniform_fx = 0.0, uniform_fy = 0.0;
   // Optional (both or none): every node's velocity u, the one its collision relaxed towards
   // (docs/model.md eq 1.3b; the u of FluidLattice::compute_moments after the step up to

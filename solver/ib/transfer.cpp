@@ -9,12 +9,24 @@
 #include <type_traits>
 
 #include "common/portable_sincos.hpp"
+#include "fluid/force_rows.hpp"
 #include "geometry/grid_polygon.hpp"
 #include "ib/row_buckets.hpp"
 
 namespace erythro::ib {
 
 namespace {
+
+// Before the first addition to a row: a row the fluid lattice cleared but did not zero
+// (fluid/force_rows.hpp) is zeroed now, while its lines are fetched for the additions anyway;
+// then the row is marked as holding force.
+void mark_written(std::uint8_t& state, double* rowx, double* rowy, int nx) {
+  if (state == fluid::force_row::kCleared) {
+    std::fill_n(rowx, nx, 0.0);
+    std::fill_n(rowy, nx, 0.0);
+  }
+  state = fluid::force_row::kForced;
+}
 
 // Markers from which the per-marker loops run on the threads (each marker its own result, so
 // the bits do not depend on it): below it a parallel region costs more than it saves.
@@ -286,7 +298,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
       for (int a = 0; a < W; ++a) {
         const int b = buckets_.bucket_of(y - a);
         if (b < 0 || b >= nb || buckets_.start(b) == buckets_.start(b + 1)) continue;
-        if (!rows_written.empty()) rows_written[static_cast<std::size_t>(y)] = 1;
+        if (!rows_written.empty()) mark_written(rows_written[static_cast<std::size_t>(y)], rowx, rowy, nx);
         for (int q = buckets_.start(b); q < buckets_.start(b + 1); ++q) {
           const std::size_t s = static_cast<std::size_t>(q);
           const double gx = fxs_[s] * wy_[s * W + a], gy = fys_[s] * wy_[s * W + a];

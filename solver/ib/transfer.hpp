@@ -37,9 +37,11 @@ class Transfer {
   const geometry::Domain& domain() const { return domain_; }
 
   // Adds the spread marker forces (Fx, Fy) at (X, Y) to the node force density
-  // (fx, fy), each of size grid.size(), and sets rows_written[y] = 1 for every row y
-  // it adds to (if given, size ny). Throws std::invalid_argument on size
-  // mismatch and std::domain_error naming the marker if a position is not finite.
+  // (fx, fy), each of size grid.size(). If given (size ny), rows_written holds each row's
+  // state (fluid/force_rows.hpp): a row it adds to is zeroed first if it is cleared, and
+  // then marked as holding force; the other rows are left as they are. Throws
+  // std::invalid_argument on size mismatch and std::domain_error naming the marker if a
+  // position is not finite.
   void spread(std::span<const double> X, std::span<const double> Y, std::span<const double> Fx,
               std::span<const double> Fy, std::span<double> fx, std::span<double> fy,
               std::span<std::uint8_t> rows_written = {});

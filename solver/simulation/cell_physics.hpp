@@ -31,7 +31,7 @@ class CellPhysics {
   //                membrane_forces    F_m = −∂E/∂X_m (membrane_energy.hpp)
   //                contact_forces     + forces between cells: Morse ([aggregation]) and
   //                                   repulsion ([repulsion]), one neighbour search
-  //   spread       force_field_reset  f = 0 on the grid
+  //   spread       force_field_reset  f = 0 on the grid (rows marked cleared, zeroed where written)
   //                spreading          f += Σ_m F_m δ_h(x − X_m)
   //   interpolate  interpolation      u of the fluid step at the markers' support nodes
   //   advect       marker_advection   X_m += U_m, periodic wrap
@@ -41,8 +41,8 @@ class CellPhysics {
   // stage "forces_and_index_field" (independent: the same bits). Otherwise (three or more
   // threads and a threaded force stage) the stage "index_field" runs alone and spreads its
   // own work over the threads across cells (IndexField::update). docs/performance.md, "The index
-  // field beside the force stage" and "The index field in parallel". Stages throw std::domain_error (non-finite marker) or
-  // interior::FillLeakError (a membrane tangled).
+  // field beside the force stage" and "The index field in parallel". Stages throw std::domain_error (non-finite marker)
+  // or interior::FillLeakError (a membrane tangled).
   void register_stages(TimeLoop& loop, fluid::FluidLattice& lattice);
 
   const membrane::ImmersedCells& cells() const { return cells_; }
