@@ -306,15 +306,41 @@ std::string load_average() {
   return s.str();
 }
 
+// The processor as far as this machine tells: /proc/cpuinfo's model name (a virtual machine
+// may give only the product line, "AMD EPYC" for Zen 3 and Zen 4 alike), its family and model
+// numbers, whether it has AVX-512, and the vectors this binary was built for. Figures of two
+// runs compare only on the same processor.
 std::string cpu_model() {
   std::ifstream in("/proc/cpuinfo");
-  for (std::string line; std::getline(in, line);) {
-    if (line.rfind("model name", 0) == 0) {
-      const auto colon = line.find(':');
-      if (colon != std::string::npos) return line.substr(std::min(colon + 2, line.size()));
-    }
+  std::string name = "unknown", family = "?", model = "?";
+  bool avx512 = false;
+  auto key_is = [](const std::string& line, const char* key) {  // "key<tabs or spaces>: value"
+    const std::size_t n = std::char_traits<char>::length(key);
+    return line.rfind(key, 0) == 0 && line.find_first_not_of(" \t", n) == line.find(':');
+  };
+  auto value = [](const std::string& line) {
+    const auto colon = line.find(':');
+    return colon == std::string::npos ? std::string() : line.substr(std::min(colon + 2, line.size()));
+  };
+  for (std::string line; std::getline(in, line) && !line.empty();) {  // the first processor's lines
+    if (key_is(line, "model name"))
+      name = value(line);
+    else if (key_is(line, "cpu family"))
+      family = value(line);
+    else if (key_is(line, "model"))
+      model = value(line);
+    else if (key_is(line, "flags"))
+      avx512 = (" " + value(line) + " ").find(" avx512f ") != std::string::npos;
   }
-  return "unknown";
+#if defined(__AVX512F__)
+  const char* built = "AVX-512";
+#elif defined(__AVX2__)
+  const char* built = "AVX2";
+#else
+  const char* built = "SSE2";
+#endif
+  return name + " (family " + family + ", model " + model + ", AVX-512 " + (avx512 ? "yes" : "no") +
+         "; this binary built for " + built + ")";
 }
 
 std::string env_or(const char* name, const char* fallback) {
@@ -355,6 +381,7 @@ int run_alone(const BenchOptions& o, const char* name, const std::string& requir
   record.set_parameter("load_average_end", load_end);
   record.set_wall_time(seconds_since(start));
   std::printf("load average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
+  std::printf("processor: %s\n", cpu_model().c_str());
   const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
   std::printf("record: %s\n", path.c_str());
   return record.passed() ? exit_code::ok : exit_code::runtime_failure;
@@ -642,6 +669,7 @@ int run_bench(BenchOptions o) {
   record.set_wall_time(seconds_since(start_all));
   std::printf("\nfrac: of the bound (best copy bandwidth / 144 B); fr.pl: of the plain-store copy bound\n");
   std::printf("load average (1, 5, 15 min): start %s, end %s\n", load_start.c_str(), load_end.c_str());
+  std::printf("processor: %s\n", cpu_model().c_str());
   const std::string path = o.out.empty() ? record.write_to_results_dir() : (record.write(o.out), o.out);
   std::printf("record: %s\n", path.c_str());
   return record.passed() ? exit_code::ok : exit_code::runtime_failure;
