@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <string>
 #include <vector>
 
 #include "common/state_record.hpp"
@@ -57,8 +56,6 @@ Markers markers_in_rows(double y0, double y1, int cycle) {
 // rows to the step's zeroing, which then forks), a few rows.
 const double kRows[][2] = {{10.0, 30.0}, {4.0, 76.0}, {40.0, 44.0}};
 
-std::vector<double> field_of(const StateRecord& r, const std::string& name) { return r.get(name); }
-
 struct Outcome {
   std::vector<double> populations;
   std::vector<double> window;  // what was read between each clear and its step
@@ -94,7 +91,7 @@ Outcome run(bool zero_at_clear, int threads) {
     StateRecord r;
     lat.save_state(r, "f.");
     for (const char* name : {"f.force_x", "f.force_y"}) {
-      const std::vector<double> f = field_of(r, name);
+      const std::vector<double>& f = r.get(name);
       out.window.insert(out.window.end(), f.begin(), f.end());
     }
     for (int s = 0; s < 3; ++s) lat.step();
