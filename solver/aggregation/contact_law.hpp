@@ -9,6 +9,7 @@
 
 #include "aggregation/morse.hpp"
 #include "aggregation/repulsion.hpp"
+#include "common/select_bits.hpp"
 
 namespace erythro::aggregation {
 
@@ -120,8 +121,8 @@ void ContactPotential::evaluate_many_of(const double* __restrict r, std::size_t 
       const double e1 = numeric::exp_portable(m.beta * (m.r0 - ri));
       const double e2 = e1 * e1;
       m_on = ri < m.cutoff;
-      pm = m_on ? m.De * (e2 - 2.0 * e1) - phi_c - (ri - m.cutoff) * dphi_c : 0.0;
-      dpm = m_on ? 2.0 * m.beta * m.De * (e1 - e2) - dphi_c : 0.0;
+      pm = numeric::select_bits(m_on, m.De * (e2 - 2.0 * e1) - phi_c - (ri - m.cutoff) * dphi_c, 0.0);
+      dpm = numeric::select_bits(m_on, 2.0 * m.beta * m.De * (e1 - e2) - dphi_c, 0.0);
     }
     if constexpr (kRepulsion) {
       const double q = range / ri - 1.0;
@@ -129,9 +130,9 @@ void ContactPotential::evaluate_many_of(const double* __restrict r, std::size_t 
       pr = pressure * q * q;
       dpr = -2.0 * pressure * q * range / (ri * ri);
     }
-    phi[i] = r_on ? (m_on ? pm + pr : pr) : pm;
-    dphi[i] = r_on ? (m_on ? dpm + dpr : dpr) : dpm;
-    on[i] = (m_on || r_on) ? 1 : 0;
+    phi[i] = numeric::select_bits(r_on, numeric::select_bits(m_on, pm + pr, pr), pm);
+    dphi[i] = numeric::select_bits(r_on, numeric::select_bits(m_on, dpm + dpr, dpr), dpm);
+    on[i] = static_cast<unsigned char>(m_on | r_on);
   }
 }
 

@@ -17,12 +17,13 @@
 #include <cmath>
 
 #include "common/horner.hpp"
+#include "common/select_bits.hpp"
 
 namespace erythro::numeric {
 
 inline void sin_cos_half_pi(double x, double& s, double& c) {
   const bool low = x <= 0.5;
-  const double y = low ? x : 1.0 - x;
+  const double y = select_bits(low, x, 1.0 - x);  // a vector loop of these on AVX2 too (select_bits.hpp)
   const double u = y * y;
   // sin(πy/2)/y and cos(πy/2) as polynomials in u = y², highest degree first.
   static constexpr std::array<double, 9> kSin = {
