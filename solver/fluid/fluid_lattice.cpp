@@ -84,9 +84,11 @@ void FluidLattice::clear_force_field() {
   // Rows not known (written through force_x() or restored since the last clear): any row may
   // hold force, so every row is cleared. The field itself is zeroed later, row by row, where
   // it is written or before the step (zero_cleared_rows).
-  if (!force_rows_known_) force_rows_.assign(static_cast<std::size_t>(grid_.ny), force_row::kForced);
-  for (std::uint8_t& state : force_rows_)
-    if (state == force_row::kForced) state = force_row::kCleared;
+  if (!force_rows_known_)
+    force_rows_.assign(static_cast<std::size_t>(grid_.ny), force_row::kCleared);
+  else
+    for (std::uint8_t& state : force_rows_)
+      if (state == force_row::kForced) state = force_row::kCleared;
   force_rows_known_ = true;
 }
 
@@ -325,15 +327,15 @@ void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, 
     auto edge = [&](int x) { node_moments(x, y, rho[row + x], ux[row + x], uy[row + x]); };
     for (int x = 0; x < v.first; ++x) edge(x);
     const double Ax = applied_force_[0], Ay = applied_force_[1];
-    if (has_force_field() && row_cleared(y))  // its force counts as zero
-      row_moments<true>(v.p, v.first, v.last, Ax, Ay, zero_row_.data(), zero_row_.data(), rho.data() + row,
-                        ux.data() + row, uy.data() + row);
-    else if (has_force_field())
-      row_moments<true>(v.p, v.first, v.last, Ax, Ay, force_x_.data() + row, force_y_.data() + row, rho.data() + row,
-                        ux.data() + row, uy.data() + row);
-    else
+    if (has_force_field()) {
+      const bool cleared = row_cleared(y);  // its force counts as zero
+      const double* fx = cleared ? zero_row_.data() : force_x_.data() + row;
+      const double* fy = cleared ? zero_row_.data() : force_y_.data() + row;
+      row_moments<true>(v.p, v.first, v.last, Ax, Ay, fx, fy, rho.data() + row, ux.data() + row, uy.data() + row);
+    } else {
       row_moments<false>(v.p, v.first, v.last, Ax, Ay, nullptr, nullptr, rho.data() + row, ux.data() + row,
                          uy.data() + row);
+    }
     for (int x = std::max(v.first, v.last); x < grid_.nx; ++x) edge(x);
   }
 }
