@@ -331,7 +331,7 @@ struct Engine {
 // The passes of pair_terms.hpp with m's values in every entry, the sums in candidate order.
 void pair_sums(Engine& eng, std::size_t m, std::span<const std::size_t> cand, PairScratch& s) {
   const std::size_t n = cand.size();
-  s.resize(n);
+  s.hold(n);
   for (std::size_t i = 0; i < n; ++i) {
     s.cx[i] = eng.v.x[cand[i]];
     s.cy[i] = eng.v.y[cand[i]];

@@ -166,7 +166,7 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
         cand.swap(merged);
       }
       const std::size_t n = cand.size();
-      s.resize(n);
+      s.hold(n);
       for (std::size_t i = 0; i < n; ++i) {
         s.cx[i] = v.x[cand[i]];
         s.cy[i] = v.y[cand[i]];

@@ -202,7 +202,7 @@ void sweep_owner(const geometry::Domain& d, const ContactPotential& potential, c
     const std::size_t last = std::min(count, first + kChunk);
     const std::size_t n = collect_runs<kOneOwner>(lists, owners, t, visits, first, last, s);
     if (n == 0) continue;  // no pair above these markers: their sums are complete
-    s.resize(n);
+    s.hold(n);
     for (const SweepScratch::Run& run : s.runs) run_separations<PX, PY>(d, a, run, s);
     if (batch_terms(potential, n, s)) coincident = true;
     // First every pair to its partners, in the order of the visits; a partner lies above its
@@ -238,7 +238,8 @@ void sweep_owner_in(const geometry::Domain& d, const ContactPotential& potential
 
 }  // namespace
 
-void SweepScratch::resize(std::size_t n) {
+void SweepScratch::hold(std::size_t n) {
+  if (on.size() >= n) return;  // the batches differ in size: a shrink and regrow would zero the regrown tail
   for (auto* buf : {&dx, &dy, &r2, &hr, &ml, &cl, &phi, &dphi, &w, &ts, &tx, &ty, &tr}) buf->resize(n);
   on.resize(n);
 }

@@ -57,7 +57,9 @@ struct SweepScratch {
   std::vector<Run> runs;
   std::vector<std::size_t> run_ends;  // per visited marker of the batch: the end of its runs
   std::vector<OwnMarker> own;         // the batch's own markers with entries, in order
-  void resize(std::size_t n);
+  // Room for n entries: the buffers only grow (a batch writes every entry it reads, so what an
+  // earlier batch left beyond its own entries is never read).
+  void hold(std::size_t n);
 };
 
 // The sums of every marker over the lists on `threads` threads: on one, in marker order (the

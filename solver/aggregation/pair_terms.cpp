@@ -29,7 +29,8 @@ void separations_of(const geometry::Domain& d, std::size_t n, PairScratch& s) {
 
 }  // namespace
 
-void PairScratch::resize(std::size_t n) {
+void PairScratch::hold(std::size_t n) {
+  if (on.size() >= n) return;  // only grow: a shrink and regrow would zero the regrown tail for nothing
   for (auto* buf : {&mx, &my, &ml, &cx, &cy, &cl, &dx, &dy, &r2, &hr, &phi, &dphi, &w}) buf->resize(n);
   hits.resize(n);
   on.resize(n);

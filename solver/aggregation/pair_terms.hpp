@@ -27,7 +27,7 @@ struct PairScratch {
   std::vector<std::size_t> hits;               // the candidates within the cut-off, in order
   std::vector<double> hr, phi, dphi, w;        // per pair within the cut-off: r, Φ, Φ', w
   std::vector<unsigned char> on;               // per pair: whether it interacts (ContactPotential)
-  void resize(std::size_t n);
+  void hold(std::size_t n);                    // room for n candidates (the passes read only what they wrote)
 };
 
 // A marker's sums over its pairs (cell_contacts.hpp): S_m = Σ Φ ℓ_n, the pair force
