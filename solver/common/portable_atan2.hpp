@@ -12,13 +12,15 @@
 // π/2 − a when |y| > |x|, π − a when x is negative (−0 included), the sign of y last, together
 // as k π/4 + σ atan r added once, k π/4 as two doubles (hi + lo). Measured against long double:
 // within 2.5e−16 absolute over the whole circle (0.56 ulp of π) and 2 ulp relative for angles
-// below π/8 (unit test PortableAtan2.*). The choices are selects, so a loop vectorises.
+// below π/8 (unit test PortableAtan2.*). The choices are selects through the bits (select_bits.hpp;
+// both sides computed, the chosen one's bits kept), so a loop vectorises on AVX2 hosts too.
 //
 // Domain: finite arguments. atan2(±0, +0) = ±0 and atan2(±0, −0) = ±π, as in C.
 #include <array>
 #include <cmath>
 
 #include "common/horner.hpp"
+#include "common/select_bits.hpp"
 
 namespace erythro::numeric {
 
@@ -27,10 +29,10 @@ inline double atan2_portable(double y, double x) {
   constexpr double kPi4Hi = 0x1.921fb54442d18p-1, kPi4Lo = 0x1.1a62633145c07p-55;  // π/4 = hi + lo
   const double ax = std::fabs(x), ay = std::fabs(y);
   const bool steep = ay > ax;
-  const double small = steep ? ax : ay, big = steep ? ay : ax;
-  const double t = big > 0.0 ? small / big : 0.0;
+  const double small = select_bits(steep, ax, ay), big = select_bits(steep, ay, ax);
+  const double t = select_bits(big > 0.0, small / big, 0.0);  // 0/0 computed at the origin, not chosen
   const bool upper = t > kTanPiOver8;
-  const double r = upper ? (t - 1.0) / (t + 1.0) : t;
+  const double r = select_bits(upper, (t - 1.0) / (t + 1.0), t);
   const double u = r * r;
   static constexpr std::array<double, 11> kQ = {
       -0x1.3a31b1c0fd3b7p-6,  // degree 10
@@ -43,8 +45,11 @@ inline double atan2_portable(double y, double x) {
   // Undo the reductions: atan t = k π/4 + σ atan r with k = 1, σ = 1 above tan(π/8); then
   // π/2 − (…) when |y| > |x| and π − (…) when x is negative: one sum at the end.
   double k = upper ? 1.0 : 0.0, sigma = 1.0;
-  if (steep) k = 2.0 - k, sigma = -sigma;
-  if (std::copysign(1.0, x) < 0.0) k = 4.0 - k, sigma = -sigma;  // x < 0 or x = −0 (signbit does not vectorise)
+  k = select_bits(steep, 2.0 - k, k);
+  sigma = select_bits(steep, -sigma, sigma);
+  const bool left = std::copysign(1.0, x) < 0.0;  // x < 0 or x = −0 (signbit does not vectorise)
+  k = select_bits(left, 4.0 - k, k);
+  sigma = select_bits(left, -sigma, sigma);
   const double base_hi = k * kPi4Hi;
   const double base_lo = std::fma(k, kPi4Hi, -base_hi) + k * kPi4Lo;  // k π/4 − base_hi
   const double angle = (base_lo + sigma * a) + base_hi;

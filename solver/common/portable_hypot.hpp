@@ -17,12 +17,15 @@
 #include <cmath>
 #include <cstddef>
 
+#include "common/select_bits.hpp"
+
 namespace erythro::numeric {
 
 // The corrected square root for a ≥ b > 0 in the common range: the rounded h = √(a²+b²),
 // then h − (t1 + t2)/(2h), where t1 + t2 = h² − a² − b² written in two ways so that no
 // subtraction cancels: around b when h ≤ 2b (δ = h − b), around a otherwise (δ = h − a).
-// Both are computed and one is selected, so a loop of these has no branch.
+// Both are computed and one is selected through the bits (select_bits.hpp), so a loop of these
+// has no branch.
 inline double hypot_kernel(double a, double b) {
   const double h = std::sqrt(a * a + b * b);
   const double db = h - b, da = h - a;
@@ -31,7 +34,7 @@ inline double hypot_kernel(double a, double b) {
   const double t1_far = 2.0 * da * (a - 2.0 * b);
   const double t2_far = (4.0 * da - b) * b + da * da;
   const bool near = h <= 2.0 * b;
-  const double t = near ? t1_near + t2_near : t1_far + t2_far;
+  const double t = select_bits(near, t1_near + t2_near, t1_far + t2_far);
   return h - t / (2.0 * h);
 }
 
@@ -46,7 +49,9 @@ inline bool hypot_common_range(double a, double b) {
 // The fast path: the common range, or b = 0, whose result is a exactly (std::hypot(x, ±0) is
 // |x|, C Annex F): a horizontal or vertical edge, or a zero force, stays on it.
 inline bool hypot_fast_range(double a, double b) { return hypot_common_range(a, b) | (b == 0.0); }
-inline double hypot_fast(double a, double b) { return b == 0.0 ? a : hypot_kernel(a, b); }
+// (The kernel is computed for b = 0 too, and not chosen: select_bits.hpp, so a loop of these has
+// no branch on AVX2 hosts either.)
+inline double hypot_fast(double a, double b) { return select_bits(b == 0.0, a, hypot_kernel(a, b)); }
 
 inline double hypot_portable(double x, double y) {
   const double ax = std::fabs(x), ay = std::fabs(y);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "common/portable_hypot.hpp"
+#include "common/select_bits.hpp"
 
 namespace erythro::membrane {
 
@@ -70,9 +71,11 @@ EdgeScratch& edge_scratch(std::size_t n) {
 [[gnu::always_inline]] inline double bend_vertex(double E_B, double theta0, double dual, double ax, double ay,
                                                  double bx, double by, double& pax, double& pay, double& pbx,
                                                  double& pby) {
+  // The wrap as selects through the bits (common/select_bits.hpp): the loop over the vertices then
+  // vectorises on AVX2 hosts too, with the bits of the two `if`s.
   double dtheta = turning_angle(ax, ay, bx, by) - theta0;
-  if (dtheta > std::numbers::pi) dtheta -= 2.0 * std::numbers::pi;
-  if (dtheta <= -std::numbers::pi) dtheta += 2.0 * std::numbers::pi;
+  dtheta = numeric::select_bits(dtheta > std::numbers::pi, dtheta - 2.0 * std::numbers::pi, dtheta);
+  dtheta = numeric::select_bits(dtheta <= -std::numbers::pi, dtheta + 2.0 * std::numbers::pi, dtheta);
   const double g = E_B * dtheta / dual;  // ∂E/∂θ_i
   const double a2 = ax * ax + ay * ay, b2 = bx * bx + by * by;
   pax = -g * (-ay) / a2;
@@ -196,11 +199,15 @@ Energy evaluate(const MembraneModel& model, const RestShape& rest, std::span<con
     if constexpr (kEnergy) E.area = 0.5 * model.area_modulus * dA * dA / rest.area;
     if constexpr (kForces) {
       const double p = model.area_modulus * dA / rest.area;  // pressure-like −∂E/∂A
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t im = (i == 0) ? n - 1 : i - 1, ip = (i + 1 == n) ? 0 : i + 1;
+      auto area_pull = [&](std::size_t i, std::size_t im, std::size_t ip) {
         fx[i] -= 0.5 * p * (y[ip] - y[im]);
         fy[i] -= 0.5 * p * (x[im] - x[ip]);
-      }
+      };
+      // The two closing markers apart, so that the loop between them reads its neighbours
+      // without wrapped indices and vectorises (each marker's own arithmetic: the same bits).
+      area_pull(0, n - 1, n > 1 ? 1 : 0);
+      for (std::size_t i = 1; i + 1 < n; ++i) area_pull(i, i - 1, i + 1);
+      if (n > 1) area_pull(n - 1, n - 2, 0);
     }
   }
   return E;
