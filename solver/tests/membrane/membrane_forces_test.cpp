@@ -11,6 +11,7 @@
 
 #include "common/portable_hypot.hpp"
 #include "membrane/membrane_energy.hpp"
+#include "membrane/rest_shape.hpp"
 
 using namespace erythro;
 using namespace erythro::membrane;
@@ -118,6 +119,40 @@ TEST(MembraneForces, BendingPassesGiveTheOneLoopBits) {
       add_membrane_forces_only(model, rest, x, y, hx, hy);
       for (std::size_t i = 0; i < x.size(); ++i) moved = std::max(moved, std::fabs(hx[i] - fx[i]));
       EXPECT_GT(moved, 1e-3) << n << " markers, aspect " << aspect;
+    }
+  }
+}
+
+// The wrap of θ_i − θ0_i into (−π, π] (eq 3.6): at a hairpin whose rest turning angle is π − ψ
+// and whose current one is −π + φ, the vertex is bent by φ + ψ, not by −2π + φ + ψ. Its energy
+// is ½ E_B (φ + ψ)² / D̄ (the path with the energy), and the forces alone (the vertex pass that
+// vectorises) are minus that energy's gradient (central differences): each fails if its path
+// leaves the difference unwrapped.
+TEST(MembraneForces, BendingWrapsTheAngleAtAHairpin) {
+  const double phi = 0.03, psi = 0.02;
+  const std::vector<double> x = {0.0, 1.0, 1.0 - std::cos(phi)}, y = {0.0, 0.0, -std::sin(phi)};
+  RestShape rest;
+  rest.length = {1.0, 1.0, std::hypot(x[2], y[2])};
+  rest.dual = {1.0, 1.0, 1.0};
+  // Vertices 0 and 2 at their current angles (no bending there); vertex 1 at π − ψ.
+  rest.turning = {turning_angle(x[0] - x[2], y[0] - y[2], x[1] - x[0], y[1] - y[0]), M_PI - psi,
+                  turning_angle(x[2] - x[1], y[2] - y[1], x[0] - x[2], y[0] - y[2])};
+  ASSERT_NEAR(turning_angle(x[1] - x[0], y[1] - y[0], x[2] - x[1], y[2] - y[1]), -M_PI + phi, 1e-14);
+  MembraneModel model;  // bending alone: no tension modulus, no area term
+  model.bending = 1.0;
+  const double bent = phi + psi;
+  EXPECT_NEAR(membrane_energy(model, rest, x, y).bending, 0.5 * bent * bent, 1e-12);
+  std::vector<double> fx(3, 0.0), fy(3, 0.0);
+  add_membrane_forces_only(model, rest, x, y, fx, fy);
+  const double h = 1e-6;
+  for (std::size_t m = 0; m < 3; ++m) {
+    for (int axis = 0; axis < 2; ++axis) {
+      std::vector<double> xp = x, yp = y, xm = x, ym = y;
+      (axis == 0 ? xp : yp)[m] += h;
+      (axis == 0 ? xm : ym)[m] -= h;
+      const double dE =
+          (membrane_energy(model, rest, xp, yp).total() - membrane_energy(model, rest, xm, ym).total()) / (2.0 * h);
+      EXPECT_NEAR((axis == 0 ? fx : fy)[m], -dE, 1e-6) << "marker " << m << " axis " << axis;
     }
   }
 }
