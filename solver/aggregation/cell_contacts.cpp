@@ -98,7 +98,13 @@ struct Engine {
     for (long q = 0; q < n_cells; ++q) {
       const std::size_t c = static_cast<std::size_t>(q);
       const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
-      for (std::size_t k = o; k < e; ++k) finite = finite & std::isfinite(v.x[k]) & std::isfinite(v.y[k]);
+      int cell_finite = 1;  // ints and raw pointers: a vector loop (bools and spans stayed scalar)
+      const double* cx = v.x.data();
+      const double* cy = v.y.data();
+#pragma omp simd reduction(& : cell_finite)
+      for (std::size_t k = o; k < e; ++k)
+        cell_finite &= (std::isfinite(cx[k]) ? 1 : 0) & (std::isfinite(cy[k]) ? 1 : 0);
+      finite = finite && cell_finite != 0;
       std::fill(cell_of.begin() + o, cell_of.begin() + e, c);
       numeric::closed_polygon_lengths(&v.x[o], &v.y[o], e - o, &edge[o]);  // L_k: edge k → k+1
       for (auto* a : {&S, &px, &py}) std::fill(a->begin() + o, a->begin() + e, 0.0);

@@ -57,11 +57,22 @@ bool check_finite_and_same(std::span<const double> X, std::span<const double> Y,
   const double* y = Y.data();
   const double* wx = compare ? WX.data() : x;
   const double* wy = compare ? WY.data() : y;
+  // Blocks over the threads, a vector loop within each: the combined `parallel for simd` stayed
+  // scalar with GCC 12 on AVX2 hosts (docs/performance.md, "Per-step costs of small scenes").
+  constexpr long kBlock = 1024;
+  const long blocks = (markers + kBlock - 1) / kBlock;
   int finite = 1, same = 1;
-#pragma omp parallel for simd schedule(static) if (markers >= kParallelMarkers) reduction(& : finite, same)
-  for (long m = 0; m < markers; ++m) {
-    finite &= (std::isfinite(x[m]) ? 1 : 0) & (std::isfinite(y[m]) ? 1 : 0);
-    same &= (x[m] == wx[m] ? 1 : 0) & (y[m] == wy[m] ? 1 : 0);
+#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers) reduction(& : finite, same)
+  for (long b = 0; b < blocks; ++b) {
+    const long first = b * kBlock, last = std::min(markers, first + kBlock);
+    int block_finite = 1, block_same = 1;
+#pragma omp simd reduction(& : block_finite, block_same)
+    for (long m = first; m < last; ++m) {
+      block_finite &= (std::isfinite(x[m]) ? 1 : 0) & (std::isfinite(y[m]) ? 1 : 0);
+      block_same &= (x[m] == wx[m] ? 1 : 0) & (y[m] == wy[m] ? 1 : 0);
+    }
+    finite &= block_finite;
+    same &= block_same;
   }
   if (finite == 0) report_first_non_finite(X, Y);
   return compare && same != 0;
