@@ -136,8 +136,11 @@ void FluidLattice::refresh_tau_rows() {
 #pragma omp parallel for schedule(static) if (grid_.worth_threading())
   for (int y = 0; y < grid_.ny; ++y) {
     const double* row = tau_field_.data() + static_cast<std::size_t>(y) * nx;
-    const bool one_value = std::all_of(row, row + nx, [&](double t) { return t == row[0]; });
-    row_tau_[static_cast<std::size_t>(y)] = one_value ? row[0] : 0.0;
+    const double first = row[0];
+    int one_value = 1;  // the whole row compared, in a vector loop (an early exit kept it scalar)
+#pragma omp simd reduction(& : one_value)
+    for (std::size_t x = 0; x < nx; ++x) one_value &= row[x] == first ? 1 : 0;
+    row_tau_[static_cast<std::size_t>(y)] = one_value != 0 ? first : 0.0;
   }
   row_tau_known_ = true;
 }

@@ -91,6 +91,32 @@ TEST(FluidLattice, TauFieldEqualToUniformGivesIdenticalResult) {
   for (std::size_t k = 0; k < pa.size(); ++k) ASSERT_EQ(pa[k], pt[k]);
 }
 
+// The rows of one τ (refresh_tau_rows) collide as a plain row, the others node by node: a field
+// whose rows differ only in their LAST node (and one uniform row at another τ) gives the same
+// bits as the same field never classified (every row node by node). A row taken for uniform on
+// its first nodes alone would collide its last node with the wrong τ.
+TEST(FluidLattice, RowsOfOneTauAreFoundOverTheWholeRow) {
+  BoundaryConfig b;
+  b.bottom.type = b.top.type = SideType::wall;
+  CollisionConfig c{CollisionModel::bgk, 0.8, 3.0 / 16};
+  const Grid g{12, 9};
+  FluidLattice classified(g, c, b), node_by_node(g, c, b);
+  for (FluidLattice* l : {&classified, &node_by_node}) {
+    l->set_uniform_force(1e-5, 0);
+    l->enable_tau_field();
+    const std::span<double> tau = l->tau_field();  // leaves the rows unclassified
+    for (int y = 1; y < g.ny; y += 2) tau[g.index(g.nx - 1, y)] = 1.3;
+    for (int x = 0; x < g.nx; ++x) tau[g.index(x, 4)] = 0.6;
+  }
+  classified.refresh_tau_rows();
+  for (int s = 0; s < 40; ++s) {
+    classified.step();
+    node_by_node.step();
+  }
+  const auto pc = classified.populations(), pn = node_by_node.populations();
+  for (std::size_t k = 0; k < pc.size(); ++k) ASSERT_EQ(pc[k], pn[k]) << "population entry " << k;
+}
+
 TEST(FluidLattice, ForceFieldEqualToUniformForceGivesIdenticalResult) {
   CollisionConfig c{CollisionModel::bgk, 0.7, 3.0 / 16};
   FluidLattice a(Grid{10, 10}, c, BoundaryConfig{}), t(Grid{10, 10}, c, BoundaryConfig{});
