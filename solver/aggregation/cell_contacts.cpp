@@ -235,7 +235,7 @@ struct Engine {
       contact_force<kWalls>(x, y, edge.data(), S.data(), w, px.data(), py.data(), m, prev, next, gx, gy);
       fx[m] += gx;
       fy[m] += gy;
-      mag[m] = magnitude_fast(gx, gy, outside);
+      mag[m] = numeric::hypot_fast_flagged(gx, gy, outside);
     };
     at(o, e - 1, o + 1);
     {
@@ -250,7 +250,7 @@ struct Engine {
         contact_force<kWalls>(x, y, L, s, w, ax, ay, m, m - 1, m + 1, gx, gy);
         fx[m] += gx;
         fy[m] += gy;
-        mag[m] = magnitude_fast(gx, gy, outside);
+        mag[m] = numeric::hypot_fast_flagged(gx, gy, outside);
       }
     }
     at(e - 1, e - 2, o);
@@ -279,14 +279,6 @@ struct Engine {
     const double up_x = (x[m] - x[prev]) / L[prev], up_y = (y[m] - y[prev]) / L[prev];
     gx = ax[m] + Tm * um_x - Tp * up_x;
     gy = ay[m] + Tm * um_y - Tp * up_y;
-  }
-
-  // |(gx, gy)| by hypot's fast path; `outside` set when it lies beyond the path's range.
-  static double magnitude_fast(double gx, double gy, int& outside) {
-    const double a = std::fabs(gx) < std::fabs(gy) ? std::fabs(gy) : std::fabs(gx);
-    const double b = std::fabs(gx) < std::fabs(gy) ? std::fabs(gx) : std::fabs(gy);
-    outside |= numeric::hypot_fast_range(a, b) ? 0 : 1;
-    return numeric::hypot_fast(a, b);
   }
 
   ContactStats finish(std::span<double> fx, std::span<double> fy, std::vector<double>& magnitude) const {

@@ -53,6 +53,16 @@ inline bool hypot_fast_range(double a, double b) { return hypot_common_range(a, 
 // no branch on AVX2 hosts either.)
 inline double hypot_fast(double a, double b) { return select_bits(b == 0.0, a, hypot_kernel(a, b)); }
 
+// |(x, y)| by the fast path, for a loop that vectorises: `outside` is set when (x, y) lies beyond
+// the path's range, and the caller then does the loop again with hypot_portable (whose bits the
+// fast path gives wherever it applies).
+inline double hypot_fast_flagged(double x, double y, int& outside) {
+  const double ax = std::fabs(x), ay = std::fabs(y);
+  const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
+  outside |= hypot_fast_range(a, b) ? 0 : 1;
+  return hypot_fast(a, b);
+}
+
 inline double hypot_portable(double x, double y) {
   const double ax = std::fabs(x), ay = std::fabs(y);
   const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
@@ -68,12 +78,7 @@ inline double hypot_portable(double x, double y) {
 inline void closed_polygon_lengths(const double* __restrict x, const double* __restrict y, std::size_t n,
                                    double* __restrict len) {
   int outside = 0;
-  for (std::size_t k = 0; k + 1 < n; ++k) {
-    const double ax = std::fabs(x[k + 1] - x[k]), ay = std::fabs(y[k + 1] - y[k]);
-    const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
-    outside |= hypot_fast_range(a, b) ? 0 : 1;
-    len[k] = hypot_fast(a, b);
-  }
+  for (std::size_t k = 0; k + 1 < n; ++k) len[k] = hypot_fast_flagged(x[k + 1] - x[k], y[k + 1] - y[k], outside);
   if (outside != 0)
     for (std::size_t k = 0; k + 1 < n; ++k) len[k] = hypot_portable(x[k + 1] - x[k], y[k + 1] - y[k]);
   len[n - 1] = hypot_portable(x[0] - x[n - 1], y[0] - y[n - 1]);

@@ -34,10 +34,7 @@ void edge_pulls(const TensionLaw& law, const RestShape& rest, const double* x, c
   int outside = 0;
   for (std::size_t e = 0; e + 1 < n; ++e) {
     const double dx = x[e + 1] - x[e], dy = y[e + 1] - y[e];
-    const double ax = std::fabs(dx), ay = std::fabs(dy);
-    const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
-    outside |= numeric::hypot_fast_range(a, b) ? 0 : 1;
-    pull(e, dx, dy, numeric::hypot_fast(a, b));
+    pull(e, dx, dy, numeric::hypot_fast_flagged(dx, dy, outside));
   }
   if (outside != 0)
     for (std::size_t e = 0; e + 1 < n; ++e) {
