@@ -51,6 +51,11 @@ void ProgressDisplay::on_finish(const sim::RunSummary& summary) {
     std::fprintf(stderr, "index field: %.3f s, %.1f %% of the run; the step waited %.3f s for it (%.1f %%)\n",
                  summary.index_field_time_s, 100.0 * summary.index_field_time_s / summary.wall_time_s,
                  summary.index_field_exposed_time_s, 100.0 * summary.index_field_exposed_time_s / summary.wall_time_s);
+  if (summary.index_field_rebuilds_beside_forces > 0)
+    std::fprintf(
+        stderr,
+        "index field: %ld of its %ld rebuilds ran beside the force stage, the others before it (the faster kept)\n",
+        summary.index_field_rebuilds_beside_forces, summary.index_field_rebuilds);
 }
 
 }  // namespace erythro::app

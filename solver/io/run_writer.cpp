@@ -376,6 +376,8 @@ void RunWriter::on_finish(const sim::RunSummary& summary) {
                                 {"wall_time_s", summary.wall_time_s},
                                 {"index_field_time_s", summary.index_field_time_s},
                                 {"index_field_exposed_time_s", summary.index_field_exposed_time_s},
+                                {"index_field_rebuilds", summary.index_field_rebuilds},
+                                {"index_field_rebuilds_beside_forces", summary.index_field_rebuilds_beside_forces},
                                 {"mlups", summary.mlups}});
     meta.close();
     // Wall time of every stage of the time loop (s) and how often it ran.

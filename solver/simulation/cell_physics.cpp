@@ -70,21 +70,34 @@ void CellPhysics::compute_marker_forces() {
   add_contact_forces();
 }
 
-bool CellPhysics::index_beside_forces() const {
+bool CellPhysics::index_with_forces() const {
 #if defined(_OPENMP)
-  // Inside the two-section region a nested parallel loop gets one thread: the force stage
-  // and the index field (which spreads over the threads across cells when it runs alone,
-  // IndexField::update) each run on one. On two threads that is measured as fast or faster
-  // than the two stages one after the other, each on both threads, from 2 to 128 cells
-  // (docs/performance.md, "The index field in parallel across cells"); on more threads it
-  // is kept only where the force stage runs on one thread anyway.
-  const bool forces_threaded = cells_.threads_forces() ||
-                               (contacts_ && aggregation::CellContacts::threads_forces(cells_.marker_count()));
-  const int threads = omp_get_max_threads();
-  return threads == 2 || (threads > 2 && !forces_threaded);
+  return index_.has_value() && omp_get_max_threads() >= 2;
 #else
   return false;
 #endif
+}
+
+void CellPhysics::refresh_viscosity_with_forces(fluid::FluidLattice& lattice) {
+  // Beside the forces, the rebuild's threads do not help the forces and the forces' threads
+  // do not help the rebuild; before them, each uses every thread but the rebuild's serial
+  // parts (its fills) leave the others waiting. Which costs less depends on the host, the
+  // cells and k, so by default both are measured (docs/performance.md).
+  constexpr int kBeside = 0, kBefore = 1;
+  const bool beside = arrangement_ == IndexArrangement::beside_forces ||
+                      (arrangement_ == IndexArrangement::measured && arrangement_times_.next() == kBeside);
+  const auto start = std::chrono::steady_clock::now();
+  if (beside) {
+    refresh_viscosity_beside_forces(lattice);
+    ++rebuilds_beside_;
+  } else {
+    refresh_viscosity_timed(lattice);
+    compute_marker_forces();
+    ++rebuilds_before_;
+  }
+  if (arrangement_ == IndexArrangement::measured)
+    arrangement_times_.record(beside ? kBeside : kBefore,
+                              std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }
 
 void CellPhysics::refresh_viscosity_beside_forces(fluid::FluidLattice& lattice) {
@@ -163,15 +176,22 @@ void CellPhysics::restore_state(const StateRecord& r, const std::string& prefix)
 }
 
 void CellPhysics::register_stages(TimeLoop& loop, fluid::FluidLattice& lattice) {
-  if (index_ && index_beside_forces()) {
+  if (index_with_forces()) {
     loop.add(Phase::forces, "forces_and_index_field", [this, &lattice](long step) {
-      if (refresh_due(step)) refresh_viscosity_beside_forces(lattice);
-      else compute_marker_forces();
+      if (refresh_due(step))
+        refresh_viscosity_with_forces(lattice);
+      else
+        compute_marker_forces();
     });
   } else {
     if (index_)
-      loop.add(Phase::forces, "index_field", [this, &lattice](long) { refresh_viscosity_timed(lattice); },
-               index_interval_, index_interval_);
+      loop.add(
+          Phase::forces, "index_field",
+          [this, &lattice](long) {
+            refresh_viscosity_timed(lattice);
+            ++rebuilds_before_;
+          },
+          index_interval_, index_interval_);
     loop.add(Phase::forces, "membrane_forces", [this](long) { cells_.compute_forces(); });
     if (contacts_) loop.add(Phase::forces, "contact_forces", [this](long) { add_contact_forces(); });
   }

@@ -15,6 +15,7 @@
 #include "interior/index_field.hpp"
 #include "membrane/immersed_cells.hpp"
 #include "scene/units.hpp"
+#include "simulation/faster_of_two.hpp"
 #include "simulation/time_loop.hpp"
 
 namespace erythro::sim {
@@ -35,13 +36,15 @@ class CellPhysics {
   //                spreading          f += Σ_m F_m δ_h(x − X_m)
   //   interpolate  interpolation      u of the fluid step at the markers' support nodes
   //   advect       marker_advection   X_m += U_m, periodic wrap
-  // On two OpenMP threads, and on more when the force stage runs on one thread anyway
-  // (fewer than ImmersedCells::kParallelCells cells and CellContacts::kParallelMarkers
-  // markers), the index field is rebuilt on a second thread beside the forces, in one
-  // stage "forces_and_index_field" (independent: the same bits). Otherwise (three or more
-  // threads and a threaded force stage) the stage "index_field" runs alone and spreads its
-  // own work over the threads across cells (IndexField::update). docs/performance.md, "The index
-  // field beside the force stage" and "The index field in parallel". Stages throw std::domain_error (non-finite marker)
+  // On two or more OpenMP threads the index field's rebuild and the force stage are one stage,
+  // "forces_and_index_field" (they are independent: positions read, τ and marker forces
+  // written). On a rebuild step it runs them in one of two arrangements (IndexArrangement):
+  // the rebuild beside the forces, each on one thread of a two-thread region, or the rebuild
+  // before the forces, each on all threads (IndexField::update across cells). Both give the
+  // same bits; by default each is measured and the faster kept (FasterOfTwo,
+  // docs/performance.md, "The index field beside or after the forces, by measurement"). On one
+  // thread the stages "index_field", "membrane_forces" and "contact_forces" run one after the
+  // other. Stages throw std::domain_error (non-finite marker)
   // or interior::FillLeakError (a membrane tangled).
   void register_stages(TimeLoop& loop, fluid::FluidLattice& lattice);
 
@@ -59,9 +62,17 @@ class CellPhysics {
   // the time by which that two-thread region outlasted the force stage.
   double index_field_seconds() const { return index_seconds_; }
   double index_field_exposed_seconds() const { return index_exposed_seconds_; }
-  // Whether the index field is rebuilt beside the force stage (two OpenMP threads, or
-  // more and a force stage that runs on one).
-  bool index_beside_forces() const;
+  // Whether the index field's rebuild and the force stage form one stage with two
+  // arrangements (an index field and two or more OpenMP threads).
+  bool index_with_forces() const;
+  // The arrangement of a rebuild in that stage: measured (the default: the faster of the two,
+  // FasterOfTwo), or one of them always (tests and benchmarks that compare them).
+  enum class IndexArrangement { measured, beside_forces, before_forces };
+  void set_index_arrangement(IndexArrangement a) { arrangement_ = a; }
+  // How many rebuilds so far ran beside the force stage, and before it (the one at
+  // construction not counted; on one thread every rebuild runs before the forces).
+  long rebuilds_beside_forces() const { return rebuilds_beside_; }
+  long rebuilds_before_forces() const { return rebuilds_before_; }
   // What the index field's rebuilds so far reported (the first, at construction, included).
   struct FillHistory {
     long updates = 0;                 // rebuilds of I (and τ)
@@ -84,6 +95,7 @@ class CellPhysics {
   void compute_marker_forces();  // membrane forces [+ contact forces]
   void add_contact_forces();
   void refresh_viscosity_beside_forces(fluid::FluidLattice& lattice);
+  void refresh_viscosity_with_forces(fluid::FluidLattice& lattice);  // in the arrangement due
   std::span<const geometry::Polygon> polygons_from_cells();
 
   membrane::ImmersedCells cells_;
@@ -94,6 +106,9 @@ class CellPhysics {
   double nu_interior_ = 0.0, nu_exterior_ = 0.0;
   long index_interval_ = 1;
   double index_seconds_ = 0.0, index_exposed_seconds_ = 0.0;
+  IndexArrangement arrangement_ = IndexArrangement::measured;
+  FasterOfTwo arrangement_times_;  // 0: beside the forces, 1: before them
+  long rebuilds_beside_ = 0, rebuilds_before_ = 0;
   FillHistory fill_history_;
 };
 

@@ -41,6 +41,9 @@ struct RunSummary {
   // The part of index_field_time_s the step waited for: all of it on one thread; less
   // when the field is rebuilt beside the force stage (sim::CellPhysics).
   double index_field_exposed_time_s = 0.0;
+  // The index field's rebuilds during the run, and how many of them ran beside the force stage
+  // (on two or more threads, where each arrangement is measured and the faster kept).
+  long index_field_rebuilds = 0, index_field_rebuilds_beside_forces = 0;
   std::string diagnosis;  // why the run ended early (health monitor, stop rule, steady state)
   int threads = 1;
   std::vector<StageTiming> stages;  // wall time of every stage of the time loop

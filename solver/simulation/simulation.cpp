@@ -254,6 +254,8 @@ RunSummary Simulation::run(RunObserver& observer) {
   if (cells_) {
     summary.index_field_time_s = cells_->index_field_seconds();
     summary.index_field_exposed_time_s = cells_->index_field_exposed_seconds();
+    summary.index_field_rebuilds_beside_forces = cells_->rebuilds_beside_forces();
+    summary.index_field_rebuilds = summary.index_field_rebuilds_beside_forces + cells_->rebuilds_before_forces();
   }
   observer.on_finish(summary);
   return summary;

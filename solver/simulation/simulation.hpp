@@ -75,6 +75,7 @@ class Simulation {
   // The index field of the interior viscosity, or nullptr when the scene sets none.
   const interior::IndexField* index_field() const { return cells_ ? cells_->index_field() : nullptr; }
   const CellPhysics* cell_physics() const { return cells_.get(); }
+  CellPhysics* cell_physics() { return cells_.get(); }  // e.g. to pin the index field's arrangement
   const TimeLoop& time_loop() const { return loop_; }
 
  private:

@@ -236,12 +236,14 @@ namespace erythro::sim {
 namespace {
 
 #if defined(_OPENMP)
-// Requirement (sim::CellPhysics::register_stages): on two threads the index field is rebuilt beside
-// the force stage, and the run gives the same bits as on one thread, where it is rebuilt
-// before it — the two are independent (positions read, τ and marker forces written).
-// An aggregating pair with a flood-fill interior at 5× viscosity, 60 steps: marker
-// positions and τ compared bit for bit (tolerance 0: same operations in the same order).
-TEST(CellSimulation, IndexBesideForcesGivesTheSameBits) {
+// Requirement (sim::CellPhysics::register_stages): on two threads the index field's rebuild and
+// the force stage are one stage, and the rebuild runs beside the forces or before them (each on
+// all threads), pinned or chosen by measurement; every arrangement gives the same bits as one
+// thread, where it runs before them — the two are independent (positions read, τ and marker
+// forces written). An aggregating pair with a flood-fill interior at 5× viscosity, 60 steps
+// (k = 1: 59 rebuilds): marker positions and τ compared bit for bit (tolerance 0: the same
+// operations in the same order).
+TEST(CellSimulation, IndexFieldArrangementsGiveTheSameBits) {
   const std::string text =
       "[domain]\nsize_um = [20, 10]\nspacing_um = 0.25\n[time]\ntau = 1.0\n"
       "[fluid]\ndensity_kg_m3 = 1000\nviscosity_cP = 1.0\n"
@@ -253,15 +255,18 @@ TEST(CellSimulation, IndexBesideForcesGivesTheSameBits) {
       "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [7.6, 5]\nmarkers = 64\n"
       "[[cells]]\nshape = \"circle\"\nradius_um = 2.0\ncenter_um = [12.4, 5]\nmarkers = 64\n";
   const scene::Scene s = scene::parse_scene(text, "pair.toml");
+  using Arrangement = CellPhysics::IndexArrangement;
   struct Result {
     std::vector<double> x, y, tau;
-    bool beside = false;
+    bool together = false;
+    long beside = 0, before = 0;
     double index_s = 0.0, exposed_s = 0.0;
   };
   const int threads_before = omp_get_max_threads();
-  auto run_with = [&](int threads) {
+  auto run_with = [&](int threads, Arrangement arrangement) {
     omp_set_num_threads(threads);
     Simulation sim(s, scene::derive_lattice(s));
+    sim.cell_physics()->set_index_arrangement(arrangement);
     Collect c;
     const RunSummary summary = sim.run(c);
     EXPECT_EQ(summary.status, RunStatus::completed);
@@ -272,22 +277,38 @@ TEST(CellSimulation, IndexBesideForcesGivesTheSameBits) {
     }
     const auto tau = sim.fluid()->tau_field();
     r.tau.assign(tau.begin(), tau.end());
-    r.beside = sim.cell_physics()->index_beside_forces();
+    r.together = sim.cell_physics()->index_with_forces();
+    r.beside = sim.cell_physics()->rebuilds_beside_forces();
+    r.before = sim.cell_physics()->rebuilds_before_forces();
     r.index_s = summary.index_field_time_s;
     r.exposed_s = summary.index_field_exposed_time_s;
     return r;
   };
-  const Result one = run_with(1), two = run_with(2);
+  const Result one = run_with(1, Arrangement::measured);
+  const Result beside = run_with(2, Arrangement::beside_forces);
+  const Result before = run_with(2, Arrangement::before_forces);
+  const Result measured = run_with(2, Arrangement::measured);
   omp_set_num_threads(threads_before);
-  EXPECT_FALSE(one.beside);
-  EXPECT_TRUE(two.beside);
-  EXPECT_EQ(one.x, two.x);
-  EXPECT_EQ(one.y, two.y);
-  EXPECT_EQ(one.tau, two.tau);
-  // On one thread the step waits for all of the rebuild; beside the forces, for part of it.
+  EXPECT_FALSE(one.together);
+  EXPECT_EQ(one.beside, 0);
+  EXPECT_EQ(one.before, 59);
+  EXPECT_TRUE(beside.together);
+  EXPECT_EQ(beside.beside, 59);
+  EXPECT_EQ(before.before, 59);
+  // Measured: each arrangement runs at least once (the first two rebuilds); the rest by their times.
+  EXPECT_EQ(measured.beside + measured.before, 59);
+  EXPECT_GE(measured.beside, 1);
+  EXPECT_GE(measured.before, 1);
+  for (const Result* r : {&beside, &before, &measured}) {
+    EXPECT_EQ(one.x, r->x);
+    EXPECT_EQ(one.y, r->y);
+    EXPECT_EQ(one.tau, r->tau);
+  }
+  // Before the forces the step waits for all of the rebuild; beside them, for part of it.
   EXPECT_GT(one.index_s, 0.0);
   EXPECT_EQ(one.exposed_s, one.index_s);
-  EXPECT_GE(two.exposed_s, 0.0);
+  EXPECT_EQ(before.exposed_s, before.index_s);
+  EXPECT_GE(beside.exposed_s, 0.0);
 }
 #endif
 
