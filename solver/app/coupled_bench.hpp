@@ -25,6 +25,9 @@ struct CoupledBenchOptions {
   // A user's scene with cells instead of the shear boxes (scene_bench.hpp); cells, aggregation
   // and index_interval are then the scene's.
   std::string scene;
+  // Instead of the pairs of separate runs: each box once, one thread and the largest of
+  // `threads` in turn, block by block (thread_alternation.hpp).
+  bool alternate_threads = false;
 };
 
 // Runs the section, prints its table and adds its runs and metrics to `record`.

@@ -83,9 +83,16 @@ void CellPhysics::refresh_viscosity_with_forces(fluid::FluidLattice& lattice) {
   // do not help the rebuild; before them, each uses every thread but the rebuild's serial
   // parts (its fills) leave the others waiting. Which costs less depends on the host, the
   // cells and k, so by default both are measured (docs/performance.md).
+  // A caller that has lowered the thread count to one since the stages were registered (the
+  // bench's --alternate-threads) gets the one-thread arrangement, before the forces, unmeasured.
   constexpr int kBeside = 0, kBefore = 1;
-  const bool beside = arrangement_ == IndexArrangement::beside_forces ||
-                      (arrangement_ == IndexArrangement::measured && arrangement_times_.next() == kBeside);
+#if defined(_OPENMP)
+  const bool alone = omp_get_max_threads() < 2;
+#else
+  const bool alone = true;
+#endif
+  const bool beside = !alone && (arrangement_ == IndexArrangement::beside_forces ||
+                                 (arrangement_ == IndexArrangement::measured && arrangement_times_.next() == kBeside));
   const auto start = std::chrono::steady_clock::now();
   if (beside) {
     refresh_viscosity_beside_forces(lattice);
@@ -95,7 +102,7 @@ void CellPhysics::refresh_viscosity_with_forces(fluid::FluidLattice& lattice) {
     compute_marker_forces();
     ++rebuilds_before_;
   }
-  if (arrangement_ == IndexArrangement::measured)
+  if (arrangement_ == IndexArrangement::measured && !alone)
     arrangement_times_.record(beside ? kBeside : kBefore,
                               std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
 }

@@ -195,6 +195,9 @@ expect bench_scene_malformed 2 'malformed.toml:3' -- \
   "$ERYTHRO" bench --coupled-only --scene malformed.toml --threads 1 --out bench_malformed.h5
 expect bench_scene_needs_coupled_only 2 'scene requires --coupled-only' -- \
   "$ERYTHRO" bench --scene "$SRC/scenes/rbc_channel.toml" --out bench_not_coupled.h5
+# --alternate-threads compares one thread with more: a single count is refused.
+expect bench_alternate_one_count 2 'needs a count of 2 or more in --threads' -- \
+  "$ERYTHRO" bench --coupled-only --alternate-threads --cells 2 --threads 1 --out bench_alternate_one.h5
 checks=$((checks + 1))
 if ls bench_*.h5 >/dev/null 2>&1; then echo "FAIL bench_scene_refused_no_record: $(ls bench_*.h5)"; failures=$((failures + 1))
 else echo "ok   bench_scene_refused_no_record"; fi
