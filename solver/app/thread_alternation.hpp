@@ -22,8 +22,9 @@ struct AlternatedThreads {
   int threads = 2;                                 // T
   long block_steps = 0;                            // steps per block (a whole number of index-field intervals)
   long blocks_each = 0;                            // timed blocks on each count (a warm-up block before them)
-  double cell_work_one_us = 0.0;                   // per step: every stage but the fluid step and the force
-  double cell_work_many_us = 0.0;                  // field's reset (those scale with the grid)
+  // The cell work per step, on one thread and on T: every stage but the fluid step and the
+  // force field's reset (those scale with the grid).
+  double cell_work_one_us = 0.0, cell_work_many_us = 0.0;
   double fluid_one_us = 0.0, fluid_many_us = 0.0;  // the fluid step, per step
   std::vector<double> pair_ratios;                 // per pair of blocks (one thread, then T): cell work on one / on T
   std::vector<AlternatedStage> stages;             // in the loop's order, without the observation phase
