@@ -4,7 +4,7 @@
 // vv::run_case_scene — runs on its own thread with ONE OpenMP thread, at most `workers`
 // at once; workers = 0: omp_get_max_threads() (OMP_NUM_THREADS, the cores of the test).
 // A run's results do not depend on its thread count (a project rule, tested by
-// CellSimulation.IndexBesideForcesGivesTheSameBits and the fluid determinism tests), so the
+// CellSimulation.IndexFieldArrangementsGiveTheSameBits and the fluid determinism tests), so the
 // runs give the same bits as one after the other; the HDF5 library is thread-safe (its
 // global lock serialises the run writers). With one worker the jobs run in order on the
 // calling thread, unchanged. Jobs start in the given order: put the longest first. The
