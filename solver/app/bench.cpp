@@ -709,11 +709,11 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
              "Index-field rebuild interval k of the coupled step (0: per box, the largest k with k U <= 0.1 h); "
              "each run takes max(4 k, --coupled-steps rounded up to a multiple of k) + 1 steps")
           ->check(CLI::Range(0L, 1000000L));
-  CLI::Option* alternate =
-      cmd->add_flag("--alternate-threads", options.coupled.alternate_threads,
-                    "With --coupled-only: each box run once, one thread and the largest of --threads in turn every "
-                    "block of steps, instead of separate runs (the cell work on both counts under the same conditions)")
-          ->needs(coupled_only);
+  cmd->add_flag("--alternate-threads", options.coupled.alternate_threads,
+                "With --coupled-only: each box (or the --scene) run once, one thread and the largest of --threads "
+                "in turn every block of steps, instead of separate runs (the cell work on both counts under the "
+                "same conditions)")
+      ->needs(coupled_only);
   cmd->add_option("--scene", options.coupled.scene,
                   "With --coupled-only: the coupled step of this scene (its cells, its physics) beside the same scene "
                   "without its cells, instead of the shear boxes")
@@ -721,8 +721,7 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
       ->needs(coupled_only)
       ->excludes(cells)
       ->excludes(aggregation)
-      ->excludes(interval)
-      ->excludes(alternate);
+      ->excludes(interval);
   return cmd;
 }
 

@@ -14,13 +14,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "app/bench_metric.hpp"
 #include "app/coupled_timing.hpp"
 #include "app/thread_alternation.hpp"
 #include "common/error.hpp"
@@ -90,57 +88,20 @@ long box_interval(int n, const CoupledBenchOptions& o) {
 }
 
 // --alternate-threads: each box once, one thread and T threads in turn (thread_alternation.hpp).
-// Blocks of about kBlockSteps steps, a whole number of intervals k; at least three blocks on
-// each count and --coupled-steps in all.
-constexpr long kBlockSteps = 60;
 void run_alternating(const CoupledBenchOptions& o, io::ResultRecord& record) {
-  const int threads = *std::max_element(o.threads.begin(), o.threads.end());
-  if (threads < 2) throw InputError("bench: --alternate-threads needs a count of 2 or more in --threads");
-  std::printf(
-      "\ncoupled step, one thread against %d in one run: the cells and the interior as above, %s; blocks of "
-      "whole index-field intervals, one thread and %d in turn after a warm-up block; cell work = every stage "
-      "but the fluid step and the force field's reset, us per cell and step\n",
-      threads, o.aggregation ? "repulsion and Morse aggregation (De* = 5)" : "repulsion", threads);
-  std::printf("%5s %9s %4s %6s %7s %12s %12s %8s %18s %11s\n", "cells", "grid", "k", "block", "blocks", "cells 1 thr",
-              "cells T thr", "ratio", "pairs: median, range", "fluid ratio");
+  const int threads = alternation_threads(o.threads);
+  print_alternation_heading(threads, std::string("the shear boxes above, ") +
+                                         (o.aggregation ? "repulsion and Morse aggregation (De* = 5)" : "repulsion"));
   for (int cells : o.cells) {
     const int n = box_nodes(cells);
     const long k = box_interval(n, o);
-    const long block = k * std::max(1L, (kBlockSteps + k / 2) / k);
-    const long blocks_each = std::max(3L, (o.steps + 2 * block - 1) / (2 * block));
-    const std::string text = scene_text(n, cells, (2 * blocks_each + 1) * block, o, k);
-    const AlternatedThreads a = alternate_threads(prepare_scene(text, scene_name(cells)), threads, block, blocks_each);
-    const Stats pairs = stats_of(a.pair_ratios);
-    const double ratio = a.cell_work_one_us / a.cell_work_many_us, fluid = a.fluid_one_us / a.fluid_many_us;
-    std::printf("%5d %4dx%-4d %4ld %6ld %7ld %12.2f %12.2f %8.3f %6.2f %5.2f-%-5.2f %11.3f\n", cells, n, n, k, block,
-                blocks_each, a.cell_work_one_us / cells, a.cell_work_many_us / cells, ratio, pairs.median, pairs.min,
-                pairs.max, fluid);
-    for (const AlternatedStage& st : a.stages)
-      std::printf("      %-24s %10.3f %10.3f %8.3f%s\n", st.name.c_str(), st.us_one / cells, st.us_many / cells,
-                  st.us_many > 0.0 ? st.us_one / st.us_many : 0.0,
-                  st.name == "fluid_step" || st.name == "force_field_reset" ? "  (grid, us per cell)" : "");
-    std::fflush(stdout);
-    std::map<std::string, io::Value> run{{"kind", std::string("threads alternated")},
-                                         {"cells", static_cast<double>(cells)},
-                                         {"grid_n", static_cast<double>(n)},
-                                         {"threads", static_cast<double>(threads)},
-                                         {"index_update_interval", static_cast<double>(k)},
-                                         {"block_steps", static_cast<double>(block)},
-                                         {"blocks_each", static_cast<double>(blocks_each)},
-                                         {"cell_work_us_per_cell_step_t1", a.cell_work_one_us / cells},
-                                         {"cell_work_us_per_cell_step_tT", a.cell_work_many_us / cells},
-                                         {"cell_work_ratio", ratio},
-                                         {"cell_work_ratio_pair_median", pairs.median},
-                                         {"cell_work_ratio_pair_min", pairs.min},
-                                         {"cell_work_ratio_pair_max", pairs.max},
-                                         {"fluid_step_ratio", fluid}};
-    for (const AlternatedStage& st : a.stages) {
-      run[st.name + "_us_per_step_t1"] = st.us_one;
-      run[st.name + "_us_per_step_tT"] = st.us_many;
-    }
-    record.add_run(run, text);
-    record.add_metric(informative("cell_work_speedup_" + std::to_string(cells) + "_t" + std::to_string(threads),
-                                  "cell work on one thread / on T threads, blocks of one run in turn", "", ratio));
+    const AlternationPlan plan = plan_alternation(k, o.steps);
+    const std::string text = scene_text(n, cells, plan.run_steps(), o, k);
+    const AlternatedThreads a =
+        alternate_threads(prepare_scene(text, scene_name(cells)), threads, plan.block_steps, plan.blocks_each);
+    report_alternation(record, a, cells, std::to_string(n) + "x" + std::to_string(n), k,
+                       std::to_string(cells) + "_t" + std::to_string(threads),
+                       {{"cells", static_cast<double>(cells)}, {"grid_n", static_cast<double>(n)}}, text);
   }
 }
 

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/coupled_timing.hpp"
+#include "app/thread_alternation.hpp"
 #include "common/error.hpp"
 #include "interior/index_field.hpp"
 #include "io/result_record.hpp"
@@ -63,6 +64,26 @@ void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::
   const int cells = static_cast<int>(probe.setup.membrane->cells.size());
   const long steps = whole_interval_steps(k, o.steps);
   const double radius_um = probe.setup.time_mapping ? probe.setup.time_mapping->radius_m * 1e6 : 0.0;
+  if (o.alternate_threads) {  // one run, one thread and T threads in turn (thread_alternation.hpp)
+    const int threads = alternation_threads(o.threads);
+    const AlternationPlan plan = plan_alternation(k, o.steps);
+    const std::string text = bench_text(scene, plan.run_steps(), true, index_field ? k : 0, radius_um);
+    const PreparedScene alternating = prepare_scene(text, path);
+    if (index_field && alternating.setup.membrane->index_update_interval != k)
+      throw InputError(path + ": the bench's copy of the scene derives another index-field interval than " +
+                       std::to_string(k));
+    record.set_parameter("coupled_scene", path);
+    print_alternation_heading(threads, path);
+    const auto& g = alternating.setup.grid;
+    const AlternatedThreads a = alternate_threads(alternating, threads, plan.block_steps, plan.blocks_each);
+    report_alternation(record, a, cells, std::to_string(g.nx) + "x" + std::to_string(g.ny), k,
+                       "scene_t" + std::to_string(threads),
+                       {{"cells", static_cast<double>(cells)},
+                        {"grid_nx", static_cast<double>(g.nx)},
+                        {"grid_ny", static_cast<double>(g.ny)}},
+                       text);
+    return;
+  }
   const std::string coupled_text = bench_text(scene, steps, true, index_field ? k : 0, radius_um);
   const PreparedScene coupled = prepare_scene(coupled_text, path);
   const PreparedScene fluid_only =

@@ -2,9 +2,14 @@
 
 #include <omp.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <map>
 #include <stdexcept>
 
+#include "app/bench_metric.hpp"
+#include "common/error.hpp"
+#include "io/result_record.hpp"
 #include "simulation/simulation.hpp"
 
 namespace erythro::app {
@@ -22,7 +27,66 @@ std::map<std::string, double> seconds_so_far(const sim::TimeLoop& loop) {
   return s;
 }
 
+constexpr long kBlockSteps = 60;
+
 }  // namespace
+
+AlternationPlan plan_alternation(long k, long steps) {
+  AlternationPlan p;
+  p.block_steps = k * std::max(1L, (kBlockSteps + k / 2) / k);
+  p.blocks_each = std::max(3L, (steps + 2 * p.block_steps - 1) / (2 * p.block_steps));
+  return p;
+}
+
+int alternation_threads(const std::vector<int>& threads) {
+  const int T = threads.empty() ? 0 : *std::max_element(threads.begin(), threads.end());
+  if (T < 2) throw InputError("bench: --alternate-threads needs a count of 2 or more in --threads");
+  return T;
+}
+
+void print_alternation_heading(int threads, const std::string& what) {
+  std::printf(
+      "\ncoupled step, one thread against %d in one run: %s; blocks of whole index-field intervals, one thread "
+      "and %d in turn after a warm-up block; cell work = every stage but the fluid step and the force field's "
+      "reset, us per cell and step\n",
+      threads, what.c_str(), threads);
+  std::printf("%5s %9s %4s %6s %7s %12s %12s %8s %18s %11s\n", "cells", "grid", "k", "block", "blocks", "cells 1 thr",
+              "cells T thr", "ratio", "pairs: median, range", "fluid ratio");
+}
+
+void report_alternation(io::ResultRecord& record, const AlternatedThreads& a, int cells, const std::string& grid,
+                        long k, const std::string& tag, const std::vector<std::pair<std::string, double>>& columns,
+                        const std::string& scene_text) {
+  const Stats pairs = stats_of(a.pair_ratios);
+  const double ratio = a.cell_work_one_us / a.cell_work_many_us, fluid = a.fluid_one_us / a.fluid_many_us;
+  std::printf("%5d %9s %4ld %6ld %7ld %12.2f %12.2f %8.3f %6.2f %5.2f-%-5.2f %11.3f\n", cells, grid.c_str(), k,
+              a.block_steps, a.blocks_each, a.cell_work_one_us / cells, a.cell_work_many_us / cells, ratio,
+              pairs.median, pairs.min, pairs.max, fluid);
+  for (const AlternatedStage& st : a.stages)
+    std::printf("      %-24s %10.3f %10.3f %8.3f%s\n", st.name.c_str(), st.us_one / cells, st.us_many / cells,
+                st.us_many > 0.0 ? st.us_one / st.us_many : 0.0, grid_stage(st.name) ? "  (grid, us per cell)" : "");
+  std::fflush(stdout);
+  std::map<std::string, io::Value> run{{"kind", std::string("threads alternated")}};
+  for (const auto& [name, value] : columns) run[name] = value;
+  run["threads"] = static_cast<double>(a.threads);
+  run["index_update_interval"] = static_cast<double>(k);
+  run["block_steps"] = static_cast<double>(a.block_steps);
+  run["blocks_each"] = static_cast<double>(a.blocks_each);
+  run["cell_work_us_per_cell_step_t1"] = a.cell_work_one_us / cells;
+  run["cell_work_us_per_cell_step_tT"] = a.cell_work_many_us / cells;
+  run["cell_work_ratio"] = ratio;
+  run["cell_work_ratio_pair_median"] = pairs.median;
+  run["cell_work_ratio_pair_min"] = pairs.min;
+  run["cell_work_ratio_pair_max"] = pairs.max;
+  run["fluid_step_ratio"] = fluid;
+  for (const AlternatedStage& st : a.stages) {
+    run[st.name + "_us_per_step_t1"] = st.us_one;
+    run[st.name + "_us_per_step_tT"] = st.us_many;
+  }
+  record.add_run(run, scene_text);
+  record.add_metric(informative("cell_work_speedup_" + tag,
+                                "cell work on one thread / on T threads, blocks of one run in turn", "", ratio));
+}
 
 AlternatedThreads alternate_threads(const PreparedScene& scene, int threads, long block_steps, long blocks_each) {
   if (threads < 2) throw std::invalid_argument("alternate_threads: needs two threads or more");

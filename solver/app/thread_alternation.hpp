@@ -7,9 +7,14 @@
 // fast and slow phases of a shared host, which two separate runs do not
 // (docs/performance.md, "Two threads against one, in one run").
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/coupled_timing.hpp"
+
+namespace erythro::io {
+class ResultRecord;
+}
 
 namespace erythro::app {
 
@@ -29,6 +34,28 @@ struct AlternatedThreads {
   std::vector<double> pair_ratios;                 // per pair of blocks (one thread, then T): cell work on one / on T
   std::vector<AlternatedStage> stages;             // in the loop's order, without the observation phase
 };
+
+// The blocks of an alternating run of a scene with index-field interval k (1 without an index
+// field): about 60 steps each, a whole number of intervals, so that each timed block holds the
+// same rebuilds; at least three blocks on each count and `steps` steps in all.
+struct AlternationPlan {
+  long block_steps = 0, blocks_each = 0;
+  long run_steps() const { return (2 * blocks_each + 1) * block_steps; }  // the warm-up block included
+};
+AlternationPlan plan_alternation(long k, long steps);
+
+// T, the largest of the bench's thread counts; an InputError when it is below two.
+int alternation_threads(const std::vector<int>& threads);
+
+// The table's heading; `what` describes the scenes.
+void print_alternation_heading(int threads, const std::string& what);
+
+// Prints the row of `cells` cells (`grid`: "nx x ny") and its stage lines, and adds the run (its
+// own `columns` first, then the measurement; `scene_text` kept in /scenes) and the metric
+// cell_work_speedup_<tag> to the record.
+void report_alternation(io::ResultRecord& record, const AlternatedThreads& a, int cells, const std::string& grid,
+                        long k, const std::string& tag, const std::vector<std::pair<std::string, double>>& columns,
+                        const std::string& scene_text);
 
 // Runs `scene` (whose run.steps is at least (1 + 2 blocks_each) block_steps) once, T threads
 // for the warm-up block, then one thread and T threads in turn. Throws std::runtime_error when
