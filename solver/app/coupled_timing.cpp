@@ -14,8 +14,6 @@
 namespace erythro::app {
 namespace {
 
-class Silent : public sim::RunObserver {};
-
 // Seconds of each stage of one run, without the observe phase (progress, observation).
 struct Timed {
   std::vector<std::pair<std::string, double>> stages;  // in the loop's order
@@ -25,7 +23,7 @@ struct Timed {
 
 Timed time_run(const PreparedScene& p, long steps) {
   sim::Simulation simulation(p.scene, p.setup);
-  Silent silent;
+  sim::RunObserver silent;  // every callback a no-op
   const sim::RunSummary summary = simulation.run(silent);
   if (summary.status != sim::RunStatus::completed)
     throw std::runtime_error("bench: the coupled-step run ended early (" + sim::to_string(summary.status) +
@@ -43,6 +41,8 @@ Timed time_run(const PreparedScene& p, long steps) {
 double median(std::vector<double> v) { return stats_of(std::move(v)).median; }
 
 }  // namespace
+
+bool grid_stage(const std::string& name) { return name == "fluid_step" || name == "force_field_reset"; }
 
 long whole_interval_steps(long k, long at_least) { return std::max(4 * k, (at_least + k - 1) / k * k) + 1; }
 
@@ -98,10 +98,10 @@ std::string record_coupled(io::ResultRecord& record, const CoupledRow& row, cons
   for (const auto& [name, us] : m.stage_us) {
     // Cell stages per cell and step; the fluid step and the force field's reset per step
     // (they scale with the grid).
-    const bool grid_stage = name == "fluid_step" || name == "force_field_reset";
-    const double value = grid_stage ? us : us / cells;
-    line << " " << name << " " << value << (grid_stage ? " us" : " us/cell");
-    run[name + (grid_stage ? "_us_per_step" : "_us_per_cell_step")] = value;
+    const bool per_step = grid_stage(name);
+    const double value = per_step ? us : us / cells;
+    line << " " << name << " " << value << (per_step ? " us" : " us/cell");
+    run[name + (per_step ? "_us_per_step" : "_us_per_cell_step")] = value;
   }
   record.add_run(run, row.scene_text);
   record.add_metric(informative("coupled_extra_us_per_cell_step_" + row.tag,

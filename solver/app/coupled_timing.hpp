@@ -22,6 +22,10 @@ namespace erythro::app {
 // one at set-up is not timed).
 long whole_interval_steps(long k, long at_least);
 
+// Whether a stage of the time loop scales with the grid rather than with the cells: the fluid
+// step and the force field's reset (reported per step; the others per cell and step).
+bool grid_stage(const std::string& name);
+
 // Prints the stage lines of record_coupled under their heading.
 void print_stage_lines(const std::vector<std::string>& lines);
 

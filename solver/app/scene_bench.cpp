@@ -62,35 +62,32 @@ void run_scene_bench(const std::string& path, const CoupledBenchOptions& o, io::
   const bool index_field = probe.setup.membrane->indicator != interior::Method::indexless;
   const long k = index_field ? std::max(1L, probe.setup.membrane->index_update_interval) : 1;
   const int cells = static_cast<int>(probe.setup.membrane->cells.size());
-  const long steps = whole_interval_steps(k, o.steps);
+  // --alternate-threads: one run, one thread and T threads in turn (thread_alternation.hpp), in
+  // blocks of whole intervals; otherwise pairs of runs of `steps` steps with and without the cells.
+  const int alternated = o.alternate_threads ? alternation_threads(o.threads) : 0;  // T
+  const AlternationPlan plan = plan_alternation(k, o.steps);
+  const long steps = o.alternate_threads ? plan.run_steps() : whole_interval_steps(k, o.steps);
   const double radius_um = probe.setup.time_mapping ? probe.setup.time_mapping->radius_m * 1e6 : 0.0;
-  if (o.alternate_threads) {  // one run, one thread and T threads in turn (thread_alternation.hpp)
-    const int threads = alternation_threads(o.threads);
-    const AlternationPlan plan = plan_alternation(k, o.steps);
-    const std::string text = bench_text(scene, plan.run_steps(), true, index_field ? k : 0, radius_um);
-    const PreparedScene alternating = prepare_scene(text, path);
-    if (index_field && alternating.setup.membrane->index_update_interval != k)
-      throw InputError(path + ": the bench's copy of the scene derives another index-field interval than " +
-                       std::to_string(k));
-    record.set_parameter("coupled_scene", path);
-    print_alternation_heading(threads, path);
-    const auto& g = alternating.setup.grid;
-    const AlternatedThreads a = alternate_threads(alternating, threads, plan.block_steps, plan.blocks_each);
-    report_alternation(record, a, cells, std::to_string(g.nx) + "x" + std::to_string(g.ny), k,
-                       "scene_t" + std::to_string(threads),
-                       {{"cells", static_cast<double>(cells)},
-                        {"grid_nx", static_cast<double>(g.nx)},
-                        {"grid_ny", static_cast<double>(g.ny)}},
-                       text);
-    return;
-  }
   const std::string coupled_text = bench_text(scene, steps, true, index_field ? k : 0, radius_um);
   const PreparedScene coupled = prepare_scene(coupled_text, path);
-  const PreparedScene fluid_only =
-      prepare_scene(bench_text(scene, steps, false, 0, radius_um), path + " (without its cells)");
   if (index_field && coupled.setup.membrane->index_update_interval != k)
     throw InputError(path + ": the bench's copy of the scene derives another index-field interval than " +
                      std::to_string(k));
+  if (o.alternate_threads) {
+    record.set_parameter("coupled_scene", path);
+    print_alternation_heading(alternated, path);
+    const auto& g = coupled.setup.grid;
+    const AlternatedThreads a = alternate_threads(coupled, alternated, plan.block_steps, plan.blocks_each);
+    report_alternation(record, a, cells, std::to_string(g.nx) + "x" + std::to_string(g.ny), k,
+                       "scene_t" + std::to_string(alternated),
+                       {{"cells", static_cast<double>(cells)},
+                        {"grid_nx", static_cast<double>(g.nx)},
+                        {"grid_ny", static_cast<double>(g.ny)}},
+                       coupled_text);
+    return;
+  }
+  const PreparedScene fluid_only =
+      prepare_scene(bench_text(scene, steps, false, 0, radius_um), path + " (without its cells)");
   const auto& grid = coupled.setup.grid;
   if (fluid_only.setup.grid.nx != grid.nx || fluid_only.setup.grid.ny != grid.ny ||
       fluid_only.setup.collision.tau != coupled.setup.collision.tau)

@@ -15,10 +15,6 @@
 namespace erythro::app {
 namespace {
 
-class Silent : public sim::RunObserver {};
-
-bool grid_stage(const std::string& name) { return name == "fluid_step" || name == "force_field_reset"; }
-
 // Each stage's seconds so far, without the observation phase.
 std::map<std::string, double> seconds_so_far(const sim::TimeLoop& loop) {
   std::map<std::string, double> s;
@@ -127,7 +123,7 @@ AlternatedThreads alternate_threads(const PreparedScene& scene, int threads, lon
         omp_set_num_threads(block % 2 == 1 ? 1 : threads);
       },
       block_steps, block_steps - 1);
-  Silent silent;
+  sim::RunObserver silent;  // every callback a no-op
   const sim::RunSummary summary = simulation.run(silent);
   omp_set_num_threads(threads);
   if (summary.status != sim::RunStatus::completed)

@@ -53,19 +53,26 @@ inline bool hypot_fast_range(double a, double b) { return hypot_common_range(a, 
 // no branch on AVX2 hosts either.)
 inline double hypot_fast(double a, double b) { return select_bits(b == 0.0, a, hypot_kernel(a, b)); }
 
+// a = max(|x|, |y|), b = min(|x|, |y|): the ordered arguments of the paths above.
+inline void ordered_magnitudes(double x, double y, double& a, double& b) {
+  const double ax = std::fabs(x), ay = std::fabs(y);
+  a = ax < ay ? ay : ax;
+  b = ax < ay ? ax : ay;
+}
+
 // |(x, y)| by the fast path, for a loop that vectorises: `outside` is set when (x, y) lies beyond
 // the path's range, and the caller then does the loop again with hypot_portable (whose bits the
 // fast path gives wherever it applies).
 inline double hypot_fast_flagged(double x, double y, int& outside) {
-  const double ax = std::fabs(x), ay = std::fabs(y);
-  const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
+  double a, b;
+  ordered_magnitudes(x, y, a, b);
   outside |= hypot_fast_range(a, b) ? 0 : 1;
   return hypot_fast(a, b);
 }
 
 inline double hypot_portable(double x, double y) {
-  const double ax = std::fabs(x), ay = std::fabs(y);
-  const double a = ax < ay ? ay : ax, b = ax < ay ? ax : ay;
+  double a, b;
+  ordered_magnitudes(x, y, a, b);
   if (hypot_fast_range(a, b)) [[likely]]
     return hypot_fast(a, b);
   return std::hypot(x, y);
