@@ -304,11 +304,12 @@ TEST(CellSimulation, IndexFieldArrangementsGiveTheSameBits) {
     EXPECT_EQ(one.y, r->y);
     EXPECT_EQ(one.tau, r->tau);
   }
-  // Before the forces the step waits for all of the rebuild; beside them, for part of it.
+  // Before the forces the step waits for all of the rebuild. (Beside them it waits for the part
+  // that outlasts the forces, a difference of wall times that no bound holds on a shared host:
+  // not asserted.)
   EXPECT_GT(one.index_s, 0.0);
   EXPECT_EQ(one.exposed_s, one.index_s);
   EXPECT_EQ(before.exposed_s, before.index_s);
-  EXPECT_GE(beside.exposed_s, 0.0);
 }
 #endif
 
