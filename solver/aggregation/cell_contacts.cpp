@@ -12,6 +12,7 @@
 
 #include "aggregation/pair_sweep.hpp"
 #include "aggregation/pair_terms.hpp"
+#include "common/chunk_stealing.hpp"
 #include "common/portable_hypot.hpp"
 #include "membrane/immersed_cells.hpp"
 
@@ -65,6 +66,8 @@ struct Engine {
   std::size_t wall_markers = 0;
   double min_wall_gap = std::numeric_limits<double>::infinity();
   std::vector<std::size_t>& count;
+  std::vector<double>& cell_closest;
+  std::vector<std::size_t>& cell_pairs;
   std::vector<SweepScratch>& per_thread;
   std::atomic<bool> coincident{false};
   std::size_t beyond_wall = SIZE_MAX;  // the first marker on or beyond a wall (add_walls is serial)
@@ -83,6 +86,8 @@ struct Engine {
         rmin(ws.rmin),
         W(ws.W),
         count(ws.count),
+        cell_closest(ws.cell_closest),
+        cell_pairs(ws.cell_pairs),
         per_thread(ws.per_thread) {
     check_view(v);
     W.clear();
@@ -90,12 +95,12 @@ struct Engine {
     for (auto* a : {&edge, &ell, &S, &px, &py, &rmin}) a->resize(N);
     cell_of.resize(N);
     count.resize(N);
-    // Per cell, in parallel (each cell its own markers: the same bits for any thread count):
+    // Per cell, over the threads (each cell its own markers: the same bits for any thread count
+    // and whichever thread takes it, common/chunk_stealing.hpp):
     // the positions checked, the edge lengths, ℓ_m, and the pair sums' starting values.
-    bool finite = true;
+    std::atomic<bool> finite{true};
     const long n_cells = static_cast<long>(v.offsets.size()) - 1;
-#pragma omp parallel for schedule(static) if (N >= kParallelMarkers) reduction(&& : finite)
-    for (long q = 0; q < n_cells; ++q) {
+    parallel::for_each_chunk(n_cells, N >= kParallelMarkers ? omp_get_max_threads() : 1, [&](long q) {
       const std::size_t c = static_cast<std::size_t>(q);
       const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
       int cell_finite = 1;  // ints and raw pointers: a vector loop (bools and spans stayed scalar)
@@ -104,7 +109,7 @@ struct Engine {
 #pragma omp simd reduction(& : cell_finite)
       for (std::size_t k = o; k < e; ++k)
         cell_finite &= (std::isfinite(cx[k]) ? 1 : 0) & (std::isfinite(cy[k]) ? 1 : 0);
-      finite = finite && cell_finite != 0;
+      if (cell_finite == 0) finite.store(false, std::memory_order_relaxed);
       std::fill(cell_of.begin() + o, cell_of.begin() + e, c);
       numeric::closed_polygon_lengths(&v.x[o], &v.y[o], e - o, &edge[o]);  // L_k: edge k → k+1
       for (auto* a : {&S, &px, &py}) std::fill(a->begin() + o, a->begin() + e, 0.0);
@@ -112,8 +117,8 @@ struct Engine {
       std::fill(rmin.begin() + o, rmin.begin() + e, std::numeric_limits<double>::infinity());
       ell[o] = 0.5 * (edge[e - 1] + edge[o]);
       for (std::size_t k = o + 1; k < e; ++k) ell[k] = 0.5 * (edge[k - 1] + edge[k]);
-    }
-    if (!finite) report_non_finite(v);
+    });
+    if (!finite.load()) report_non_finite(v);
   }
 
   // Passes 1–3 of pair_terms.hpp over the n candidates of s; returns the pairs within r_c
@@ -287,31 +292,40 @@ struct Engine {
     if (fx.size() != N || fy.size() != N) throw std::invalid_argument("cell contacts: force arrays differ in size");
     magnitude.resize(N);
     double* mag = magnitude.data();
-    // Cell by cell (each cell its own markers). The closest pair and the pair count ride
-    // along: a minimum and an integer sum are exact in any order, so any thread count gives
-    // the same statistics.
+    // Cell by cell (each cell its own markers), over the threads (common/chunk_stealing.hpp):
+    // chunk 0 is the energy, one chain of additions in a fixed order (its bits), and chunk
+    // 1 + c is cell c, so the thread that adds the energy takes fewer cells. Each cell keeps its
+    // closest pair and its pair count; their minimum and sum are exact in any order, so any
+    // thread count gives the same statistics.
+    const long n_cells = static_cast<long>(v.offsets.size()) - 1;
+    cell_closest.resize(static_cast<std::size_t>(n_cells));
+    cell_pairs.resize(static_cast<std::size_t>(n_cells));
+    double energy_total = 0.0;
+    parallel::for_each_chunk(n_cells + 1, N >= kParallelMarkers ? omp_get_max_threads() : 1, [&](long chunk) {
+      if (chunk == 0) {
+        energy_total = energy_sum();
+        return;
+      }
+      const std::size_t c = static_cast<std::size_t>(chunk - 1);
+      const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
+      if (W.empty())
+        finish_cell<false>(o, e, fx.data(), fy.data(), mag);
+      else
+        finish_cell<true>(o, e, fx.data(), fy.data(), mag);
+      double closest = std::numeric_limits<double>::infinity();
+      std::size_t pairs2 = 0;
+      for (std::size_t m = o; m < e; ++m) {
+        closest = std::min(closest, rmin[m]);
+        pairs2 += count[m];
+      }
+      cell_closest[c] = closest;
+      cell_pairs[c] = pairs2;
+    });
     double closest = std::numeric_limits<double>::infinity();
     std::size_t pairs2 = 0;
-    double energy_total = 0.0;
-    const long n_cells = static_cast<long>(v.offsets.size()) - 1;
-#pragma omp parallel if (N >= kParallelMarkers) reduction(min : closest) reduction(+ : pairs2)
-    {
-      // The energy is one chain of additions in a fixed order (its bits): one thread adds it
-      // while the others take the cells, which are shared out as the threads come free.
-#pragma omp single nowait
-      energy_total = energy_sum();
-#pragma omp for schedule(dynamic, 2) nowait
-      for (long q = 0; q < n_cells; ++q) {
-        const std::size_t o = v.offsets[static_cast<std::size_t>(q)], e = v.offsets[static_cast<std::size_t>(q) + 1];
-        if (W.empty())
-          finish_cell<false>(o, e, fx.data(), fy.data(), mag);
-        else
-          finish_cell<true>(o, e, fx.data(), fy.data(), mag);
-        for (std::size_t m = o; m < e; ++m) {
-          closest = std::min(closest, rmin[m]);
-          pairs2 += count[m];
-        }
-      }
+    for (long q = 0; q < n_cells; ++q) {
+      closest = std::min(closest, cell_closest[static_cast<std::size_t>(q)]);
+      pairs2 += cell_pairs[static_cast<std::size_t>(q)];
     }
     ContactStats st;
     st.wall_markers = wall_markers;

@@ -66,6 +66,8 @@ namespace detail {
 struct ContactWorkspace {
   std::vector<std::size_t> cell_of, count, offsets;
   std::vector<double> edge, ell, S, px, py, rmin, W;
+  std::vector<double> cell_closest;     // per cell: its markers' closest partner (the statistics)
+  std::vector<std::size_t> cell_pairs;  // per cell: its markers' partners within the cut-off
   std::vector<SweepScratch> per_thread;
   SweepOwners owners;  // remade with the pair lists, or for another thread count
 };

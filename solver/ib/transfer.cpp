@@ -8,6 +8,7 @@
 #include <string>
 #include <type_traits>
 
+#include "common/chunk_stealing.hpp"
 #include "common/portable_sincos.hpp"
 #include "fluid/force_rows.hpp"
 #include "geometry/grid_polygon.hpp"
@@ -31,6 +32,12 @@ void mark_written(std::uint8_t& state, double* rowx, double* rowy, int nx) {
 // Markers from which the per-marker loops run on the threads (each marker its own result, so
 // the bits do not depend on it): below it a parallel region costs more than it saves.
 constexpr long kParallelMarkers = 512;
+// Markers per chunk of interpolation that a thread takes at once (common/chunk_stealing.hpp):
+// a few microseconds of work, against one compare-and-swap per chunk.
+constexpr long kMarkerChunk = 128;
+// Pieces of the rows per thread in spreading, each of about equal work: a thread's share is
+// kRowPiecesPerThread of them, and a thread done first takes the last pieces of a slower one.
+constexpr int kRowPiecesPerThread = 32;
 
 // Throws for the first marker with a non-finite position (looked for only once the
 // parallel pass has found one).
@@ -179,8 +186,7 @@ void interpolate_impl(const geometry::Domain& d, long count, const Weights& weig
   constexpr int W = K::width;
   const int nx = d.grid.nx, ny = d.grid.ny;
   const bool ahead = d.grid.size() >= kPrefetchNodes;
-#pragma omp parallel for schedule(static) if (count >= kParallelMarkers)
-  for (long k = 0; k < count; ++k) {
+  auto marker_velocity = [&](long k) {
     int i0, j0;
     if (ahead && k + kPrefetchAhead < count) {
       support_of(static_cast<std::size_t>(k + kPrefetchAhead), i0, j0);
@@ -207,7 +213,7 @@ void interpolate_impl(const geometry::Domain& d, long count, const Weights& weig
           rows_y[a] = uy.data() + n;
         }
         interpolate_rows_of_four(rows_x, rows_y, present, wx, wy, Ux[m], Uy[m]);
-        continue;
+        return;
       }
     }
     double sx = 0.0, sy = 0.0;
@@ -225,8 +231,10 @@ void interpolate_impl(const geometry::Domain& d, long count, const Weights& weig
       } else {
         for (int b = 0; b < W; ++b) {
           int i = i0 + b;
-          if (d.periodic_x) i = geometry::wrap_periodic(i, nx);
-          else if (i < 0 || i >= nx) continue;
+          if (d.periodic_x)
+            i = geometry::wrap_periodic(i, nx);
+          else if (i < 0 || i >= nx)
+            continue;
           const std::size_t n = d.grid.index(i, j);
           rx += ux[n] * wx[b];
           ry += uy[n] * wx[b];
@@ -237,7 +245,11 @@ void interpolate_impl(const geometry::Domain& d, long count, const Weights& weig
     }
     Ux[m] = sx;
     Uy[m] = sy;
-  }
+  };
+  const long chunks = (count + kMarkerChunk - 1) / kMarkerChunk;
+  parallel::for_each_chunk(chunks, count >= kParallelMarkers ? omp_get_max_threads() : 1, [&](long c) {
+    for (long k = c * kMarkerChunk; k < std::min(count, (c + 1) * kMarkerChunk); ++k) marker_velocity(k);
+  });
 }
 
 }  // namespace
@@ -284,12 +296,11 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     weights_y_.resize(M);
     const long markers = static_cast<long>(M), sorted = static_cast<long>(Q);  // sorted ≤ markers
     const long blocks = (markers + kWeightBlock - 1) / kWeightBlock;           // each marker its own: the same bits
-#pragma omp parallel for schedule(static) if (markers >= kParallelMarkers)
-    for (long b = 0; b < blocks; ++b) {
+    parallel::for_each_chunk(blocks, markers >= kParallelMarkers ? omp_get_max_threads() : 1, [&](long b) {
       const long first = b * kWeightBlock;
       std::copy_n(X.data() + first, std::min(markers - first, kWeightBlock), weights_x_.data() + first);
       std::copy_n(Y.data() + first, std::min(markers - first, kWeightBlock), weights_y_.data() + first);
-      if (first >= sorted) continue;  // markers beyond a wall only
+      if (first >= sorted) return;  // markers beyond a wall only
       const long n = std::min(sorted - first, kWeightBlock);
       for (long q = first; q < first + n; ++q) {
         const std::size_t m = static_cast<std::size_t>(order[static_cast<std::size_t>(q)]);
@@ -300,7 +311,7 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
       }
       weights_of_block<K>(xs_.data() + first, n, i0_.data() + first, wx_.data() + first * W);
       weights_of_block<K>(ys_.data() + first, n, j0_.data() + first, wy_.data() + first * W);
-    }
+    });
     // 3. Gather per row: row y receives support row a of the markers whose first row is y − a.
     const bool ahead = d.grid.size() >= kPrefetchNodes;
     auto add_row = [&](int y) {
@@ -343,15 +354,16 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
         }
       }
     };
-    // Each thread a share of neighbouring rows with about equal work (the cells are not spread
-    // evenly over the rows); which thread adds a row does not change its sums.
-    const int shares = threads ? omp_get_max_threads() : 1;
-    buckets_.split_rows(shares, share_rows_);
-#pragma omp parallel for schedule(static, 1) num_threads(shares) if (shares > 1)
-    for (int share = 0; share < shares; ++share) {
-      const std::size_t t = static_cast<std::size_t>(share);
-      for (int y = share_rows_[t]; y < share_rows_[t + 1]; ++y) add_row(y);
-    }
+    // Pieces of neighbouring rows with about equal work (the cells are not spread evenly over the
+    // rows), each thread starting on its own run of pieces; which thread adds a row does not
+    // change its sums.
+    const int row_threads = threads ? omp_get_max_threads() : 1;
+    const int pieces = row_threads > 1 ? row_threads * kRowPiecesPerThread : 1;
+    buckets_.split_rows(pieces, share_rows_);
+    parallel::for_each_chunk(pieces, row_threads, [&](long piece) {
+      const std::size_t p = static_cast<std::size_t>(piece);
+      for (int y = share_rows_[p]; y < share_rows_[p + 1]; ++y) add_row(y);
+    });
   });
 }
 

@@ -1,10 +1,13 @@
 #include "membrane/immersed_cells.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 
+#include "common/chunk_stealing.hpp"
 #include "common/portable_hypot.hpp"
 #include "geometry/grid_polygon.hpp"
 #include "geometry/polygon.hpp"
@@ -40,17 +43,17 @@ geometry::Polygon ImmersedCells::polygon(int c) const {
 void ImmersedCells::compute_forces() {
   const int n = cell_count();
   // Cells own disjoint marker ranges (together every marker): parallel over cells is race-free
-  // and deterministic. In equal static shares, so that a thread works on the same cells'
-  // markers in every step: faster than a dynamic schedule in the bench's box of like cells
-  // (docs/performance.md, "The threads' shares of the cell work"); cells of very different
-  // marker counts would share less evenly.
-#pragma omp parallel for schedule(static) if (threads_forces())
-  for (int c = 0; c < n; ++c) {
+  // and deterministic. Each thread starts on its own share of neighbouring cells, the same
+  // cells' markers in every step (faster than a dynamic schedule in the bench's box of like
+  // cells: docs/performance.md, "The threads' shares of the cell work"), and takes the last
+  // cells of a slower thread's share (common/chunk_stealing.hpp).
+  parallel::for_each_chunk(n, threads_forces() ? omp_get_max_threads() : 1, [&](long q) {
+    const int c = static_cast<int>(q);
     const std::span<double> fx = range(fx_, c), fy = range(fy_, c);
     std::fill(fx.begin(), fx.end(), 0.0);
     std::fill(fy.begin(), fy.end(), 0.0);
     add_membrane_forces_only(cells_[c].model, cells_[c].rest, x(c), y(c), fx, fy);
-  }
+  });
 }
 
 void ImmersedCells::clear_force_field(fluid::FluidLattice& lattice) { lattice.clear_force_field(); }
@@ -101,9 +104,10 @@ void ImmersedCells::advect_markers() {
 
 void ImmersedCells::project_areas() {  // eq 3.14; each cell its own markers: any thread count, the same bits
   const int n = cell_count();
-#pragma omp parallel for schedule(static) if (threads_forces())
-  for (int c = 0; c < n; ++c)
+  parallel::for_each_chunk(n, threads_forces() ? omp_get_max_threads() : 1, [&](long q) {
+    const int c = static_cast<int>(q);
     cells_[c].restored_area += project_area(range(x_, c), range(y_, c), cells_[c].target_area);
+  });
 }
 
 void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
