@@ -58,8 +58,7 @@ inline bool take(Share& s, bool from_front, long& chunk) {
 template <class Body>
 void for_each_chunk(long chunks, int threads, Body&& body) {
 #if defined(_OPENMP)
-  const long most = std::min<long>({chunks, kMaxShares, std::numeric_limits<std::uint32_t>::max()});
-  const int shares = static_cast<int>(std::min<long>(threads, most));
+  const int shares = static_cast<int>(std::min<long>({threads, chunks, kMaxShares}));
   if (shares > 1 && chunks <= std::numeric_limits<std::uint32_t>::max() && !omp_in_parallel()) {
     detail::Share share[kMaxShares];
     for (int s = 0; s < shares; ++s) {
@@ -84,6 +83,16 @@ void for_each_chunk(long chunks, int threads, Body&& body) {
   (void)threads;
 #endif
   for (long c = 0; c < chunks; ++c) body(c);
+}
+
+// body(first, last) for the consecutive ranges [first, last) of `per_chunk` items (the last one
+// shorter) that cover [0, items), each range one chunk of for_each_chunk.
+template <class Body>
+void for_each_range(long items, long per_chunk, int threads, Body&& body) {
+  for_each_chunk((items + per_chunk - 1) / per_chunk, threads, [&](long c) {
+    const long first = c * per_chunk;
+    body(first, std::min(items, first + per_chunk));
+  });
 }
 
 }  // namespace erythro::parallel

@@ -246,10 +246,10 @@ void interpolate_impl(const geometry::Domain& d, long count, const Weights& weig
     Ux[m] = sx;
     Uy[m] = sy;
   };
-  const long chunks = (count + kMarkerChunk - 1) / kMarkerChunk;
-  parallel::for_each_chunk(chunks, count >= kParallelMarkers ? omp_get_max_threads() : 1, [&](long c) {
-    for (long k = c * kMarkerChunk; k < std::min(count, (c + 1) * kMarkerChunk); ++k) marker_velocity(k);
-  });
+  parallel::for_each_range(count, kMarkerChunk, count >= kParallelMarkers ? omp_get_max_threads() : 1,
+                           [&](long first, long last) {
+                             for (long k = first; k < last; ++k) marker_velocity(k);
+                           });
 }
 
 }  // namespace
@@ -295,13 +295,13 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     weights_x_.resize(M);
     weights_y_.resize(M);
     const long markers = static_cast<long>(M), sorted = static_cast<long>(Q);  // sorted ≤ markers
-    const long blocks = (markers + kWeightBlock - 1) / kWeightBlock;           // each marker its own: the same bits
-    parallel::for_each_chunk(blocks, markers >= kParallelMarkers ? omp_get_max_threads() : 1, [&](long b) {
-      const long first = b * kWeightBlock;
-      std::copy_n(X.data() + first, std::min(markers - first, kWeightBlock), weights_x_.data() + first);
-      std::copy_n(Y.data() + first, std::min(markers - first, kWeightBlock), weights_y_.data() + first);
+    // Blocks of markers over the threads; each marker its own: the same bits.
+    const int weight_threads = markers >= kParallelMarkers ? omp_get_max_threads() : 1;
+    parallel::for_each_range(markers, kWeightBlock, weight_threads, [&](long first, long last) {
+      std::copy_n(X.data() + first, last - first, weights_x_.data() + first);
+      std::copy_n(Y.data() + first, last - first, weights_y_.data() + first);
       if (first >= sorted) return;  // markers beyond a wall only
-      const long n = std::min(sorted - first, kWeightBlock);
+      const long n = std::min(sorted, last) - first;
       for (long q = first; q < first + n; ++q) {
         const std::size_t m = static_cast<std::size_t>(order[static_cast<std::size_t>(q)]);
         xs_[q] = X[m];
@@ -359,10 +359,10 @@ void Transfer::spread(std::span<const double> X, std::span<const double> Y, std:
     // change its sums.
     const int row_threads = threads ? omp_get_max_threads() : 1;
     const int pieces = row_threads > 1 ? row_threads * kRowPiecesPerThread : 1;
-    buckets_.split_rows(pieces, share_rows_);
+    buckets_.split_rows(pieces, piece_rows_);
     parallel::for_each_chunk(pieces, row_threads, [&](long piece) {
       const std::size_t p = static_cast<std::size_t>(piece);
-      for (int y = share_rows_[p]; y < share_rows_[p + 1]; ++y) add_row(y);
+      for (int y = piece_rows_[p]; y < piece_rows_[p + 1]; ++y) add_row(y);
     });
   });
 }

@@ -58,7 +58,7 @@ class Transfer {
   // Scratch reused across calls: the markers sorted by their support's first row, and in that
   // order (index q) their position, force, support origin and weights.
   RowBuckets buckets_;
-  std::vector<int> share_rows_;  // the first row of each piece of the row pass (RowBuckets::split_rows)
+  std::vector<int> piece_rows_;  // the first row of each piece of the row pass (RowBuckets::split_rows)
   std::vector<int> i0_, j0_;
   std::vector<double> xs_, ys_, fxs_, fys_, wx_, wy_;
   std::vector<double> weights_x_, weights_y_;  // the marker positions (marker order) wx_, wy_ were computed at

@@ -1,6 +1,6 @@
 // parallel::for_each_chunk (common/chunk_stealing.hpp): every chunk exactly once on any thread
-// count, each share's owner from its front, another thread only from its back, and in order on
-// the caller's thread inside a parallel region.
+// count (and every item once in for_each_range's ranges), each share's owner from its front,
+// another thread only from its back, and in order on the caller's thread inside a parallel region.
 #include "common/chunk_stealing.hpp"
 
 #include <gtest/gtest.h>
@@ -14,6 +14,7 @@
 namespace {
 
 using erythro::parallel::for_each_chunk;
+using erythro::parallel::for_each_range;
 
 TEST(ChunkStealing, EveryChunkExactlyOnce) {
   for (const int threads : {1, 2, 3, 4, 8}) {
@@ -23,6 +24,22 @@ TEST(ChunkStealing, EveryChunkExactlyOnce) {
       for (long c = 0; c < chunks; ++c)
         ASSERT_EQ(runs[static_cast<std::size_t>(c)].load(), 1)
             << threads << " threads, " << chunks << " chunks, chunk " << c;
+    }
+  }
+}
+
+TEST(ChunkStealing, RangesCoverEveryItemOnceInWholeChunks) {
+  for (const int threads : {1, 2, 3}) {
+    for (const long items : {0L, 1L, 127L, 128L, 129L, 1000L}) {
+      std::vector<std::atomic<int>> runs(static_cast<std::size_t>(items));
+      for_each_range(items, 128, threads, [&](long first, long last) {
+        EXPECT_EQ(first % 128, 0) << "a range starts inside a chunk";
+        EXPECT_TRUE(last - first == 128 || last == items) << "a short range before the end: " << first << " " << last;
+        for (long i = first; i < last; ++i) runs[static_cast<std::size_t>(i)].fetch_add(1);
+      });
+      for (long i = 0; i < items; ++i)
+        ASSERT_EQ(runs[static_cast<std::size_t>(i)].load(), 1)
+            << threads << " threads, " << items << " items, item " << i;
     }
   }
 }
