@@ -1,7 +1,7 @@
 """Finding the generated sections of a docs page and putting new text into them.
 
 A section starts with a marker comment on a line of its own and ends with the next
-end marker (docs/reports.md, "Measured tables in the docs"):
+end marker (docs/reports.md, "Measured sections of the docs pages"):
 
     <!-- measured: validation.capsule_shear runs: capillary,D,theta_deg -->
     ... generated Markdown ...

@@ -4,7 +4,7 @@
   suite.py shard K N --build DIR [--label full]       the ctest -R regex of shard K of N (1-based)
   suite.py times SOURCE... --out FILE [--replace]     writes test times (JUnit or ctest log)
 
-See docs/reports.md, "Time and shards".
+See docs/reports.md, "Time", and docs/reports.md, "Shards".
 """
 import argparse
 import datetime

@@ -425,6 +425,7 @@ void CellContacts::pair_sums_all(E& eng) {
 ContactStats CellContacts::add_forces(const MarkerView& markers, std::span<double> fx, std::span<double> fy) {
   Engine eng(domain_, potential_, markers, work_);
   pair_sums_all(eng);
+  listed_pairs_swept_ += lists_.pairs();
   eng.add_walls();
   return eng.finish(fx, fy, magnitude_);
 }

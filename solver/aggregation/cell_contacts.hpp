@@ -115,7 +115,7 @@ class CellContacts {
   const geometry::Domain& domain() const { return domain_; }
   // Below this many markers a parallel region costs more than it saves (a doublet of
   // 2 × 184 markers stays on one thread), and add_forces runs on one thread. Eight cells
-  // (1 472 markers) already gain on two threads (docs/performance.md, "Threads from 512
+  // (1 472 markers) already gain on two threads (docs/performance-coupled-step.md, "Threads from 512
   // markers").
   static constexpr std::size_t kParallelMarkers = 512;
   static bool threads_forces(std::size_t markers) { return markers >= kParallelMarkers; }
@@ -125,6 +125,11 @@ class CellContacts {
   int bins_x() const { return lists_.bins_x(); }
   int bins_y() const { return lists_.bins_y(); }
   std::size_t pair_list_builds() const { return lists_.builds(); }
+  // The work of the pair sweep: the pairs of the lists, summed over the add_forces calls so far
+  // (each pair once; on T threads the sweep evaluates the pairs between the threads' slabs twice,
+  // sweep_owners.hpp). The benchmark's cost per pair (docs/performance-coupled-step.md, "The work
+  // per cell behind the cost per cell").
+  std::size_t listed_pairs_swept() const { return listed_pairs_swept_; }
 
  private:
   template <class E>
@@ -135,6 +140,7 @@ class CellContacts {
   PairLists lists_;
   std::vector<double> magnitude_;
   detail::ContactWorkspace work_;
+  std::size_t listed_pairs_swept_ = 0;
 };
 
 // Relative contact area of cell c (thesis §III.2, after Bagchi et al.): the fraction of

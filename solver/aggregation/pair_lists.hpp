@@ -50,6 +50,8 @@ class PairLists {
   int bins_x() const { return nbx_; }
   int bins_y() const { return nby_; }
   std::size_t builds() const { return builds_; }
+  // The pairs (m, n) the lists hold, each once (each pair is in both markers' lists).
+  std::size_t pairs() const { return list_.size() / 2; }
 
  private:
   void build_runs(std::span<const std::size_t> cell_of);

@@ -401,10 +401,10 @@ int run_coupled_only(const BenchOptions& o) {
 // ---------------------------------------------------------------- the fluid step's inputs
 
 // What each input of the coupled step costs the fluid step (issue 18's "grid overhead",
-// docs/performance.md): the benchmark lattice (periodic BGK) with a force field, a τ field
-// that varies along every row (so every node takes its own rates), both, and both with the
-// velocity written by the step (the dense immersed cells' set-up), each timed like the
-// plain step, in that order per grid and thread count.
+// docs/performance-coupled-step.md, "What the grid overhead is made of"): the benchmark lattice
+// (periodic BGK) with a force field, a τ field that varies along every row (so every node takes its
+// own rates), both, and both with the velocity written by the step (the dense immersed cells'
+// set-up), each timed like the plain step, in that order per grid and thread count.
 struct InputVariant {
   const char* name;
   const char* key;  // in metric names

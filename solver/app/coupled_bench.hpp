@@ -1,7 +1,7 @@
 #pragma once
 // The coupled-step section of `erythro bench` (issue 18): the cost of the immersed cells in
 // a suspension, per cell and step, beside the fluid step of the same grid without cells.
-// Informative only. Method and figures: docs/performance.md "The coupled step benchmark".
+// Informative only. Method and figures: docs/performance-coupled-step.md "The coupled step benchmark".
 #include <string>
 #include <vector>
 
@@ -20,7 +20,7 @@ struct CoupledBenchOptions {
   // repulsion, sharing its neighbour search.
   bool aggregation = false;
   // Index-field rebuild interval k; 0: the largest k the validation supports in each box,
-  // k U ≤ 0.1 h with U the wall speed (docs/performance.md "The coupled step benchmark").
+  // k U ≤ 0.1 h with U the wall speed (docs/performance-coupled-step.md "The coupled step benchmark").
   long index_interval = 0;
   // A user's scene with cells instead of the shear boxes (scene_bench.hpp); cells, aggregation
   // and index_interval are then the scene's.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,6 +20,7 @@ struct Timed {
   std::vector<std::pair<std::string, double>> stages;  // in the loop's order
   double step_seconds = 0.0;                           // their sum / steps
   double fluid_step_seconds = 0.0;
+  CoupledWork work;
 };
 
 Timed time_run(const PreparedScene& p, long steps) {
@@ -35,10 +37,67 @@ Timed time_run(const PreparedScene& p, long steps) {
     t.step_seconds += stage.seconds / static_cast<double>(steps);
     if (stage.name == "fluid_step") t.fluid_step_seconds = stage.seconds / static_cast<double>(steps);
   }
+  t.work.steps = summary.steps;
+  t.work.index_field_rebuilds = summary.index_field_rebuilds;
+  if (const membrane::ImmersedCells* cells = simulation.cells()) t.work.markers = cells->marker_count();
+  if (const sim::CellPhysics* physics = simulation.cell_physics(); physics && physics->contacts()) {
+    t.work.listed_pairs_swept = physics->contacts()->listed_pairs_swept();
+    t.work.pair_list_builds = physics->contacts()->pair_list_builds();
+  }
   return t;
 }
 
 double median(std::vector<double> v) { return stats_of(std::move(v)).median; }
+
+// The stage's µs per step, or nothing when the loop has no such stage (on two threads the forces
+// and the index field are one stage, and neither single one is there).
+std::optional<double> stage_us(const CoupledMeasurement& m, const std::string& name) {
+  for (const auto& [stage, us] : m.stage_us)
+    if (stage == name) return us;
+  return std::nullopt;
+}
+
+// value with `digits` decimals.
+std::string fixed(double value, int digits) {
+  std::ostringstream s;
+  s.precision(digits);
+  s << std::fixed << value;
+  return s.str();
+}
+
+// The work line of record_coupled, its figures also put into the run row.
+std::string work_line(const CoupledMeasurement& m, int cells, std::map<std::string, io::Value>& run) {
+  const CoupledWork& w = m.work;
+  const double steps = static_cast<double>(std::max(w.steps, 1L));
+  const double markers = static_cast<double>(std::max<std::size_t>(w.markers, 1));
+  std::string line = "    work: " + std::to_string(w.markers) + " markers";
+  auto put = [&](const std::string& key, double value, const std::string& text) {
+    run[key] = value;
+    line += ", " + text;
+  };
+  if (w.listed_pairs_swept > 0) {
+    const double pairs_per_step = static_cast<double>(w.listed_pairs_swept) / steps;
+    put("listed_pairs_per_marker_step", pairs_per_step / markers,
+        fixed(pairs_per_step / markers, 2) + " listed pairs per marker");
+    put("pair_list_builds", static_cast<double>(w.pair_list_builds),
+        std::to_string(w.pair_list_builds) + " list builds");
+    if (const auto us = stage_us(m, "contact_forces"))
+      put("contact_forces_ns_per_pair", 1e3 * *us / pairs_per_step,
+          "contact " + fixed(1e3 * *us / pairs_per_step, 2) + " ns/pair");
+  }
+  if (w.index_field_rebuilds > 0) {
+    put("index_field_rebuilds", static_cast<double>(w.index_field_rebuilds),
+        std::to_string(w.index_field_rebuilds) + " index-field rebuilds");
+    if (const auto us = stage_us(m, "index_field")) {
+      const double per = *us * steps / static_cast<double>(w.index_field_rebuilds) / cells;
+      put("index_field_us_per_cell_rebuild", per, "index field " + fixed(per, 2) + " us/(cell rebuild)");
+    }
+  }
+  for (const std::string name : {"spreading", "marker_advection"})
+    if (const auto us = stage_us(m, name))
+      put(name + "_ns_per_marker", 1e3 * *us / markers, name + " " + fixed(1e3 * *us / markers, 1) + " ns/marker");
+  return line;
+}
 
 }  // namespace
 
@@ -71,6 +130,7 @@ CoupledMeasurement measure_coupled(const PreparedScene& coupled, const PreparedS
     with_cells_us.push_back(1e6 * c.fluid_step_seconds);
     extra.push_back(1e6 * (c.step_seconds - f.step_seconds) / cells);
     overhead.push_back(c.fluid_step_seconds / f.fluid_step_seconds);
+    m.work = c.work;
     for (const auto& [name, seconds] : c.stages) {
       if (pair == 0) m.stage_us.emplace_back(name, 0.0);
       stage_seconds[name] += seconds;
@@ -103,6 +163,7 @@ std::string record_coupled(io::ResultRecord& record, const CoupledRow& row, cons
     line << " " << name << " " << value << (per_step ? " us" : " us/cell");
     run[name + (per_step ? "_us_per_step" : "_us_per_cell_step")] = value;
   }
+  line << "\n" << work_line(m, cells, run);
   record.add_run(run, row.scene_text);
   record.add_metric(informative("coupled_extra_us_per_cell_step_" + row.tag,
                                 "(coupled step - fluid-only step of the same grid) / cells, median over pairs", "us",

@@ -4,6 +4,7 @@
 // a user's scene). Each run goes the product's way, scene text → scene::parse_scene →
 // derive_lattice → sim::Simulation, without an output file, and the time loop's own stage
 // timings (RunSummary::stages) give each stage's cost.
+#include <cstddef>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,6 +37,16 @@ struct PreparedScene {
 };
 PreparedScene prepare_scene(const std::string& text, const std::string& name);
 
+// The work a coupled run did beside its time: what the cost per cell depends on besides the code
+// (the same in every run of one scene: the runs are deterministic).
+struct CoupledWork {
+  long steps = 0;
+  std::size_t markers = 0;
+  std::size_t listed_pairs_swept = 0;  // the contact sweep's pairs over all steps (CellContacts)
+  std::size_t pair_list_builds = 0;
+  long index_field_rebuilds = 0;  // during the run (the one at set-up not counted)
+};
+
 // Medians over `pairs` pairs of runs (fluid only, then coupled, one after the other).
 struct CoupledMeasurement {
   // Per step.
@@ -46,6 +57,7 @@ struct CoupledMeasurement {
   double grid_overhead = 0.0;
   // Each stage per step, the mean over all coupled runs, in the loop's order.
   std::vector<std::pair<std::string, double>> stage_us;
+  CoupledWork work;
 };
 CoupledMeasurement measure_coupled(const PreparedScene& coupled, const PreparedScene& fluid_only, int cells, long steps,
                                    int pairs);
@@ -57,8 +69,11 @@ struct CoupledRow {
   std::vector<std::pair<std::string, double>> columns;  // the run row's own columns (cells, threads, …)
   std::string scene_text;                               // the coupled run's scene, kept in the record's /scenes
 };
-// Adds the run row (with its scene) and its two informative metrics to the record; returns the stage line
-// (cell stages per cell and step, the grid stages per step).
+// Adds the run row (with its scene and its work) and its two informative metrics to the record;
+// returns the stage line (cell stages per cell and step, the grid stages per step) and, below it,
+// the work line: pairs per marker and step, the rebuilds, and the cost per unit of work where a
+// stage holds one kind of work (on one thread: the contact forces per pair, the index field per cell
+// and rebuild; spreading and marker advection per marker).
 std::string record_coupled(io::ResultRecord& record, const CoupledRow& row, const CoupledMeasurement& m, int cells);
 
 }  // namespace erythro::app

@@ -5,7 +5,7 @@
 // stage times go to the count it ran on. A run gives the same bits on any thread count, so the
 // switches do not change it; both counts see the same cells at the same moments, and the same
 // fast and slow phases of a shared host, which two separate runs do not
-// (docs/performance.md, "Two threads against one, in one run").
+// (docs/performance-coupled-step.md, "Two threads against one, in one run").
 #include <string>
 #include <utility>
 #include <vector>

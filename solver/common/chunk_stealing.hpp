@@ -6,7 +6,7 @@
 // guest on its core, an interrupt) then hands its last chunks to the others instead of holding up
 // the end of the region, while most chunks stay on the thread that ran them in the previous step
 // (its cache). Which thread runs a chunk changes no result: the same bits for any thread count
-// and any timing (docs/performance.md, "Chunks taken from a slower thread").
+// and any timing (docs/performance-coupled-step.md, "Chunks taken from a slower thread").
 #include <algorithm>
 #include <atomic>
 #include <cstdint>

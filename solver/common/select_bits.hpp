@@ -3,7 +3,7 @@
 // Written as `c ? a : b`, a loop of such choices vectorises on processors with masked vector
 // operations (AVX-512) but, on those without them (AVX2), GCC keeps it as a branch: under the
 // default -ftrapping-math it may not compute, in every lane, a floating-point operation that the
-// branch would skip (docs/performance.md, "Vector loops on AVX2 hosts" and "The membrane's loops
+// branch would skip (docs/performance-coupled-step.md, "Vector loops on AVX2 hosts" and "The membrane's loops
 // on AVX2 hosts"). For hot loops, marked `omp simd` or vectorised by the compiler on its own,
 // whose every lane must give the bits of the scalar code.
 #include <bit>

@@ -73,7 +73,7 @@ class FluidLattice {
   // Per-node force density (immersed boundary, manufactured solutions). Allocated,
   // zeroed, on the first call to enable_force_field().
   // The step skips the force term on rows known to hold no force: a zero force adds
-  // exactly zero, so the values are the same (docs/performance.md, "Quiet rows").
+  // exactly zero, so the values are the same (docs/performance-coupled-step.md, "Quiet rows").
   // force_x()/force_y() give write access anywhere, so after them every row counts as
   // forced until the next clear_force_field(); a writer that records the rows it writes
   // uses force_rows_writer() instead.
@@ -91,7 +91,7 @@ class FluidLattice {
   std::uint8_t force_row_state(int y) const;
   // Clears the force field (enabling it if needed) without touching it: the rows that may
   // hold force are marked cleared, and each is zeroed when a writer first adds to it
-  // (ForceRowsWriter) or else at the start of the next step() (docs/performance.md, "The
+  // (ForceRowsWriter) or else at the start of the next step() (docs/performance-coupled-step.md, "The
   // force field zeroed where it is written"). Every value read is that of a zeroed field.
   void clear_force_field();
   // Write access for a writer that, before its first addition to row y, zeroes the row if

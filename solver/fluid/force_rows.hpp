@@ -4,7 +4,7 @@
 // its rows: a cleared row is zeroed by the writer right before its first addition to it
 // (while the row is in the cache for those additions) or, if nobody writes it, at the start
 // of the next fluid step. Every value read is that of a field zeroed when it was cleared
-// (docs/performance.md, "The force field zeroed where it is written").
+// (docs/performance-coupled-step.md, "The force field zeroed where it is written").
 #include <cstdint>
 
 namespace erythro::fluid::force_row {

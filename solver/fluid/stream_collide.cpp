@@ -165,7 +165,7 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
     return;
   }
   // The row's run of nodes that the vector loop takes: every node whose nine sources are each
-  // a contiguous stream along x (docs/performance.md, "Wall rows in the vector loop"). A
+  // a contiguous stream along x (docs/performance-coupled-step.md, "Wall rows in the vector loop"). A
   // pull_swap step's first and last nodes wrap across a periodic side or bounce off a side
   // wall, so they take the general path; a local step reads every node's own slots, so only a
   // side with a wall term (moving) keeps its end node general.
@@ -209,8 +209,8 @@ void update_row(const KernelArgs& a, const NodeInputs& in, int y) {
 }
 
 // Row y with the kernel variant its inputs need: τ node by node only where the row's τ
-// varies, the force field only on rows that may hold force ("quiet rows",
-// docs/performance.md). A skipped zero force or a row's one τ gives the same values.
+// varies, the force field only on rows that may hold force (docs/performance-coupled-step.md,
+// "Quiet rows"). A skipped zero force or a row's one τ gives the same values.
 template <AaStep Step, CollisionModel Model, bool Velocity>
 void update_row_variant(const KernelArgs& a, const NodeInputs& in, int y, bool tau, bool field, bool force) {
   if (tau) {

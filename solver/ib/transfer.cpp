@@ -65,7 +65,7 @@ bool check_finite_and_same(std::span<const double> X, std::span<const double> Y,
   const double* wx = compare ? WX.data() : x;
   const double* wy = compare ? WY.data() : y;
   // Blocks over the threads, a vector loop within each: the combined `parallel for simd` stayed
-  // scalar with GCC 12 on AVX2 hosts (docs/performance.md, "Per-step costs of small scenes").
+  // scalar with GCC 12 on AVX2 hosts (docs/performance-coupled-step.md, "Per-step costs of small scenes").
   constexpr long kBlock = 1024;
   const long blocks = (markers + kBlock - 1) / kBlock;
   int finite = 1, same = 1;
@@ -89,7 +89,7 @@ void check_finite(std::span<const double> X, std::span<const double> Y) { check_
 
 // Grids beyond the cache (a hundred cells and more): a marker's support rows are far apart in
 // memory and miss the cache, so spreading and interpolation ask for the lines they will need a
-// little ahead (docs/performance.md, "Support rows ahead of their use"). Prefetches are hints:
+// little ahead (docs/performance-coupled-step.md, "Support rows ahead of their use"). Prefetches are hints:
 // no result depends on them. On grids that stay in the cache they only cost instructions
 // (interpolation 4.0 → 5.0–5.7 µs per cell at 255²), so they are asked for from kPrefetchNodes
 // nodes on: 2^17 nodes hold 14.7 MB of populations and fields at 112 B per node, half the

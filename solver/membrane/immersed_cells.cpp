@@ -45,7 +45,7 @@ void ImmersedCells::compute_forces() {
   // Cells own disjoint marker ranges (together every marker): parallel over cells is race-free
   // and deterministic. Each thread starts on its own share of neighbouring cells, the same
   // cells' markers in every step (faster than a dynamic schedule in the bench's box of like
-  // cells: docs/performance.md, "The threads' shares of the cell work"), and takes the last
+  // cells: docs/performance-coupled-step.md, "The threads' shares of the cell work"), and takes the last
   // cells of a slower thread's share (common/chunk_stealing.hpp).
   parallel::for_each_chunk(n, threads_forces() ? omp_get_max_threads() : 1, [&](long q) {
     const int c = static_cast<int>(q);

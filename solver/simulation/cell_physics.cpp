@@ -82,7 +82,7 @@ void CellPhysics::refresh_viscosity_with_forces(fluid::FluidLattice& lattice) {
   // Beside the forces, the rebuild's threads do not help the forces and the forces' threads
   // do not help the rebuild; before them, each uses every thread but the rebuild's serial
   // parts (its fills) leave the others waiting. Which costs less depends on the host, the
-  // cells and k, so by default both are measured (docs/performance.md).
+  // cells and k, so by default both are measured (docs/performance-coupled-step.md).
   // A caller that has lowered the thread count to one since the stages were registered (the
   // bench's --alternate-threads) gets the one-thread arrangement, before the forces, unmeasured.
   constexpr int kBeside = 0, kBefore = 1;

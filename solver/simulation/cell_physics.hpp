@@ -42,7 +42,7 @@ class CellPhysics {
   // the rebuild beside the forces, each on one thread of a two-thread region, or the rebuild
   // before the forces, each on all threads (IndexField::update across cells). Both give the
   // same bits; by default each is measured and the faster kept (FasterOfTwo,
-  // docs/performance.md, "The index field beside or before the forces, by measurement"). On one
+  // docs/performance-coupled-step.md, "The index field beside or before the forces, by measurement"). On one
   // thread the stages "index_field", "membrane_forces" and "contact_forces" run one after the
   // other. Stages throw std::domain_error (non-finite marker)
   // or interior::FillLeakError (a membrane tangled).

@@ -2,7 +2,7 @@
 // Which of two interchangeable arrangements of a recurring piece of work to run next, chosen
 // by their measured wall times. The two must give the same results (the caller's promise), so
 // the choice moves only the time, never a bit; which one wins depends on the host and on the
-// scene (docs/performance.md, "The index field beside or before the forces, by measurement").
+// scene (docs/performance-coupled-step.md, "The index field beside or before the forces, by measurement").
 //
 // Each arrangement runs once first; then the one with the smaller mean of its last two times
 // runs. The arrangement that runs is measured every time, so one slow time of it is corrected

@@ -205,7 +205,8 @@ TEST(Deoxygenation, CiSubset) {
 // The calibrated RMS misfit is the model-form floor (one lumped S against local kinetics)
 // once lattice error is below it; measured with this set-up at every level (0.4–0.15 µm).
 // Lattice error under control = the calibrated RMS misfit at each level within 5 % of that
-// at the finest level (docs/validation-deoxygenation.md, "Misfit against h").
+// at the finest level (docs/validation-deoxygenation.md,
+// "The misfit is the model-form floor at every level").
 constexpr double kFloorSpread = 0.05;
 
 TEST(Deoxygenation, FullStudy) {

@@ -316,6 +316,45 @@ TEST(CellContacts, PairListsFollowMovingMarkersBitForBit) {
   EXPECT_LE(builds, 12u);
 }
 
+TEST(CellContacts, ListedPairsSweptCountsEachListedPairOncePerCall) {
+  // The benchmark's work counter (listed_pairs_swept): the pairs of the lists, each once, added
+  // at every call. Markers at rest keep the lists of the first call, which hold every pair of
+  // different cells within r_c + skin (minimum image along the periodic x), counted here by hand.
+  const geometry::Domain dom{Grid{60, 50}, true, false};
+  const ContactLaw law{MorseParameters{0.3, 2.5, 0.8, 6.0}, std::nullopt};
+  std::vector<double> x, y;
+  std::vector<std::size_t> off{0};
+  const double centres[3][2] = {{12, 14}, {23.5, 15}, {55, 30}};  // the last near the periodic side
+  for (const auto& c : centres) {
+    for (int k = 0; k < 30; ++k) {
+      const double a = 2.0 * std::numbers::pi * (k + 0.37) / 30.0;
+      x.push_back(c[0] + 5.2 * std::cos(a));
+      y.push_back(c[1] + 4.6 * std::sin(a));
+    }
+    off.push_back(x.size());
+  }
+  CellContacts contacts(dom, law);
+  const double reach = contacts.cutoff() + contacts.skin();
+  std::size_t by_hand = 0;
+  for (std::size_t m = 0; m < x.size(); ++m)
+    for (std::size_t n = m + 1; n < x.size(); ++n) {
+      if (m / 30 == n / 30) continue;  // the same cell
+      double dx = x[m] - x[n];
+      dx -= 60.0 * std::round(dx / 60.0);
+      const double dy = y[m] - y[n];
+      if (dx * dx + dy * dy < reach * reach) ++by_hand;
+    }
+  ASSERT_GT(by_hand, 0u);
+  const MarkerView v{x, y, off};
+  std::vector<double> fx(x.size(), 0.0), fy(x.size(), 0.0);
+  EXPECT_EQ(contacts.listed_pairs_swept(), 0u);
+  for (std::size_t call = 1; call <= 3; ++call) {
+    contacts.add_forces(v, fx, fy);
+    EXPECT_EQ(contacts.listed_pairs_swept(), call * by_hand) << call;
+  }
+  EXPECT_EQ(contacts.pair_list_builds(), 1u);
+}
+
 TEST(CellContacts, PairListsSameOnAnyThreadCount) {
   // 3 000 markers (above kParallelMarkers): lists built and summed on 1, 2, 3 and 5 threads
   // agree. Each thread sweeps its own slab of cells, each pair inside it evaluated once and
