@@ -24,8 +24,11 @@ struct MarkerView {
 class PairLists {
  public:
   // The skin: kSkin, at most a quarter of the cut-off, and small enough that r_c + skin
-  // stays below half of every periodic side (the minimum image stays the only image).
-  static constexpr double kSkin = 1.0;
+  // stays below half of every periodic side (the minimum image stays the only image). The skin
+  // changes the work, never the sums (pairs beyond r_c add nothing). Half a lattice unit: with
+  // the Morse cut-off (about 12 h) the lists' builds and their pairs beyond r_c then cost about
+  // the same (docs/performance-coupled-step.md, "A thinner skin for the pair lists").
+  static constexpr double kSkin = 0.5;
   PairLists(const geometry::Domain& domain, double cutoff);
 
   // Whether the lists still hold every pair within the cut-off for these markers.

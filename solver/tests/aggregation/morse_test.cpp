@@ -311,7 +311,7 @@ TEST(CellContacts, PairListsFollowMovingMarkersBitForBit) {
     }
     builds = agg.pair_list_builds();
   }
-  // 40 calls, the first cell moving 0.04 per call, half the skin 0.5: a handful of builds.
+  // 40 calls, the first cell moving 0.04 per call, half the skin 0.25: a handful of builds.
   EXPECT_GE(builds, 3u);
   EXPECT_LE(builds, 12u);
 }
