@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """The suite's expected time, its split into shards and its timings file.
 
-Usage: reports/suite.py {expect,shard,times} ... (see docs/reports.md, "Time", and docs/reports.md, "Shards").
+Usage: reports/suite.py {expect,shard,times} ...
+(see docs/reports.md, "Time", and docs/reports.md, "Shards").
 Needs only the Python standard library and ctest.
 """
 import os

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Every reference to a section of a page in docs/ names a heading that page has.
+"""Every reference to a section of a page in docs/ names a section that page has.
 
 The code and the pages cite sections as  docs/<page>.md, "Title"  or  docs/<page>.md "Title"
 (straight or curly quotes, possibly broken over comment lines). A reference resolves when some
@@ -17,9 +17,9 @@ import sys
 
 SUFFIXES = {".cpp", ".hpp", ".h", ".md", ".txt", ".sh", ".py", ".toml", ".in"}
 SKIP_DIRS = {".git", "build", "build-dev", "third_party"}
-# docs/<page>.md (inside docs/ also <page>.md alone), then an optional comma, then a quoted title;
-# between the parts, and inside the title, only spaces, line breaks and the comment leaders (// or
-# #) of a continued comment.
+# docs/<page>.md (or <page>.md alone, when docs/ has such a page), then an optional comma or an
+# opening parenthesis, then a quoted title. Between the parts, and inside the title, only spaces,
+# line breaks and the comment leaders (// or #) of a continued comment.
 GAP = r"(?:[ \t]|\n[ \t]*(?://|#)?[ \t]*)*"
 BREAK = r"\n[ \t]*(?://|#)?[ \t]*"  # a line break inside a comment or a paragraph
 REFERENCE = re.compile(r"(docs/)?([A-Za-z0-9_-]+\.md)" + GAP + r",?" + GAP + r"\(?" +
