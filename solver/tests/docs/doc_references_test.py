@@ -11,12 +11,12 @@ the file and line of the reference.
 
 usage: doc_references_test.py SOURCE_DIR
 """
+import os
 import pathlib
 import re
 import sys
 
 SUFFIXES = {".cpp", ".hpp", ".h", ".md", ".txt", ".sh", ".py", ".toml", ".in"}
-SKIP_DIRS = {".git", "build", "build-dev", "third_party"}
 # docs/<page>.md (or <page>.md alone, when docs/ has such a page), then an optional comma or an
 # opening parenthesis, then a quoted title. Between the parts, and inside the title, only spaces,
 # line breaks and the comment leaders (// or #) of a continued comment.
@@ -28,10 +28,21 @@ HEADING = re.compile(r"^#{1,6}[ \t]+(?:[A-Z]?[0-9]+[a-z]?\.[ \t]+)?(.+?)[ \t]*#*
 LEAD_IN = re.compile(r"^(?:[-*][ \t]+)?\*{1,2}([^*\n]+)\*{1,2}", re.MULTILINE)
 
 
-def headings(page: pathlib.Path) -> list[str]:
+def section_titles(page: pathlib.Path) -> list[str]:
     """The titles a reference may cite: the headings and the paragraphs' bold or italic lead-ins."""
     text = page.read_text(encoding="utf-8")
     return [h.replace("`", "") for h in HEADING.findall(text) + LEAD_IN.findall(text)]
+
+
+def source_files(root: pathlib.Path):
+    """The repository's text files, in a fixed order; .git and build folders (build, build-dev, ...)
+    are not entered."""
+    for folder, subfolders, files in os.walk(root):
+        subfolders[:] = sorted(d for d in subfolders if d != ".git" and not d.startswith("build"))
+        for name in sorted(files):
+            path = pathlib.Path(folder) / name
+            if path.suffix in SUFFIXES:
+                yield path
 
 
 def main() -> int:
@@ -39,11 +50,7 @@ def main() -> int:
     docs = root / "docs"
     cache: dict[str, list[str] | None] = {}
     checked, failures = 0, []
-    for path in sorted(root.rglob("*")):
-        if not path.is_file() or path.suffix not in SUFFIXES:
-            continue
-        if any(part in SKIP_DIRS or part.startswith("build") for part in path.relative_to(root).parts[:-1]):
-            continue
+    for path in source_files(root):
         text = path.read_text(encoding="utf-8", errors="replace")
         for match in REFERENCE.finditer(text):
             prefixed, page = match.group(1) is not None, match.group(2)
@@ -51,14 +58,14 @@ def main() -> int:
             if not prefixed and not (docs / page).is_file():
                 continue  # a file named alone that is not a docs page (README.md "...")
             if page not in cache:
-                cache[page] = headings(docs / page) if (docs / page).is_file() else None
+                cache[page] = section_titles(docs / page) if (docs / page).is_file() else None
             line = text.count("\n", 0, match.start()) + 1
             where = f"{path.relative_to(root)}:{line}"
             checked += 1
             if cache[page] is None:
                 failures.append(f"{where}: docs/{page} does not exist")
             elif not any(h.startswith(title) for h in cache[page]):
-                failures.append(f'{where}: docs/{page} has no heading starting with "{title}"')
+                failures.append(f'{where}: docs/{page} has no section starting with "{title}"')
     for f in failures:
         print("FAIL", f)
     print(f"{checked} references to sections of docs/ checked, {len(failures)} unresolved")
