@@ -89,7 +89,9 @@ bool batch_terms(const ContactPotential& potential, std::size_t n, SweepScratch&
 
 // The run's pairs to its partners (each partner once in a run: the lanes never meet): S_n += Φ ℓ_m,
 // the pair force −Φ' ℓ_m ℓ_n (X_n − X_m)/r with X_n − X_m = −dx, the closest partner and the count,
-// each only where the pair interacts.
+// each only where the pair interacts: where batch_terms left a finite closest distance tr (its +∞
+// marks a pair that does not interact). Only eight-byte elements in the loop: a byte flag there
+// set the vector length to 32 lanes, so a run shorter than 32 (most runs) took the scalar tail.
 void add_to_partners(const SweepArrays& a, const SweepScratch& s, const SweepScratch::Run& run) {
   double* __restrict S = a.S.data() + run.first;
   double* __restrict px = a.px.data() + run.first;
@@ -102,10 +104,11 @@ void add_to_partners(const SweepArrays& a, const SweepScratch& s, const SweepScr
   const double* __restrict dx = s.dx.data() + run.at;
   const double* __restrict dy = s.dy.data() + run.at;
   const double* __restrict hr = s.hr.data() + run.at;
-  const unsigned char* __restrict on = s.on.data() + run.at;
+  const double* __restrict tr = s.tr.data() + run.at;
+  constexpr double kNoPair = std::numeric_limits<double>::infinity();
 #pragma omp simd
   for (std::size_t k = 0; k < run.length; ++k) {
-    const bool pair = on[k] != 0;  // c ? a : b through the bits: vectorised on AVX2 too (select_bits.hpp)
+    const bool pair = tr[k] != kNoPair;  // c ? a : b through the bits: vectorised on AVX2 too (select_bits.hpp)
     S[k] = numeric::select_bits(pair, S[k] + phi[k] * ml[k], S[k]);
     px[k] = numeric::select_bits(pair, px[k] - w[k] * (-dx[k]), px[k]);
     py[k] = numeric::select_bits(pair, py[k] - w[k] * (-dy[k]), py[k]);
