@@ -504,6 +504,10 @@ int run_bench(BenchOptions o) {
     o.coupled.steps = 100;
     o.coupled.pairs = 1;
   }
+  if (!o.write_scenes.empty()) {
+    write_box_scenes(o.coupled, o.write_scenes);
+    return exit_code::ok;
+  }
   if (o.coupled_only) return run_coupled_only(o);
   if (o.fluid_inputs) return run_fluid_inputs(o);
   const auto start_all = Clock::now();
@@ -714,6 +718,13 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
                 "in turn every block of steps, instead of separate runs (the cell work on both counts under the "
                 "same conditions)")
       ->needs(coupled_only);
+  CLI::Option* write_scenes =
+      cmd->add_option("--write-scenes", options.write_scenes,
+                      "With --coupled-only: write each box's scenes into this folder (the product's, the same cells "
+                      "as [[cells]] for an older binary, the fluid alone; listed in boxes.tsv) instead of measuring: "
+                      "the input of ci/bench-against.sh")
+          ->needs(coupled_only)
+          ->excludes(cmd->get_option("--alternate-threads"));
   cmd->add_option("--scene", options.coupled.scene,
                   "With --coupled-only: the coupled step of this scene (its cells, its physics) beside the same scene "
                   "without its cells, instead of the shear boxes")
@@ -721,7 +732,8 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
       ->needs(coupled_only)
       ->excludes(cells)
       ->excludes(aggregation)
-      ->excludes(interval);
+      ->excludes(interval)
+      ->excludes(write_scenes);
   return cmd;
 }
 

@@ -25,6 +25,7 @@ struct BenchOptions {
   bool coupled_only = false;    // only the coupled step (coupled_bench.hpp), in benchmark.coupled
   bool fluid_inputs = false;    // only the fluid step with each input of the coupled step, in benchmark.fluid_inputs
   CoupledBenchOptions coupled;  // its threads are `threads`
+  std::string write_scenes;     // with coupled_only: write the boxes' scenes here instead (write_box_scenes)
 };
 
 // Declares the `bench` subcommand on `cli`, filling `options`.

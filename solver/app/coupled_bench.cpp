@@ -7,6 +7,8 @@
 // same process, the same grid without cells (fluid only): the extra cost per cell and step
 // is (coupled step − fluid-only step)/N, and the grid-proportional overhead of the cells is
 // the fluid step with cells (forces, per-node τ of the interior) over the fluid-only one.
+// --write-scenes writes the boxes' scenes instead, for timing against another build by whole
+// processes (write_box_scenes, ci/bench-against.sh).
 #include "app/coupled_bench.hpp"
 
 #include <omp.h>
@@ -14,15 +16,18 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "aggregation/morse_units.hpp"
 #include "app/coupled_timing.hpp"
 #include "app/thread_alternation.hpp"
 #include "common/error.hpp"
 #include "geometry/polygon.hpp"
+#include "io/atomic_file.hpp"
 #include "io/result_record.hpp"
 #include "scene/cell_seeding.hpp"
 #include "scene/units.hpp"
@@ -37,6 +42,7 @@ constexpr double kShearRatePerS = 3828.8986444262964;
 constexpr double kAreaFraction = 0.3;
 constexpr double kRadiusUm = 3.91;
 constexpr int kMarkers = 184;
+constexpr double kDeStar = 5.0;  // the aggregation of --aggregation (thesis ch. IV)
 
 // The area of one cell's marker polygon.
 double cell_area_um2() {
@@ -52,9 +58,9 @@ int box_nodes(int cells) {
   return static_cast<int>(std::ceil(std::sqrt(cells * cell_area_um2() / kAreaFraction) / kSpacingUm));
 }
 
-// The scene of an n × n box with `cells` cells (0: the fluid alone, without [membrane]);
-// health checked and diagnostics sampled once, at the last step. The wall speed is γ̇ n h / 2.
-std::string scene_text(int n, int cells, long steps, const CoupledBenchOptions& o, long index_interval) {
+// The box of n × n nodes without cells: its fluid, walls, shear and step count; health checked
+// and diagnostics sampled once, at the last step. The wall speed is γ̇ n h / 2.
+std::string box_text(int n, long steps) {
   const double side = n * kSpacingUm, wall_speed = 0.5 * kShearRatePerS * side;
   std::ostringstream s;
   s.precision(17);
@@ -65,15 +71,45 @@ std::string scene_text(int n, int cells, long steps, const CoupledBenchOptions& 
     << "[initial]\ntype = \"shear\"\n[run]\nsteps = " << steps << "\n"
     << "[monitor]\ninterval_steps = " << steps << "\n"
     << "[output]\nfields_interval_steps = 0\ndiagnostics_interval_steps = " << steps << "\n";
+  return s.str();
+}
+
+// The cells' membrane and interior, the index field rebuilt every `index_interval` steps.
+std::string membrane_text(long index_interval) {
+  return "[membrane]\nlaw = \"neo_hookean\"\nshear_modulus_dyn_cm = 0.22973391866557774\n"
+         "bending_modulus_dyn_cm = 1.3784035119934664e-10\narea_modulus_Pa = 5875.547791958511\n"
+         "kernel = \"cosine4\"\ninterior_viscosity_cP = 6.0\ninterior_method = \"flood_fill\"\n"
+         "index_update_interval = " +
+         std::to_string(index_interval) + "\n";
+}
+
+// The scene of an n × n box with `cells` cells (0: the fluid alone, without [membrane]).
+std::string scene_text(int n, int cells, long steps, const CoupledBenchOptions& o, long index_interval) {
+  std::ostringstream s;
+  s.precision(17);
+  s << box_text(n, steps);
   if (cells > 0)
-    s << "[membrane]\nlaw = \"neo_hookean\"\nshear_modulus_dyn_cm = 0.22973391866557774\n"
-      << "bending_modulus_dyn_cm = 1.3784035119934664e-10\narea_modulus_Pa = 5875.547791958511\n"
-      << "kernel = \"cosine4\"\ninterior_viscosity_cP = 6.0\ninterior_method = \"flood_fill\"\n"
-      << "index_update_interval = " << index_interval << "\n"
-      << "[[cell_populations]]\nshape = \"biconcave\"\nradius_um = " << kRadiusUm << "\nmarkers = " << kMarkers
-      << "\ncount = " << cells << "\nseed = 1\n"
+    s << membrane_text(index_interval) << "[[cell_populations]]\nshape = \"biconcave\"\nradius_um = " << kRadiusUm
+      << "\nmarkers = " << kMarkers << "\ncount = " << cells << "\nseed = 1\n"
       << "[repulsion]\npressure_Pa = 1.0\n";
-  if (cells > 0 && o.aggregation) s << "[aggregation]\nde_star = 5.0\n";  // thesis ch. IV
+  if (cells > 0 && o.aggregation)  // thesis ch. IV
+    s << "[aggregation]\nde_star = " << std::fixed << std::setprecision(1) << kDeStar << "\n";
+  return s.str();
+}
+
+// The cells the population of scene_text placed, one [[cells]] entry each (centre and angle as the
+// seeding drew them), the index field every step, no repulsion, aggregation by its surface energy:
+// the same box for a binary from before [[cell_populations]], [repulsion] and `de_star` (efaf88f,
+// issue 18's reference), which builds each cell's outline from the same centre and angle.
+std::string explicit_cells_text(int n, long steps, const scene::Scene& seeded, const CoupledBenchOptions& o) {
+  std::ostringstream s;
+  s.precision(17);
+  s << box_text(n, steps) << membrane_text(1);
+  for (const scene::CellSpec& c : seeded.cells)
+    s << "[[cells]]\nshape = \"" << c.shape << "\"\nradius_um = " << c.radius_um << "\nmarkers = " << c.markers
+      << "\ncenter_um = [" << c.center_um[0] << ", " << c.center_um[1] << "]\nangle_deg = " << c.angle_deg << "\n";
+  if (o.aggregation)
+    s << "[aggregation]\nsurface_energy_J_m2 = " << aggregation::surface_energy_for_de_star(kDeStar) << "\n";
   return s.str();
 }
 
@@ -106,6 +142,26 @@ void run_alternating(const CoupledBenchOptions& o, io::ResultRecord& record) {
 }
 
 }  // namespace
+
+void write_box_scenes(const CoupledBenchOptions& o, const std::string& dir) {
+  io::ensure_writable_directory(dir);
+  std::ostringstream boxes;
+  boxes << "cells\tgrid_n\tindex_update_interval\tproduct\tsame\tfluid\n";
+  for (int cells : o.cells) {
+    const int n = box_nodes(cells);
+    const long k = box_interval(n, o);
+    const std::string product = scene_text(n, cells, o.steps, o, k);
+    const std::string stem = "box" + std::to_string(cells) + "_";
+    const std::string same = explicit_cells_text(n, o.steps, prepare_scene(product, scene_name(cells)).scene, o);
+    io::write_text_atomically(dir + "/" + stem + "product.toml", product);
+    io::write_text_atomically(dir + "/" + stem + "same.toml", same);
+    io::write_text_atomically(dir + "/" + stem + "fluid.toml", scene_text(n, 0, o.steps, o, 1));
+    boxes << cells << "\t" << n << "\t" << k << "\t" << stem << "product.toml\t" << stem << "same.toml\t" << stem
+          << "fluid.toml\n";
+  }
+  io::write_text_atomically(dir + "/boxes.tsv", boxes.str());
+  std::printf("scenes of %zu box(es) and their list: %s/boxes.tsv\n", o.cells.size(), dir.c_str());
+}
 
 void run_coupled_bench(const CoupledBenchOptions& o, io::ResultRecord& record) {
   if (o.alternate_threads) return run_alternating(o, record);

@@ -30,6 +30,13 @@ struct CoupledBenchOptions {
   bool alternate_threads = false;
 };
 
+// --write-scenes: instead of measuring, writes each box's scenes into `dir` for a comparison
+// with another binary by whole processes (ci/bench-against.sh): box<N>_product.toml (the
+// scene this section runs), box<N>_same.toml (the same cells as [[cells]] entries, the index
+// field every step, no repulsion: what a binary from before [[cell_populations]] reads),
+// box<N>_fluid.toml (the box without cells), and boxes.tsv listing them with N, n and k.
+void write_box_scenes(const CoupledBenchOptions& options, const std::string& dir);
+
 // Runs the section, prints its table and adds its runs and metrics to `record`.
 void run_coupled_bench(const CoupledBenchOptions& options, io::ResultRecord& record);
 
