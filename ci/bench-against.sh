@@ -16,15 +16,22 @@ if [[ $# -gt 0 && $1 != -* ]]; then
   ref=$1
   shift
 fi
-sha=$(git -C "$root" rev-parse --verify "$ref^{commit}")
+if ! sha=$(git -C "$root" rev-parse --verify --quiet "$ref^{commit}"); then
+  echo "ci/bench-against.sh: no commit $ref in this clone (a shallow clone? git fetch --unshallow)" >&2
+  exit 2
+fi
 cache=${ERYTHRO_AGAINST_DIR:-$root/build-against}/$sha
 if [[ ! -x $cache/erythro ]]; then
   echo "building $ref ($sha) in $cache"
   rm -rf "$cache/src" "$cache/build"
   mkdir -p "$cache/src"
   git -C "$root" archive "$sha" | tar -x -C "$cache/src"
-  cmake -S "$cache/src" -B "$cache/build" -DCMAKE_BUILD_TYPE=Release > "$cache/configure.log"
-  cmake --build "$cache/build" -j "$(nproc)" --target erythro > "$cache/build.log"
+  if ! { cmake -S "$cache/src" -B "$cache/build" -DCMAKE_BUILD_TYPE=Release &&
+         cmake --build "$cache/build" -j "$(nproc)" --target erythro; } > "$cache/build.log" 2>&1; then
+    tail -n 30 "$cache/build.log" >&2
+    echo "ci/bench-against.sh: $ref did not build (whole log: $cache/build.log)" >&2
+    exit 1
+  fi
   cp "$cache/build/solver/erythro" "$cache/erythro.partial"
   mv "$cache/erythro.partial" "$cache/erythro"
   rm -rf "$cache/src" "$cache/build"

@@ -116,6 +116,37 @@ def spread(values, digits):
     return f"{statistics.median(values):.{digits}f} ({min(values):.{digits}f}–{max(values):.{digits}f})"
 
 
+def mlups(n, ms_per_step):
+    """Million node updates per second of an n × n grid at the median step time."""
+    return n * n / (statistics.median(ms_per_step) * 1e-3) / 1e6
+
+
+def box_figures(ms, cells):
+    """From each pair's ms per step: the extra cost per cell and step (each binary's own fluid
+    step subtracted) and the product's ratios to the reference on the same scene, pair by pair."""
+    extra = {(who, kind): [(c - f) * 1e3 / cells for c, f in zip(ms[who, kind], ms[who, "fluid"])]
+             for who, kind in KINDS if kind != "fluid"}
+    step_ratio = [x / y for x, y in zip(ms["this", "product"], ms["reference", "same"])]
+    extra_ratio = [x / y for x, y in zip(extra["this", "product"], extra["reference", "same"])]
+    return extra, step_ratio, extra_ratio
+
+
+HEADER = ("| cells | grid | thr | k | steps | reference, same: ms/step | this, same | this, product "
+          "| MLUPS ref / product | extra us/cell: ref | this, same | product | product / ref, step "
+          "| product / ref, extra | load start / end |\n|" + "---|" * 15)
+
+
+def table_row(r):
+    ms, extra = r["ms"], r["extra"]
+    return (f"| {r['cells']} | {r['grid_n']}² | {r['threads']} | {r['k']} | {r['short']}, {r['long']} "
+            f"| {spread(ms['reference', 'same'], 2)} | {spread(ms['this', 'same'], 2)} "
+            f"| {spread(ms['this', 'product'], 2)} "
+            f"| {mlups(r['grid_n'], ms['reference', 'same']):.1f} / {mlups(r['grid_n'], ms['this', 'product']):.1f} "
+            f"| {spread(extra['reference', 'same'], 1)} | {spread(extra['this', 'same'], 1)} "
+            f"| {spread(extra['this', 'product'], 1)} | {spread(r['step_ratio'], 2)} "
+            f"| {spread(r['extra_ratio'], 2)} | {r['load_start']} / {r['load_end']} |")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("--reference", required=True, help="the other build's erythro")
@@ -138,38 +169,24 @@ def main():
                   file=sys.stderr)
             return 1
         boxes = read_boxes(scenes)
-        rows = []
         print(f"reference: {binaries['reference']} ({version(binaries['reference'])})")
         print(f"this:      {binaries['this']} ({version(binaries['this'])})")
         print(f"processor: {cpu_model()}; {a.pairs} pair(s); aggregation De* = 5, biconcave cells of 184 markers, "
               f"phi = 0.3\n")
-        print("| cells | grid | thr | k | steps | reference, same: ms/step | this, same | this, product "
-              "| MLUPS ref / product | extra us/cell: ref | this, same | product | product / ref, step "
-              "| product / ref, extra | load start / end |")
-        print("|" + "---|" * 15)
+        print(HEADER)
+        rows = []
         try:
             for box in boxes:
-                cells, n = int(box["cells"]), int(box["grid_n"])
+                cells = int(box["cells"])
                 for threads in a.threads:
                     load_start = load()
                     ms, short, long_ = measure_box(box, binaries, threads, a.pairs, a.cell_steps, scenes, workdir)
-                    load_end = load()
-                    fluid = {who: ms[who, "fluid"] for who in ("reference", "this")}
-                    extra = {(who, kind): [(c - f) * 1e3 / cells for c, f in zip(ms[who, kind], fluid[who])]
-                             for who, kind in KINDS if kind != "fluid"}
-                    step_ratio = [x / y for x, y in zip(ms["this", "product"], ms["reference", "same"])]
-                    extra_ratio = [x / y for x, y in zip(extra["this", "product"], extra["reference", "same"])]
-                    mlups = lambda v: n * n / (statistics.median(v) * 1e-3) / 1e6  # noqa: E731
-                    print(f"| {cells} | {n}² | {threads} | {box['index_update_interval']} | {short}, {long_} "
-                          f"| {spread(ms['reference', 'same'], 2)} | {spread(ms['this', 'same'], 2)} "
-                          f"| {spread(ms['this', 'product'], 2)} "
-                          f"| {mlups(ms['reference', 'same']):.1f} / {mlups(ms['this', 'product']):.1f} "
-                          f"| {spread(extra['reference', 'same'], 1)} | {spread(extra['this', 'same'], 1)} "
-                          f"| {spread(extra['this', 'product'], 1)} | {spread(step_ratio, 2)} "
-                          f"| {spread(extra_ratio, 2)} | {load_start} / {load_end} |", flush=True)
-                    rows.append(dict(cells=cells, grid_n=n, threads=threads, k=int(box["index_update_interval"]),
-                                     short=short, long=long_, ms=ms, extra=extra, step_ratio=step_ratio,
-                                     extra_ratio=extra_ratio, load_start=load_start, load_end=load_end))
+                    extra, step_ratio, extra_ratio = box_figures(ms, cells)
+                    rows.append(dict(cells=cells, grid_n=int(box["grid_n"]), threads=threads,
+                                     k=int(box["index_update_interval"]), short=short, long=long_, ms=ms, extra=extra,
+                                     step_ratio=step_ratio, extra_ratio=extra_ratio, load_start=load_start,
+                                     load_end=load()))
+                    print(table_row(rows[-1]), flush=True)
         except RuntimeError as e:
             print(f"bench_against: {e}", file=sys.stderr)
             return 1
