@@ -52,7 +52,9 @@ struct SweepScratch {
     std::size_t m, q0, q1;  // an own marker and its entries q0 … q1 − 1
   };
   std::vector<double> dx, dy, r2, hr, ml, cl, phi, dphi, w;
-  std::vector<double> ts, tx, ty, tr;  // the marker's terms: Φ ℓ_n, w dx, w dy, r (no-ops where off)
+  // The marker's terms: Φ ℓ_n, w dx, w dy, r; where the pair does not interact, no-ops (tr = +∞,
+  // by which add_to_partners tells such a pair).
+  std::vector<double> ts, tx, ty, tr;
   std::vector<unsigned char> on;
   std::vector<Run> runs;
   std::vector<std::size_t> run_ends;  // per visited marker of the batch: the end of its runs
