@@ -4,7 +4,8 @@
 (a) `erythro bench --coupled-only --aggregation --write-scenes DIR` writes, per box, the scene the
     bench runs, the same cells as [[cells]] entries and the box without cells, and boxes.tsv;
 (b) the [[cells]] scene places the same cells as the bench's seeded one (`erythro check`: every
-    cell's line, centre and marker spacing, the same text) with the same aggregation strength,
+    cell's line, centre and marker spacing, the same text; and every marker at step 0 of a run, bit
+    for bit, which the angles decide) with the same aggregation strength,
     the index field every step and no repulsion, so that an older binary can run the same box;
 (c) reports/bench_against.py, with this binary on both sides, times every run and writes a record
     holding each run's figures and the scenes;
@@ -20,6 +21,10 @@ import subprocess
 import sys
 
 import h5py
+import numpy
+
+sys.path.insert(0, os.path.join(sys.argv[2], "reports"))
+from bench_against import read_boxes, with_steps  # noqa: E402  (the tool's own reader and step rewrite)
 
 ERYTHRO, SRC, WORK = sys.argv[1:4]
 failures = []
@@ -35,6 +40,20 @@ def run(args):
     return subprocess.run(args, capture_output=True, text=True)
 
 
+def first_markers(scene_path, name):
+    """The markers at step 0 of a one-step run of the scene: every cell's positions, in cell order."""
+    with open(scene_path) as f:
+        text = with_steps(f.read(), 1)
+    path = os.path.join(WORK, name + ".toml")
+    with open(path, "w") as f:
+        f.write(text)
+    out = os.path.join(WORK, name)
+    if run([ERYTHRO, "run", path, "--out", out, "--force", "--quiet"]).returncode != 0:
+        return None
+    with h5py.File(os.path.join(out, "run.h5"), "r") as f:
+        return f["cells/0000000000/positions"][()]
+
+
 def check_lines(scene):
     """`erythro check` of a scene: its lines, without the first (the scene's own name and path)."""
     done = run([ERYTHRO, "check", scene])
@@ -48,11 +67,7 @@ scenes = os.path.join(WORK, "scenes")
 # (a)
 done = run([ERYTHRO, "bench", "--coupled-only", "--aggregation", "--cells", "2", "3", "--write-scenes", scenes])
 check("write-scenes exits 0", done.returncode == 0, done.stderr)
-boxes = []
-if os.path.exists(os.path.join(scenes, "boxes.tsv")):
-    with open(os.path.join(scenes, "boxes.tsv")) as f:
-        header = f.readline().rstrip("\n").split("\t")
-        boxes = [dict(zip(header, line.rstrip("\n").split("\t"))) for line in f if line.strip()]
+boxes = read_boxes(scenes) if os.path.exists(os.path.join(scenes, "boxes.tsv")) else []
 check("boxes.tsv lists the two boxes", [b.get("cells") for b in boxes] == ["2", "3"], str(boxes))
 for box in boxes:
     for kind in ("product", "same", "fluid"):
@@ -68,6 +83,11 @@ for box in boxes:
     cells_same = [line for line in same if re.match(r"\s*cell \d+ \(", line)]
     check(f"box {cells}: the same {cells} cells", len(cells_product) == cells and cells_same == cells_product,
           "\n".join(cells_product + ["--"] + cells_same))
+    # The lines above give centres and spacings, not the angles: the markers themselves, bit for bit.
+    markers_product = first_markers(os.path.join(scenes, box["product"]), f"markers{cells}_product")
+    markers_same = first_markers(os.path.join(scenes, box["same"]), f"markers{cells}_same")
+    check(f"box {cells}: the same markers at step 0", markers_product is not None and markers_same is not None
+          and numpy.array_equal(markers_product, markers_same))
     agg_product = [line for line in product if "aggregation" in line or "De*" in line]
     agg_same = [line for line in same if "aggregation" in line or "De*" in line]
     check(f"box {cells}: the same aggregation", agg_product != [] and agg_same == agg_product,
