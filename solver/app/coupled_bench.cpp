@@ -20,6 +20,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "aggregation/morse_units.hpp"
@@ -151,13 +152,15 @@ void write_box_scenes(const CoupledBenchOptions& o, const std::string& dir) {
     const int n = box_nodes(cells);
     const long k = box_interval(n, o);
     const std::string product = scene_text(n, cells, o.steps, o, k);
-    const std::string stem = "box" + std::to_string(cells) + "_";
     const std::string same = explicit_cells_text(n, o.steps, prepare_scene(product, scene_name(cells)).scene, o);
-    io::write_text_atomically(dir + "/" + stem + "product.toml", product);
-    io::write_text_atomically(dir + "/" + stem + "same.toml", same);
-    io::write_text_atomically(dir + "/" + stem + "fluid.toml", scene_text(n, 0, o.steps, o, 1));
-    boxes << cells << "\t" << n << "\t" << k << "\t" << stem << "product.toml\t" << stem << "same.toml\t" << stem
-          << "fluid.toml\n";
+    boxes << cells << "\t" << n << "\t" << k;
+    for (const auto& [kind, text] :
+         {std::pair{"product", product}, {"same", same}, {"fluid", scene_text(n, 0, o.steps, o, 1)}}) {
+      const std::string name = "box" + std::to_string(cells) + "_" + kind + ".toml";
+      io::write_text_atomically(dir + "/" + name, text);
+      boxes << "\t" << name;
+    }
+    boxes << "\n";
   }
   io::write_text_atomically(dir + "/boxes.tsv", boxes.str());
   std::printf("scenes of %zu box(es) and their list: %s/boxes.tsv\n", o.cells.size(), dir.c_str());
