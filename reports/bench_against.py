@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """The coupled step of this build against another build's, in one paired run.
 
-Usage: reports/bench_against.py --reference BIN --this BIN [--cells 32 128] [--threads 1 2]
-                                [--pairs 3] [--cell-steps 38400] [--out FILE.h5] [--scenes DIR]
+Usage: reports/bench_against.py --reference BIN --this BIN [--cells 32 128] [--grid NX NY]
+                                [--threads 1 2] [--pairs 3] [--cell-steps 38400] [--out FILE.h5]
+                                [--scenes DIR]
 
 ci/bench-against.sh builds the other commit and calls this. The boxes are those of
 `erythro bench --coupled-only --aggregation` (this binary writes them: --write-scenes), timed by
@@ -16,7 +17,9 @@ Per box, thread count and pair, in this order:
   reference, fluid  the box without cells (box<N>_fluid.toml), for each binary's extra cost
   this, fluid
 The figures: ms per step, MLUPS (nodes per step time), the extra cost per cell and step
-((coupled - fluid) / cells, each binary its own fluid step) and their ratios to the reference.
+((coupled - fluid) / cells, each binary its own fluid step), the coupled step over each binary's
+own fluid-only step, and the ratios to the reference. With --grid every cell count has one box of
+NX x NY nodes (few cells in a large grid: the overhead that scales with the grid, issue 18).
 Prints a Markdown table and writes an HDF5 record (docs/performance-coupled-step.md,
 "One paired run against an earlier commit"). Exit status 0, or 1 if a run failed.
 """
@@ -45,9 +48,10 @@ def with_steps(text, steps):
     return out
 
 
-def step_counts(cells, k, cell_steps):
-    """(short, long): multiples of k (whole index-field intervals), long about cell_steps / cells."""
-    blocks = max(2, math.ceil(cell_steps / (cells * k)))
+def step_counts(cells, nodes, k, cell_steps, node_steps):
+    """(short, long): multiples of k (whole index-field intervals), long about cell_steps / cells
+    or node_steps / nodes, whichever is fewer (a few cells in a large grid: the grid's budget)."""
+    blocks = max(2, math.ceil(min(cell_steps / cells, node_steps / nodes) / k))
     return k * max(1, round(blocks / 6)), k * blocks
 
 
@@ -90,10 +94,10 @@ def read_boxes(scenes):
         return [dict(zip(header, line.rstrip("\n").split("\t"))) for line in f if line.strip()]
 
 
-def measure_box(box, binaries, threads, pairs, cell_steps, scenes, workdir):
-    """Per kind, the ms per step of each pair."""
+def measure_box(box, binaries, threads, pairs, budget, scenes, workdir):
+    """Per kind, the ms per step of each pair; budget: (cell_steps, node_steps)."""
     cells, k = int(box["cells"]), int(box["index_update_interval"])
-    short, long_ = step_counts(cells, k, cell_steps)
+    short, long_ = step_counts(cells, int(box["grid_nx"]) * int(box["grid_ny"]), k, *budget)
     paths = {}
     for kind in ("same", "product", "fluid"):
         with open(os.path.join(scenes, box[kind])) as f:
@@ -116,9 +120,9 @@ def spread(values, digits):
     return f"{statistics.median(values):.{digits}f} ({min(values):.{digits}f}–{max(values):.{digits}f})"
 
 
-def mlups(n, ms_per_step):
-    """Million node updates per second of an n × n grid at the median step time."""
-    return n * n / (statistics.median(ms_per_step) * 1e-3) / 1e6
+def mlups(nodes, ms_per_step):
+    """Million node updates per second of a grid of `nodes` nodes at the median step time."""
+    return nodes / (statistics.median(ms_per_step) * 1e-3) / 1e6
 
 
 def box_figures(ms, cells):
@@ -128,23 +132,27 @@ def box_figures(ms, cells):
              for who, kind in KINDS if kind != "fluid"}
     step_ratio = [x / y for x, y in zip(ms["this", "product"], ms["reference", "same"])]
     extra_ratio = [x / y for x, y in zip(extra["this", "product"], extra["reference", "same"])]
-    return extra, step_ratio, extra_ratio
+    over_fluid = {who: [c / f for c, f in zip(ms[who, kind], ms[who, "fluid"])]
+                  for who, kind in (("reference", "same"), ("this", "product"))}
+    return extra, step_ratio, extra_ratio, over_fluid
 
 
 HEADER = ("| cells | grid | thr | k | steps | reference, same: ms/step | this, same | this, product "
           "| MLUPS ref / product | extra us/cell: ref | this, same | product | product / ref, step "
-          "| product / ref, extra | load start / end |\n|" + "---|" * 15)
+          "| product / ref, extra | step / own fluid-only step: ref | product | load start / end |\n|"
+          + "---|" * 17)
 
 
 def table_row(r):
-    ms, extra = r["ms"], r["extra"]
-    return (f"| {r['cells']} | {r['grid_n']}² | {r['threads']} | {r['k']} | {r['short']}, {r['long']} "
+    ms, extra, nodes = r["ms"], r["extra"], r["grid_nx"] * r["grid_ny"]
+    return (f"| {r['cells']} | {r['grid_nx']}×{r['grid_ny']} | {r['threads']} | {r['k']} | {r['short']}, {r['long']} "
             f"| {spread(ms['reference', 'same'], 2)} | {spread(ms['this', 'same'], 2)} "
             f"| {spread(ms['this', 'product'], 2)} "
-            f"| {mlups(r['grid_n'], ms['reference', 'same']):.1f} / {mlups(r['grid_n'], ms['this', 'product']):.1f} "
+            f"| {mlups(nodes, ms['reference', 'same']):.1f} / {mlups(nodes, ms['this', 'product']):.1f} "
             f"| {spread(extra['reference', 'same'], 1)} | {spread(extra['this', 'same'], 1)} "
             f"| {spread(extra['this', 'product'], 1)} | {spread(r['step_ratio'], 2)} "
-            f"| {spread(r['extra_ratio'], 2)} | {r['load_start']} / {r['load_end']} |")
+            f"| {spread(r['extra_ratio'], 2)} | {spread(r['over_fluid']['reference'], 2)} "
+            f"| {spread(r['over_fluid']['this'], 2)} | {r['load_start']} / {r['load_end']} |")
 
 
 def main():
@@ -152,18 +160,23 @@ def main():
     p.add_argument("--reference", required=True, help="the other build's erythro")
     p.add_argument("--this", required=True, help="this build's erythro")
     p.add_argument("--cells", type=int, nargs="+", default=[32, 128])
+    p.add_argument("--grid", type=int, nargs=2, metavar=("NX", "NY"),
+                   help="one box of NX x NY nodes for every cell count (default: each box sized for phi = 0.3)")
     p.add_argument("--threads", type=int, nargs="+", default=[1])
     p.add_argument("--pairs", type=int, default=3, help="rounds of the five runs (default 3)")
     p.add_argument("--cell-steps", type=int, default=38400,
                    help="cells times steps of the long run, about (default 38400: 1 200 steps for 32 cells)")
+    p.add_argument("--node-steps", type=float, default=2e8,
+                   help="nodes times steps of the long run at most (default 2e8: 766 steps of 480 x 544)")
     p.add_argument("--out", help="the HDF5 record (default: none)")
     p.add_argument("--scenes", help="keep the box scenes here (default: a temporary folder)")
     a = p.parse_args()
     binaries = {"reference": os.path.abspath(a.reference), "this": os.path.abspath(a.this)}
     with tempfile.TemporaryDirectory(prefix="bench_against_") as workdir:
         scenes = a.scenes or os.path.join(workdir, "scenes")
+        grid = ["--grid", *map(str, a.grid)] if a.grid else []
         written = subprocess.run([binaries["this"], "bench", "--coupled-only", "--aggregation", "--cells",
-                                  *map(str, a.cells), "--write-scenes", scenes], capture_output=True, text=True)
+                                  *map(str, a.cells), *grid, "--write-scenes", scenes], capture_output=True, text=True)
         if written.returncode != 0:
             print(f"bench_against: {binaries['this']} could not write the scenes: {written.stderr.strip()}",
                   file=sys.stderr)
@@ -171,8 +184,9 @@ def main():
         boxes = read_boxes(scenes)
         print(f"reference: {binaries['reference']} ({version(binaries['reference'])})")
         print(f"this:      {binaries['this']} ({version(binaries['this'])})")
+        boxes_are = f"one box of {a.grid[0]} x {a.grid[1]} nodes" if a.grid else "phi = 0.3"
         print(f"processor: {cpu_model()}; {a.pairs} pair(s); aggregation De* = 5, biconcave cells of 184 markers, "
-              f"phi = 0.3\n")
+              f"{boxes_are}\n")
         print(HEADER)
         rows = []
         try:
@@ -180,12 +194,13 @@ def main():
                 cells = int(box["cells"])
                 for threads in a.threads:
                     load_start = load()
-                    ms, short, long_ = measure_box(box, binaries, threads, a.pairs, a.cell_steps, scenes, workdir)
-                    extra, step_ratio, extra_ratio = box_figures(ms, cells)
-                    rows.append(dict(cells=cells, grid_n=int(box["grid_n"]), threads=threads,
-                                     k=int(box["index_update_interval"]), short=short, long=long_, ms=ms, extra=extra,
-                                     step_ratio=step_ratio, extra_ratio=extra_ratio, load_start=load_start,
-                                     load_end=load()))
+                    ms, short, long_ = measure_box(box, binaries, threads, a.pairs, (a.cell_steps, a.node_steps), scenes,
+                                                   workdir)
+                    extra, step_ratio, extra_ratio, over_fluid = box_figures(ms, cells)
+                    rows.append(dict(cells=cells, grid_nx=int(box["grid_nx"]), grid_ny=int(box["grid_ny"]),
+                                     threads=threads, k=int(box["index_update_interval"]), short=short, long=long_,
+                                     ms=ms, extra=extra, step_ratio=step_ratio, extra_ratio=extra_ratio,
+                                     over_fluid=over_fluid, load_start=load_start, load_end=load()))
                     print(table_row(rows[-1]), flush=True)
         except RuntimeError as e:
             print(f"bench_against: {e}", file=sys.stderr)
@@ -209,7 +224,7 @@ def write_record(path, rows, binaries, scenes, boxes, a):
         f.attrs["method"] = "whole processes in turns; ms per step = (T(long) - T(short)) / (long - short)"
         for r in rows:
             g = f.create_group(f"runs/{r['cells']}_t{r['threads']}")
-            for key in ("cells", "grid_n", "threads", "k", "short", "long"):
+            for key in ("cells", "grid_nx", "grid_ny", "threads", "k", "short", "long"):
                 g.attrs[key] = r[key]
             g.attrs["load_start"], g.attrs["load_end"] = r["load_start"], r["load_end"]
             for (who, kind), v in r["ms"].items():
@@ -218,6 +233,8 @@ def write_record(path, rows, binaries, scenes, boxes, a):
                 g[f"extra_us_per_cell_step/{who}_{kind}"] = np.array(v)
             g["product_over_reference_step"] = np.array(r["step_ratio"])
             g["product_over_reference_extra"] = np.array(r["extra_ratio"])
+            g["reference_same_over_fluid"] = np.array(r["over_fluid"]["reference"])
+            g["this_product_over_fluid"] = np.array(r["over_fluid"]["this"])
         for box in boxes:
             for kind in ("same", "product", "fluid"):
                 with open(os.path.join(scenes, box[kind])) as s:

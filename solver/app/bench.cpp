@@ -698,8 +698,15 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
                 "Only what a force field, a tau field and the velocity output add to the fluid step, into "
                 "$ERYTHRO_RESULTS_DIR/benchmark.fluid_inputs.h5");
   CLI::Option* cells = cmd->add_option("--cells", options.coupled.cells,
-                                       "Cell counts of the coupled step (box sized for area fraction 0.3)")
+                                       "Cell counts of the coupled step (box sized for area fraction 0.3, or --grid)")
                            ->check(CLI::Range(1, 4096));
+  CLI::Option* grid =
+      cmd->add_option("--grid", options.coupled.grid,
+                      "With --coupled-only: one shear box of NX x NY nodes for every cell count, instead of the box "
+                      "sized for area fraction 0.3 (the overhead that scales with the grid: few cells, a large grid)")
+          ->expected(2)
+          ->check(CLI::Range(16, 16384))
+          ->needs(coupled_only);
   cmd->add_option("--coupled-steps", options.coupled.steps, "Time steps of each coupled-step run")
       ->check(CLI::Range(10, 1000000));
   cmd->add_option("--coupled-pairs", options.coupled.pairs, "Fluid-only and coupled runs per configuration")
@@ -731,6 +738,7 @@ CLI::App* add_bench_subcommand(CLI::App& cli, BenchOptions& options) {
       ->check(CLI::ExistingFile)
       ->needs(coupled_only)
       ->excludes(cells)
+      ->excludes(grid)
       ->excludes(aggregation)
       ->excludes(interval)
       ->excludes(write_scenes);

@@ -13,6 +13,9 @@ namespace erythro::app {
 
 struct CoupledBenchOptions {
   std::vector<int> cells{2, 8, 32, 128};  // cells per box; the box is sized for φ = 0.3
+  // Empty, or {nx, ny}: one box of nx × ny nodes for every cell count instead (issue 18's
+  // grid-proportional overhead: few cells in a large grid).
+  std::vector<int> grid;
   std::vector<int> threads{1, 2};
   long steps = 150;  // time steps of each timed run (≈ 3 s for 128 cells on one thread)
   int pairs = 3;     // fluid-only and coupled runs, one after the other; medians reported

@@ -8,7 +8,8 @@
     for bit, which the angles decide) with the same aggregation strength,
     the index field every step and no repulsion, so that an older binary can run the same box;
 (c) reports/bench_against.py, with this binary on both sides, times every run and writes a record
-    holding each run's figures and the scenes;
+    holding each run's figures and the scenes; with --grid NX NY, on one box of that grid (the
+    grid's two sides not swapped) with each binary's step over its own fluid-only step;
 (d) --write-scenes with --scene is refused: a non-zero exit, nothing written.
 
 Usage: bench_against_test.py ERYTHRO SOURCE_DIR WORK_DIR
@@ -98,13 +99,22 @@ for box in boxes:
           not any(line.lstrip().startswith("repulsion") for line in same)
           and any(line.lstrip().startswith("repulsion") for line in product))
 
-# (c)
+# (c), on a box of --grid whose two sides differ
 record = os.path.join(WORK, "against.h5")
+grid_scenes = os.path.join(WORK, "grid_scenes")
 done = run([sys.executable, os.path.join(SRC, "reports", "bench_against.py"), "--reference", ERYTHRO, "--this",
-            ERYTHRO, "--cells", "2", "--pairs", "1", "--cell-steps", "20", "--out", record])
+            ERYTHRO, "--cells", "2", "--grid", "96", "80", "--pairs", "1", "--cell-steps", "20", "--out", record,
+            "--scenes", grid_scenes])
 check("bench_against.py exits 0", done.returncode == 0, done.stderr + done.stdout)
-check("bench_against.py prints a row for the box", any(line.startswith("| 2 |") for line in done.stdout.splitlines()),
-      done.stdout)
+check("bench_against.py prints a row for the box",
+      any(line.startswith("| 2 | 96×80 |") for line in done.stdout.splitlines()), done.stdout)
+grid_boxes = read_boxes(grid_scenes) if os.path.exists(os.path.join(grid_scenes, "boxes.tsv")) else []
+check("--grid: boxes.tsv gives the grid", [(b["grid_nx"], b["grid_ny"]) for b in grid_boxes] == [("96", "80")],
+      str(grid_boxes))
+if grid_boxes:
+    rc, lines = check_lines(os.path.join(grid_scenes, grid_boxes[0]["product"]))
+    check("--grid: the product scene has 96 x 80 nodes", rc == 0 and any(
+        re.match(r"\s*nodes\s+96 × 80\s", line) for line in lines), "\n".join(lines[:6]))
 if os.path.exists(record):
     with h5py.File(record, "r") as f:
         g = f.get("runs/2_t1")
@@ -117,8 +127,12 @@ if os.path.exists(record):
                 check(f"record: {who}, {kind} timed", v is not None and len(v) == 1 and math.isfinite(v[0]))
             coupled, fluid = g.get("ms_per_step/this_product"), g.get("ms_per_step/this_fluid")
             extra = g.get("extra_us_per_cell_step/this_product")
+            over_fluid = g.get("this_product_over_fluid")
             check("record: the extra cost is (coupled - fluid) / cells",
                   all(x is not None for x in (coupled, fluid, extra)) and extra[0] == (coupled[0] - fluid[0]) * 1e3 / 2)
+            check("record: the step over its own fluid-only step is coupled / fluid",
+                  all(x is not None for x in (coupled, fluid, over_fluid)) and over_fluid[0] == coupled[0] / fluid[0])
+            check("record: the grid", (g.attrs.get("grid_nx"), g.attrs.get("grid_ny")) == (96, 80), str(dict(g.attrs)))
         check("record: the scenes kept", "scenes" in f and len(f["scenes"]) == 3)
         check("record: both versions", "this_version" in f.attrs and "reference_version" in f.attrs)
 else:

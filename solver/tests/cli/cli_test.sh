@@ -198,6 +198,12 @@ expect bench_scene_needs_coupled_only 2 'scene requires --coupled-only' -- \
 # --alternate-threads compares one thread with more: a single count is refused.
 expect bench_alternate_one_count 2 'needs a count of 2 or more in --threads' -- \
   "$ERYTHRO" bench --coupled-only --alternate-threads --cells 2 --threads 1 --out bench_alternate_one.h5
+# --grid: one box of NX x NY nodes for every count; cells it cannot hold are an input error
+# naming the count, and --grid is not for a scene of one's own.
+expect bench_grid_too_small 2 "cell_populations\[0\]\.count' = 40 cannot be reached" -- \
+  "$ERYTHRO" bench --coupled-only --cells 40 --grid 64 64 --threads 1 --out bench_grid_small.h5
+expect bench_grid_with_scene 2 'grid excludes --scene' -- \
+  "$ERYTHRO" bench --coupled-only --scene "$SRC/scenes/rbc_channel.toml" --grid 64 64 --out bench_grid_scene.h5
 checks=$((checks + 1))
 if ls bench_*.h5 >/dev/null 2>&1; then echo "FAIL bench_scene_refused_no_record: $(ls bench_*.h5)"; failures=$((failures + 1))
 else echo "ok   bench_scene_refused_no_record"; fi
