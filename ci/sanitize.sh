@@ -9,8 +9,10 @@ root=$(cd "$(dirname "$0")/.." && pwd)
 build=$root/build-sanitize
 # The executables of the tests below (a test whose executable is missing fails in ctest).
 targets=(erythro unit_common unit_fluid unit_scene unit_io unit_geometry unit_ib unit_membrane unit_interior unit_aggregation
-         unit_transport unit_analysis vv_fluid vv_membrane vv_interior vv_aggregation vv_transport vv_suspension)
-tests='^(unit\.(common|fluid|scene|io|cli|scenes_doc_current|geometry|ib|membrane|interior|aggregation|transport|analysis)'
+         unit_aggregation_allocation unit_transport unit_analysis vv_fluid vv_membrane vv_interior vv_aggregation
+         vv_transport vv_suspension)
+tests='^(unit\.(common|fluid|scene|io|cli|scenes_doc_current|geometry|ib|membrane|interior|aggregation'
+tests+='|aggregation_allocation|transport|analysis)'
 tests+='|verification\.(manufactured|couette|conservation|galilean_symmetry|membrane_rest_in_fluid|membrane_forces'
 tests+='|interior_fill_agreement|aggregation_forces|transport_manufactured|transport_hb_coupling|channel_diagnostics'
 tests+='|transport_arteriole_no|transport_arteriole_no_o2))$'

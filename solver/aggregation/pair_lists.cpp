@@ -10,91 +10,17 @@
 
 namespace erythro::aggregation {
 
+using detail::CellList;
+
 namespace {
 
-// Cell list over the domain: nb bins per axis of side n/nb ≥ r_c + skin (at least 1 bin).
-struct CellList {
-  static constexpr std::size_t kMixed = SIZE_MAX;
-  int nbx = 1, nby = 1;
-  std::vector<std::size_t> start, items;  // markers of bin b: items[start[b] … start[b+1]), ascending
-  std::vector<std::size_t> owner;         // per bin: the one cell of its markers, kMixed, or none (empty)
-
-  static int bins(int n, double rc) {
-    // floor(n / r_c), with a 1e-9 margin so round-off in the bin index can never put two
-    // markers closer than r_c two bins apart.
-    return std::max(1, static_cast<int>(std::floor(double(n) / (rc * (1.0 + 1e-9)))));
-  }
-
-  static int bin_of(double x, int n, int nb, bool periodic) {
-    double t = x / n;
-    if (periodic) t -= std::floor(t);
-    // Clamped before the conversion (no overflow): on a non-periodic axis markers beyond a
-    // wall join the edge bin; on a periodic one it only catches t·nb rounding up to nb.
-    return static_cast<int>(std::clamp(std::floor(t * nb), 0.0, double(nb - 1)));
-  }
-
-  void build(const geometry::Domain& d, const MarkerView& v, std::vector<int>& bin) {
-    const std::size_t N = v.x.size();
-    bin.resize(N);
-    start.assign(static_cast<std::size_t>(nbx * nby) + 1, 0);
-    for (std::size_t m = 0; m < N; ++m) {
-      bin[m] = bin_of(v.y[m], d.grid.ny, nby, d.periodic_y) * nbx + bin_of(v.x[m], d.grid.nx, nbx, d.periodic_x);
-      ++start[static_cast<std::size_t>(bin[m]) + 1];
-    }
-    for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-    items.resize(N);
-    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-    for (std::size_t m = 0; m < N; ++m) items[fill[static_cast<std::size_t>(bin[m])]++] = m;  // ascending per bin
-  }
-
-  // owner[b] for every bin: markers are ascending per bin and a cell's markers are one
-  // index range, so the bin holds one cell iff its first and last marker share it.
-  void find_owners(std::span<const std::size_t> cell_of) {
-    const std::size_t bins = start.size() - 1;
-    owner.assign(bins, 0);
-    for (std::size_t b = 0; b < bins; ++b) {
-      if (start[b] == start[b + 1]) continue;
-      const std::size_t first = cell_of[items[start[b]]], last = cell_of[items[start[b + 1] - 1]];
-      owner[b] = first == last ? first : kMixed;
-    }
-  }
-
-  // Whether every marker of the (non-empty) bins `nb` belongs to one cell: then no marker
-  // of them has a partner of another cell, and their pair sums stay zero.
-  bool one_cell(const std::vector<int>& nb) const {
-    std::size_t cell = kMixed;
-    for (const int q : nb) {
-      const std::size_t b = static_cast<std::size_t>(q);
-      if (start[b] == start[b + 1]) continue;
-      if (owner[b] == kMixed || (cell != kMixed && owner[b] != cell)) return false;
-      cell = owner[b];
-    }
-    return true;
-  }
-
-  // The distinct bins within ±1 of (bx, by), wrapped on periodic axes, ascending.
-  void neighbours(const geometry::Domain& d, int bx, int by, std::vector<int>& out) const {
-    out.clear();
-    if (bx >= 1 && bx + 1 < nbx && by >= 1 && by + 1 < nby) {  // inside: nine distinct bins, row by row
-      for (int j = by - 1; j <= by + 1; ++j)
-        for (int i = bx - 1; i <= bx + 1; ++i) out.push_back(j * nbx + i);
-      return;
-    }
-    for (int oy = -1; oy <= 1; ++oy) {
-      int j = by + oy;
-      if (d.periodic_y) j = (j + nby) % nby;
-      else if (j < 0 || j >= nby) continue;
-      for (int ox = -1; ox <= 1; ++ox) {
-        int i = bx + ox;
-        if (d.periodic_x) i = (i + nbx) % nbx;
-        else if (i < 0 || i >= nbx) continue;
-        out.push_back(j * nbx + i);
-      }
-    }
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
-  }
-};
+// Room for at least n elements, a quarter more than asked when it must grow: the lists grow
+// by a little from build to build as cells close in, and room for exactly n would mean a new
+// allocation at nearly every build.
+template <class T>
+void room_for(std::vector<T>& v, std::size_t n) {
+  if (v.capacity() < n) v.reserve(n + n / 4);
+}
 
 }  // namespace
 
@@ -130,25 +56,34 @@ bool PairLists::valid(const MarkerView& v) const {
 void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of, bool parallel) {
   const std::size_t N = v.x.size();
   const double reach = cutoff_ + skin_, reach2 = reach * reach;
-  CellList cl;
+  CellList& cl = bins_;
   cl.nbx = nbx_;
   cl.nby = nby_;
-  std::vector<int> bin;
-  cl.build(domain_, v, bin);
+  cl.build(domain_, v, bin_of_);
   cl.find_owners(cell_of);
-  std::vector<std::size_t> begin(N, 0), length(N, 0);
-  std::vector<int> thread_of(N, 0);
+  // Every marker's entry is written below (a bin's markers, or none: an empty list).
+  std::vector<std::size_t>&begin = found_at_, &length = length_;
+  begin.assign(N, 0);
+  length.assign(N, 0);
+  thread_of_.assign(N, 0);
+  std::vector<int>& thread_of = thread_of_;
   const int nbins = nbx_ * nby_;
   const int threads = parallel ? omp_get_max_threads() : 1;
-  std::vector<std::vector<std::size_t>> found(static_cast<std::size_t>(threads));
+  if (per_thread_.size() < static_cast<std::size_t>(threads)) per_thread_.resize(static_cast<std::size_t>(threads));
 #pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num();
-    std::vector<std::size_t>& out = found[static_cast<std::size_t>(t)];
+    ThreadBuffers& buf = per_thread_[static_cast<std::size_t>(t)];
+    std::vector<std::size_t>& out = buf.found;
     out.clear();
-    std::vector<int> nb;
-    std::vector<std::size_t> cand, merged;
-    PairScratch s;
+    std::vector<int>& nb = buf.neighbours;
+    std::vector<std::size_t>&cand = buf.candidates, &merged = buf.merged;
+    PairScratch& s = buf.separations;
+    room_for(out, most_entries_);  // what any thread may find (a whole build)
+    room_for(cand, most_candidates_);
+    room_for(merged, most_candidates_);
+    s.hold(most_candidates_ + most_candidates_ / 4);
+    room_for(nb, 9);
 #pragma omp for schedule(dynamic, 64)
     for (int b = 0; b < nbins; ++b) {
       const std::size_t b0 = cl.start[static_cast<std::size_t>(b)], b1 = cl.start[static_cast<std::size_t>(b) + 1];
@@ -166,6 +101,7 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
         cand.swap(merged);
       }
       const std::size_t n = cand.size();
+      buf.most_candidates = std::max(buf.most_candidates, n);
       s.hold(n);
       for (std::size_t i = 0; i < n; ++i) {
         s.cx[i] = v.x[cand[i]];
@@ -190,13 +126,15 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
   list_.resize(start_[N]);
   upper_.resize(N);
   for (std::size_t m = 0; m < N; ++m) {
-    const std::vector<std::size_t>& src = found[static_cast<std::size_t>(thread_of[m])];
+    const std::vector<std::size_t>& src = per_thread_[static_cast<std::size_t>(thread_of[m])].found;
     const auto first = list_.begin() + static_cast<std::ptrdiff_t>(start_[m]);
     const auto last = list_.begin() + static_cast<std::ptrdiff_t>(start_[m + 1]);
     std::copy_n(src.begin() + static_cast<std::ptrdiff_t>(begin[m]), length[m], first);
     upper_[m] = static_cast<std::size_t>(std::upper_bound(first, last, m) - list_.begin());  // ascending lists
   }
   build_runs(cell_of);
+  most_entries_ = std::max(most_entries_, list_.size());
+  for (const ThreadBuffers& buf : per_thread_) most_candidates_ = std::max(most_candidates_, buf.most_candidates);
   x_.assign(v.x.begin(), v.x.end());
   y_.assign(v.y.begin(), v.y.end());
   offsets_.assign(v.offsets.begin(), v.offsets.end());

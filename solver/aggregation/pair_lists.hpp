@@ -9,17 +9,12 @@
 #include <span>
 #include <vector>
 
+#include "aggregation/cell_list.hpp"
+#include "aggregation/marker_view.hpp"
+#include "aggregation/pair_terms.hpp"
 #include "geometry/domain.hpp"
 
 namespace erythro::aggregation {
-
-// The markers of all cells: positions and the cell ranges, cell c owning markers
-// offsets[c] … offsets[c+1] − 1 (offsets.size() = cells + 1, offsets[0] = 0). A cell
-// needs ≥ 3 markers.
-struct MarkerView {
-  std::span<const double> x, y;
-  std::span<const std::size_t> offsets;
-};
 
 class PairLists {
  public:
@@ -58,6 +53,23 @@ class PairLists {
 
  private:
   void build_runs(std::span<const std::size_t> cell_of);
+
+  // A thread's buffers while building: the neighbouring bins, the bin's candidates (and their
+  // merge), the separations.
+  struct ThreadBuffers {
+    std::vector<int> neighbours;
+    std::vector<std::size_t> candidates, merged, found;  // found: its markers' partners, in build order
+    PairScratch separations;
+    std::size_t most_candidates = 0;  // the most candidates of one bin it met
+  };
+  // Kept from build to build, so that a rebuild allocates nothing once they have grown.
+  detail::CellList bins_;
+  std::vector<int> bin_of_, thread_of_;         // per marker: its bin, the thread that listed it
+  std::vector<std::size_t> found_at_, length_;  // per marker: where its partners start in its thread's found, how many
+  std::vector<ThreadBuffers> per_thread_;
+  // The most candidates of one bin and the most entries of the lists in any build so far: each
+  // thread's buffers get that room before a build (the bins go to the threads as they come).
+  std::size_t most_candidates_ = 0, most_entries_ = 0;
 
   geometry::Domain domain_;
   double cutoff_ = 0.0, skin_ = 0.0;

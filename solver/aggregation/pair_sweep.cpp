@@ -252,6 +252,11 @@ bool sweep_pair_lists(const geometry::Domain& domain, const ContactPotential& po
                       std::vector<SweepScratch>& per_thread) {
   threads = std::max(threads, 1);
   if (per_thread.size() < static_cast<std::size_t>(threads)) per_thread.resize(static_cast<std::size_t>(threads));
+  // Every thread's buffers as large as the largest batch any thread has held: other owners
+  // next time (the slabs move with the cells) then need no new room.
+  std::size_t most = 0;
+  for (const SweepScratch& s : per_thread) most = std::max(most, s.on.size());
+  for (SweepScratch& s : per_thread) s.hold(most);
   bool coincident = false;
 #pragma omp parallel num_threads(threads) if (threads > 1) reduction(|| : coincident)
   {

@@ -12,27 +12,26 @@ namespace {
 
 // A cell's share of the sweep's work: its markers and their entries in the lists (each pair
 // is in the lists of both its markers; a thread evaluates the pairs of its own markers).
-std::vector<std::size_t> cell_work(const MarkerView& v, const PairLists& lists) {
+void cell_work(const MarkerView& v, const PairLists& lists, std::vector<std::size_t>& work) {
   const std::span<const std::size_t> start = lists.start();
-  std::vector<std::size_t> work(v.offsets.size() - 1);
+  work.resize(v.offsets.size() - 1);
   for (std::size_t c = 0; c < work.size(); ++c) {
     const std::size_t o = v.offsets[c], e = v.offsets[c + 1];
     work[c] = (e - o) + (start[e] - start[o]);
   }
-  return work;
 }
 
 // The cells sorted by their centroids along one axis and given out in `threads` slabs of equal
-// work, each cell to the slab holding the middle of its work.
+// work, each cell to the slab holding the middle of its work. key: scratch.
 void slabs_along(bool along_y, const geometry::Domain& d, const MarkerView& v, std::span<const std::size_t> work,
-                 int threads, std::vector<unsigned>& cell_owner) {
+                 int threads, std::vector<std::pair<double, std::size_t>>& key, std::vector<unsigned>& cell_owner) {
   const std::size_t cells = v.offsets.size() - 1;
   std::size_t total = 0;
   for (const std::size_t w : work) total += w;
   const std::span<const double> coord = along_y ? v.y : v.x;
   const bool periodic = along_y ? d.periodic_y : d.periodic_x;
   const double L = along_y ? d.grid.ny : d.grid.nx;
-  std::vector<std::pair<double, std::size_t>> key(cells);  // (centroid, cell)
+  key.resize(cells);  // (centroid, cell)
   for (std::size_t c = 0; c < cells; ++c) {
     double sum = 0.0;
     for (std::size_t m = v.offsets[c]; m < v.offsets[c + 1]; ++m) sum += coord[m];
@@ -71,12 +70,11 @@ void SweepOwners::assign_slabs(const geometry::Domain& d, const MarkerView& v, s
   if (threads > 1 && !v.x.empty()) {
     // Slabs along x and along y; the cut that separates fewer pairs is kept (along y on a
     // tie). Where the cells crowd (the core of a channel) a cut along the flow parts more.
-    const std::vector<std::size_t> work = cell_work(v, lists);
-    std::vector<unsigned> along_x;
-    slabs_along(false, d, v, work, threads, along_x);
-    slabs_along(true, d, v, work, threads, cell_owner_);
-    if (pairs_between(along_x, cell_of, lists) < pairs_between(cell_owner_, cell_of, lists))
-      cell_owner_.swap(along_x);
+    cell_work(v, lists, cell_work_);
+    slabs_along(false, d, v, cell_work_, threads, key_, along_x_);
+    slabs_along(true, d, v, cell_work_, threads, key_, cell_owner_);
+    if (pairs_between(along_x_, cell_of, lists) < pairs_between(cell_owner_, cell_of, lists))
+      cell_owner_.swap(along_x_);
   }
   assign(cell_owner_, v, lists, threads);
 }
@@ -96,7 +94,10 @@ void SweepOwners::assign(std::span<const unsigned> cell_owner, const MarkerView&
   // Visits in ascending marker order: a marker to its owner, and once to every other thread
   // owning one of its partners above it.
   visit_.resize(T);
-  for (auto& vis : visit_) vis.clear();
+  for (auto& vis : visit_) {  // room for every marker: a new cut never makes them grow again
+    vis.clear();
+    vis.reserve(N);
+  }
   last_visit_.assign(T, SIZE_MAX);
   const std::span<const std::size_t> start = lists.start(), list = lists.list(), upper = lists.upper();
   for (std::size_t m = 0; m < N; ++m) {

@@ -11,6 +11,7 @@
 // in ascending order (pair_sweep.hpp), whoever evaluates them.
 #include <cstddef>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "aggregation/pair_lists.hpp"
@@ -45,6 +46,11 @@ class SweepOwners {
   std::vector<std::vector<std::size_t>> visit_;
   std::vector<unsigned> cell_owner_;
   std::vector<std::size_t> last_visit_;
+  // assign_slabs' scratch, kept so that a new cut allocates nothing once grown: each cell's
+  // work, the cut along x, the cells sorted by their centroids.
+  std::vector<std::size_t> cell_work_;
+  std::vector<unsigned> along_x_;
+  std::vector<std::pair<double, std::size_t>> key_;
 };
 
 }  // namespace erythro::aggregation
