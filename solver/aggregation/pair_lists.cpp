@@ -62,7 +62,8 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
   cl.build(domain_, v, bin_of_);
   cl.find_owners(cell_of);
   // Every marker's entry is written below (a bin's markers, or none: an empty list).
-  std::vector<std::size_t>&begin = found_at_, &length = length_;
+  std::vector<std::size_t>& begin = found_at_;
+  std::vector<std::size_t>& length = length_;
   begin.assign(N, 0);
   length.assign(N, 0);
   thread_of_.assign(N, 0);
@@ -77,7 +78,8 @@ void PairLists::build(const MarkerView& v, std::span<const std::size_t> cell_of,
     std::vector<std::size_t>& out = buf.found;
     out.clear();
     std::vector<int>& nb = buf.neighbours;
-    std::vector<std::size_t>&cand = buf.candidates, &merged = buf.merged;
+    std::vector<std::size_t>& cand = buf.candidates;
+    std::vector<std::size_t>& merged = buf.merged;
     PairScratch& s = buf.separations;
     room_for(out, most_entries_);  // what any thread may find (a whole build)
     room_for(cand, most_candidates_);
