@@ -21,6 +21,13 @@ namespace {
 std::atomic<long> g_allocations{0};
 }
 
+// The replacement pair below: new by malloc, delete by free. GCC, inlining the delete where a
+// new of this file allocated, takes free() for a mismatched release (-Wmismatched-new-delete);
+// here it is the matching one.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+
 void* operator new(std::size_t n) {
   g_allocations.fetch_add(1, std::memory_order_relaxed);
   if (void* p = std::malloc(n == 0 ? 1 : n)) return p;
