@@ -194,8 +194,8 @@ def main():
                 cells = int(box["cells"])
                 for threads in a.threads:
                     load_start = load()
-                    ms, short, long_ = measure_box(box, binaries, threads, a.pairs, (a.cell_steps, a.node_steps), scenes,
-                                                   workdir)
+                    budget = (a.cell_steps, a.node_steps)
+                    ms, short, long_ = measure_box(box, binaries, threads, a.pairs, budget, scenes, workdir)
                     extra, step_ratio, extra_ratio, over_fluid = box_figures(ms, cells)
                     rows.append(dict(cells=cells, grid_nx=int(box["grid_nx"]), grid_ny=int(box["grid_ny"]),
                                      threads=threads, k=int(box["index_update_interval"]), short=short, long=long_,
