@@ -2,8 +2,8 @@
 """The coupled step of this build against another build's, in one paired run.
 
 Usage: reports/bench_against.py --reference BIN --this BIN [--cells 32 128] [--grid NX NY]
-                                [--threads 1 2] [--pairs 3] [--cell-steps 38400] [--out FILE.h5]
-                                [--scenes DIR]
+                                [--threads 1 2] [--pairs 3] [--cell-steps 38400] [--node-steps 2e8]
+                                [--out FILE.h5] [--scenes DIR]
 
 ci/bench-against.sh builds the other commit and calls this. The boxes are those of
 `erythro bench --coupled-only --aggregation` (this binary writes them: --write-scenes), timed by
