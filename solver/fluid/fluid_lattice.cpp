@@ -322,25 +322,30 @@ void FluidLattice::node_moments(int x, int y, double& rho, double& ux, double& u
   moments_of([&](std::size_t i) { return f[i]; }, F[0], F[1], rho, ux, uy);
 }
 
-void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const {
-#pragma omp parallel for schedule(static) if (grid_.worth_threading())
-  for (int y = 0; y < grid_.ny; ++y) {
-    const RowView v = row_view(y);
-    const std::size_t row = grid_.index(0, y);
-    auto edge = [&](int x) { node_moments(x, y, rho[row + x], ux[row + x], uy[row + x]); };
-    for (int x = 0; x < v.first; ++x) edge(x);
+void FluidLattice::span_moments(int y, int x0, int x1, double* rho, double* ux, double* uy) const {
+  const RowView v = row_view(y);
+  const std::size_t row = grid_.index(0, y);
+  auto edge = [&](int x) { node_moments(x, y, rho[row + x], ux[row + x], uy[row + x]); };
+  // The span's part that the row view holds goes through the vector loop, the rest node by node.
+  const int first = std::clamp(v.first, x0, x1), last = std::clamp(v.last, first, x1);
+  for (int x = x0; x < first; ++x) edge(x);
+  if (last > first) {
     const double Ax = applied_force_[0], Ay = applied_force_[1];
     if (has_force_field()) {
       const bool cleared = row_cleared(y);  // its force counts as zero
       const double* fx = cleared ? zero_row_.data() : force_x_.data() + row;
       const double* fy = cleared ? zero_row_.data() : force_y_.data() + row;
-      row_moments<true>(v.p, v.first, v.last, Ax, Ay, fx, fy, rho.data() + row, ux.data() + row, uy.data() + row);
+      row_moments<true>(v.p, first, last, Ax, Ay, fx, fy, rho + row, ux + row, uy + row);
     } else {
-      row_moments<false>(v.p, v.first, v.last, Ax, Ay, nullptr, nullptr, rho.data() + row, ux.data() + row,
-                         uy.data() + row);
+      row_moments<false>(v.p, first, last, Ax, Ay, nullptr, nullptr, rho + row, ux + row, uy + row);
     }
-    for (int x = std::max(v.first, v.last); x < grid_.nx; ++x) edge(x);
   }
+  for (int x = last; x < x1; ++x) edge(x);
+}
+
+void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const {
+#pragma omp parallel for schedule(static) if (grid_.worth_threading())
+  for (int y = 0; y < grid_.ny; ++y) span_moments(y, 0, grid_.nx, rho.data(), ux.data(), uy.data());
 }
 
 Moments FluidLattice::moments() const {

@@ -135,10 +135,10 @@ class ImmersedCells {
   std::vector<Cell> cells_;
   std::vector<double> x_, y_, fx_, fy_, ux_, uy_;
   std::vector<double> rho_, grid_ux_, grid_uy_;  // scratch moments
-  // support_velocity(): nodes already computed this call (the supports overlap), all 0
-  // between calls, and the list of those set.
-  std::vector<unsigned char> support_seen_;
-  std::vector<std::size_t> support_nodes_;
+  // support_velocity(), sparse supports: per node whether a support holds it, per row the
+  // first and last such column and the rows that hold any (all 0, nx, −1 and empty between calls).
+  std::vector<unsigned char> support_marked_;
+  std::vector<int> row_first_, row_last_, support_rows_;
   bool area_projection_ = false;
 };
 
