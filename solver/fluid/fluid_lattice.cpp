@@ -322,9 +322,13 @@ void FluidLattice::node_moments(int x, int y, double& rho, double& ux, double& u
   moments_of([&](std::size_t i) { return f[i]; }, F[0], F[1], rho, ux, uy);
 }
 
-void FluidLattice::span_moments(int y, int x0, int x1, double* rho, double* ux, double* uy) const {
+void FluidLattice::span_moments(int y, int x0, int x1, std::span<double> rho_field, std::span<double> ux_field,
+                                std::span<double> uy_field) const {
   const RowView v = row_view(y);
   const std::size_t row = grid_.index(0, y);
+  double* rho = rho_field.data();
+  double* ux = ux_field.data();
+  double* uy = uy_field.data();
   auto edge = [&](int x) { node_moments(x, y, rho[row + x], ux[row + x], uy[row + x]); };
   // The span's part that the row view holds goes through the vector loop, the rest node by node.
   const int first = std::clamp(v.first, x0, x1), last = std::clamp(v.last, first, x1);
@@ -345,7 +349,7 @@ void FluidLattice::span_moments(int y, int x0, int x1, double* rho, double* ux, 
 
 void FluidLattice::compute_moments(std::span<double> rho, std::span<double> ux, std::span<double> uy) const {
 #pragma omp parallel for schedule(static) if (grid_.worth_threading())
-  for (int y = 0; y < grid_.ny; ++y) span_moments(y, 0, grid_.nx, rho.data(), ux.data(), uy.data());
+  for (int y = 0; y < grid_.ny; ++y) span_moments(y, 0, grid_.nx, rho, ux, uy);
 }
 
 Moments FluidLattice::moments() const {

@@ -138,9 +138,9 @@ class FluidLattice {
   // The same for one node (x, y) (the same operations, so the same bits).
   void node_moments(int x, int y, double& rho, double& ux, double& uy) const;
   // The same for the nodes x0 ≤ x < x1 of row y, written at their node index n in rho, ux and
-  // uy (arrays of grid().size()): the row's vector loop where the layout allows, as
-  // compute_moments (which calls it for whole rows); the same bits.
-  void span_moments(int y, int x0, int x1, double* rho, double* ux, double* uy) const;
+  // uy (each of grid().size(), like compute_moments'): the row's vector loop where the layout
+  // allows, as compute_moments (which calls it for whole rows); the same bits.
+  void span_moments(int y, int x0, int x1, std::span<double> rho, std::span<double> ux, std::span<double> uy) const;
 
   double total_mass() const;
   // Σ ρu of the last collision (see moments()).

@@ -167,7 +167,7 @@ void ImmersedCells::support_velocity(fluid::FluidLattice& lattice) {
       }
       const int run = x;
       while (x <= row_last_[row] && marked[x] != 0) marked[x++] = 0;  // left all 0 for the next call
-      lattice.span_moments(j, run, x, rho_.data(), grid_ux_.data(), grid_uy_.data());
+      lattice.span_moments(j, run, x, rho_, grid_ux_, grid_uy_);
     }
     row_first_[row] = nx;
     row_last_[row] = -1;
